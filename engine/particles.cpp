@@ -1,0 +1,62 @@
+#include "engine/particles.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+namespace drumlab {
+
+void Particles::reserve(std::size_t n) {
+  position.reserve(n);
+  velocity.reserve(n);
+  omega.reserve(n);
+  force.reserve(n);
+  torque.reserve(n);
+  radius.reserve(n);
+  mass.reserve(n);
+  inv_mass.reserve(n);
+  inv_inertia.reserve(n);
+  size_class.reserve(n);
+  id.reserve(n);
+}
+
+Index Particles::add(const Vec3& x, double r, double density, std::uint8_t cls) {
+  if (!(r > 0.0) || !std::isfinite(r)) {
+    throw InputError(fmt::format("particle radius must be positive and finite, got {}", r));
+  }
+  if (!(density > 0.0) || !std::isfinite(density)) {
+    throw InputError(fmt::format("particle density must be positive and finite, got {}", density));
+  }
+  if (!x.allFinite()) throw InputError("particle position must be finite");
+  const double m = density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  const auto i = static_cast<Index>(size());
+  position.push_back(x);
+  velocity.push_back(Vec3::Zero());
+  omega.push_back(Vec3::Zero());
+  force.push_back(Vec3::Zero());
+  torque.push_back(Vec3::Zero());
+  radius.push_back(r);
+  mass.push_back(m);
+  inv_mass.push_back(1.0 / m);
+  inv_inertia.push_back(1.0 / (0.4 * m * r * r));
+  size_class.push_back(cls);
+  id.push_back(i);
+  return i;
+}
+
+void Particles::clear_forces() {
+  std::fill(force.begin(), force.end(), Vec3::Zero());
+  std::fill(torque.begin(), torque.end(), Vec3::Zero());
+}
+
+double Particles::min_radius() const {
+  return radius.empty() ? 0.0 : *std::min_element(radius.begin(), radius.end());
+}
+
+double Particles::max_radius() const {
+  return radius.empty() ? 0.0 : *std::max_element(radius.begin(), radius.end());
+}
+
+}  // namespace drumlab

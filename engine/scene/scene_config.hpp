@@ -1,0 +1,99 @@
+#pragma once
+// A scene in the DEM vocabulary, as read from scenes/*.toml. Plain data; validated by load_scene.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/types.hpp"
+
+namespace drumlab {
+
+struct Material {
+  double density = 2500.0;        ///< kg/m^3
+  double youngs_modulus = 5e6;    ///< E, Pa
+  double poisson_ratio = 0.3;     ///< nu
+  double restitution = 0.5;       ///< normal coefficient of restitution e, (0, 1]
+  double friction = 0.5;          ///< Coulomb sliding friction mu
+  double rolling_friction = 0.0;  ///< rolling resistance coefficient mu_r (dimensionless)
+};
+
+enum class NormalLaw { hertz, linear };
+
+struct ContactConfig {
+  NormalLaw normal = NormalLaw::hertz;
+  /// Normal stiffness of the linear spring-dashpot law (N/m); only used with NormalLaw::linear.
+  double linear_stiffness = 0.0;
+};
+
+enum class DrumEnds { caps, periodic };
+
+/// The drum in its own frame: axis along z, centre line through x = y = 0, ends at z = 0 and
+/// z = depth. A tilted drum is simulated in this frame with gravity rotated accordingly.
+struct DrumConfig {
+  double diameter = 0.9;  ///< D, m
+  double depth = 0.15;    ///< H, m
+  double omega = 1.0;     ///< angular velocity about +z, rad/s
+  double tilt = 0.0;      ///< tilt of the axis from horizontal, rad (axis descends towards +z)
+  DrumEnds ends = DrumEnds::caps;
+};
+
+struct ParticleClass {
+  std::string name;
+  double radius = 0.0;           ///< m
+  double volume_fraction = 1.0;  ///< share of the total solid volume, sums to 1 over classes
+};
+
+enum class FillKind {
+  random,         ///< random loose fill of the lower drum, no overlaps, then settle
+  paper_packing,  ///< the paper's static cubic packing in a box (contact counting only)
+};
+
+struct FillConfig {
+  FillKind kind = FillKind::random;
+  std::size_t count = 0;           ///< total particles (random fill), split by volume fraction
+  double volume_fraction = 0.35;   ///< solid fraction of the random fill region
+  std::uint64_t seed = 1;          ///< random fill seed
+  double settle_time = 0.5;        ///< s of settling with the drum at rest before it turns
+  Vec3 box = Vec3(1.85, 1.80, 0.15);  ///< paper packing box [0, box), m
+};
+
+struct TimeConfig {
+  std::optional<double> dt;         ///< explicit time step (s); otherwise dt_factor * Rayleigh time
+  double dt_factor = 0.2;           ///< fraction of the Rayleigh time of the smallest particle
+  std::optional<double> duration;   ///< simulated seconds after settling
+  std::optional<double> revolutions;
+};
+
+struct OutputConfig {
+  std::string directory = "out";
+  std::uint64_t diagnostics_every = 1000;  ///< steps between stability checks / progress
+};
+
+struct SceneConfig {
+  std::string name;         ///< from the file name unless set
+  std::string source;       ///< file the scene came from (for error messages)
+  std::string description;
+  Vec3 gravity = Vec3(0.0, -9.81, 0.0);  ///< lab frame, m/s^2
+  DrumConfig drum;
+  std::vector<ParticleClass> classes;
+  Material material;
+  Material wall;  ///< particle-wall contact (density unused)
+  ContactConfig contact;
+  FillConfig fill;
+  TimeConfig time;
+  std::string search_method = "m5";
+  OutputConfig output;
+
+  double min_radius() const;
+  double max_radius() const;
+};
+
+/// Reads and validates a scene. Throws InputError with one line "FILE: KEY: reason".
+SceneConfig load_scene(const std::filesystem::path& file);
+/// Same, from text (tests); `source` names it in messages.
+SceneConfig parse_scene(std::string_view toml_text, std::string_view source);
+
+}  // namespace drumlab

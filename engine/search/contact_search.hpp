@@ -1,0 +1,90 @@
+#pragma once
+// The one contact-search interface every method implements: given positions and radii, find every
+// pair (i, j), i < j, whose surfaces are within `margin` of each other:
+//     |x_i - x_j| <= r_i + r_j + margin.
+// Each method counts its work per step (cells visited, pairs tested = distances computed, pairs
+// found) in total and per particle, so observers (benchmarks, the renderer, the workbench) can show it.
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "engine/types.hpp"
+
+namespace drumlab {
+
+struct IndexPair {
+  Index i;  ///< always i < j
+  Index j;
+  friend bool operator==(const IndexPair&, const IndexPair&) = default;
+  friend auto operator<=>(const IndexPair&, const IndexPair&) = default;
+};
+
+/// An axis-aligned box [lo, hi).
+struct Box {
+  Vec3 lo = Vec3::Zero();
+  Vec3 hi = Vec3::Zero();
+};
+
+struct SearchInput {
+  std::span<const Vec3> position;
+  std::span<const double> radius;
+  /// Pairs within this surface gap count (m). 0 plus a round-off tolerance finds touching spheres;
+  /// a Verlet skin finds neighbours-to-be.
+  double margin = 0.0;
+  /// If set, the grid is laid over this box (the paper's fixed grid, origin at lo) instead of the
+  /// particles' bounding box. Particles must lie inside it.
+  std::optional<Box> domain;
+  /// If set, z is periodic with this period: positions must lie in [0, period_z) and distances use
+  /// the minimum image along z (periodic drum ends).
+  std::optional<double> period_z;
+};
+
+struct SearchCounters {
+  std::uint64_t cells_visited = 0;  ///< grid cells whose particle list was opened
+  std::uint64_t pairs_tested = 0;   ///< distances computed
+  std::uint64_t pairs_found = 0;    ///< pairs that passed the test
+  std::uint64_t cells_total = 0;    ///< cells in the grid (0 for methods without a grid)
+};
+
+class ContactSearch {
+ public:
+  virtual ~ContactSearch() = default;
+
+  /// Short name used on the command line and in scenes ("brute", "m1" ... "m5").
+  virtual std::string_view name() const = 0;
+  /// One line saying what the method does.
+  virtual std::string_view description() const = 0;
+
+  /// Replaces `out` with every pair within the margin, each once with i < j, in no particular
+  /// order. Throws InputError for input the method cannot handle (non-finite coordinates, a grid
+  /// too large to index); never returns a partial answer.
+  virtual void find_pairs(const SearchInput& in, std::vector<IndexPair>& out) = 0;
+
+  /// Cell side used in the last call (m), 0 for methods without a grid.
+  virtual double cell_size() const { return 0.0; }
+
+  const SearchCounters& counters() const { return counters_; }
+  /// Cells visited and pairs tested in the last call, by the particle whose search did the work.
+  std::span<const std::uint32_t> cells_visited_per_particle() const { return cells_per_particle_; }
+  std::span<const std::uint32_t> pairs_tested_per_particle() const { return tests_per_particle_; }
+
+ protected:
+  void reset_counters(std::size_t n);
+
+  SearchCounters counters_;
+  std::vector<std::uint32_t> cells_per_particle_;
+  std::vector<std::uint32_t> tests_per_particle_;
+};
+
+/// Names accepted by make_search, in a stable order.
+std::vector<std::string> search_method_names();
+/// Creates a search by name. Throws InputError naming the unknown method and the valid ones.
+std::unique_ptr<ContactSearch> make_search(std::string_view name);
+
+/// Distance tolerance that makes touching spheres count as a contact (m).
+inline constexpr double kTouchTolerance = 1e-9;
+
+}  // namespace drumlab

@@ -1,0 +1,103 @@
+#pragma once
+// The DEM time loop. Owns the particles, the contact search, the contact history and the drum.
+// One step: search -> pair forces -> wall forces -> integrate. The step itself does no I/O;
+// observers read the public state between steps (particles(), search(), counters, timers).
+#include <cstdint>
+#include <memory>
+#include <string_view>
+
+#include "engine/particles.hpp"
+#include "engine/scene/scene_config.hpp"
+#include "engine/search/contact_search.hpp"
+
+namespace drumlab {
+
+/// Wall-clock seconds spent in each phase of the step, summed since construction.
+struct StepTimers {
+  double search = 0.0;
+  double forces = 0.0;
+  double walls = 0.0;
+  double integration = 0.0;
+  double total() const { return search + forces + walls + integration; }
+};
+
+/// Snapshot of physical health, computed on demand (not every step).
+struct Diagnostics {
+  double kinetic_energy = 0.0;      ///< translational, J
+  double rotational_energy = 0.0;   ///< J
+  double potential_energy = 0.0;    ///< gravitational, relative to the drum axis, J
+  double elastic_energy = 0.0;      ///< stored in normal contacts, J
+  double max_overlap_ratio = 0.0;   ///< max overlap / smaller radius over all contacts
+  std::size_t outside_drum = 0;     ///< particle centres outside the drum volume
+  std::size_t non_finite = 0;       ///< particles with a non-finite position or velocity
+  std::size_t contacts = 0;         ///< particle-particle contacts
+  std::size_t wall_contacts = 0;
+};
+
+struct SimulationOptions {
+  bool allow_unsafe_dt = false;  ///< accept dt above the Rayleigh time
+  double dt_factor_override = 0.0;  ///< > 0 replaces the scene's dt_factor
+};
+
+class Simulation {
+ public:
+  /// Takes the scene's physics and the given particles (already placed by a fill).
+  /// Throws InputError for an unusable configuration (dt above the Rayleigh time without
+  /// allow_unsafe_dt, particles outside the drum, unknown search method).
+  Simulation(const SceneConfig& scene, Particles particles, SimulationOptions options = {});
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  /// Advances one time step.
+  void step();
+  /// Advances n steps, checking stability every scene.output.diagnostics_every steps; throws
+  /// UnstableError with a one-line reason when the state goes bad.
+  void advance(std::uint64_t n);
+
+  /// Switches the contact search between steps (contact history is kept).
+  void set_search_method(std::string_view name);
+  /// Sets the drum's angular velocity (rad/s), e.g. 0 while settling.
+  void set_drum_omega(double omega);
+
+  const Particles& particles() const { return particles_; }
+  const SceneConfig& scene() const { return scene_; }
+  const ContactSearch& search() const { return *search_; }
+  /// Search counters summed over all steps since construction.
+  const SearchCounters& search_totals() const { return search_totals_; }
+  const StepTimers& timers() const { return timers_; }
+  double time() const { return time_; }
+  double dt() const { return dt_; }
+  double rayleigh_time() const { return rayleigh_time_; }
+  double drum_omega() const { return omega_; }
+  double drum_angle() const { return drum_angle_; }
+  std::uint64_t steps() const { return steps_; }
+  /// Gravity in the drum frame (the lab gravity rotated by the tilt).
+  const Vec3& gravity() const { return gravity_; }
+
+  Diagnostics diagnostics() const;
+  /// Throws UnstableError if diagnostics show non-finite values, particles outside the drum or
+  /// overlaps above half a radius.
+  void check_stability() const;
+
+ private:
+  struct Impl;
+  SceneConfig scene_;
+  Particles particles_;
+  std::unique_ptr<ContactSearch> search_;
+  std::unique_ptr<Impl> impl_;
+  SearchCounters search_totals_;
+  StepTimers timers_;
+  Vec3 gravity_ = Vec3::Zero();
+  double time_ = 0.0;
+  double dt_ = 0.0;
+  double rayleigh_time_ = 0.0;
+  double omega_ = 0.0;
+  double drum_angle_ = 0.0;
+  std::uint64_t steps_ = 0;
+};
+
+/// Rayleigh time of a sphere (s): pi r sqrt(rho / G) / (0.1631 nu + 0.8766), G = E / (2 (1 + nu)).
+double rayleigh_time(double radius, const Material& m);
+
+}  // namespace drumlab
