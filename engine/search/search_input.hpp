@@ -1,0 +1,33 @@
+#pragma once
+// Checks shared by every search method, and the periodic minimum-image distance.
+#include <cmath>
+
+#include "engine/search/contact_search.hpp"
+
+namespace drumlab {
+
+/// Throws InputError if the input is inconsistent (size mismatch, non-finite or non-positive
+/// radius, non-finite position, negative margin, position outside the domain or period).
+void validate_search_input(const SearchInput& in);
+
+/// Squared distance between a and b, using the minimum image along z when period > 0.
+inline double distance_squared(const Vec3& a, const Vec3& b, double period) {
+  double dx = a.x() - b.x();
+  double dy = a.y() - b.y();
+  double dz = a.z() - b.z();
+  if (period > 0.0) {
+    if (dz > 0.5 * period) {
+      dz -= period;
+    } else if (dz < -0.5 * period) {
+      dz += period;
+    }
+  }
+  return dx * dx + dy * dy + dz * dz;
+}
+
+/// Cut-off distance for a pair: r_i + r_j + margin + the touching tolerance.
+inline double pair_cutoff(double ri, double rj, double margin) {
+  return ri + rj + margin + kTouchTolerance;
+}
+
+}  // namespace drumlab
