@@ -3,7 +3,8 @@
 // pair (i, j), i < j, whose surfaces are within `margin` of each other:
 //     |x_i - x_j| <= r_i + r_j + margin.
 // Each method counts its work per step (cells visited, pairs tested = distances computed, pairs
-// found) in total and per particle, so observers (benchmarks, the renderer, the workbench) can show it.
+// found) in total and per particle, so observers (benchmarks, the renderer, the workbench) can show
+// it.
 #include <memory>
 #include <optional>
 #include <span>

@@ -1,0 +1,309 @@
+#include "engine/search/cell_grid.hpp"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <numeric>
+
+#include <fmt/format.h>
+
+#include "engine/search/search_input.hpp"
+
+namespace drumlab {
+
+namespace {
+
+/// Cells along one axis are capped so that cell coordinates stay exact in doubles and int64.
+constexpr double kMaxCellsPerAxis = 1099511627776.0;  // 2^40
+
+/// A dense array is used while it costs at most this many cells per particle (plus a floor).
+constexpr double kDenseCellsPerParticle = 64.0;
+constexpr double kDenseCellFloor = 4194304.0;  // 2^22
+
+}  // namespace
+
+CellGridConfig paper_method(int method) {
+  switch (method) {
+    case 1:
+      return {"m1",  "paper method 1: 2D grid, cell = R_min, per-size half stencil",
+              false, true,
+              true,  false};
+    case 2:
+      return {"m2", "paper method 2: as m1, smallest particles skip far cells", false, true, true,
+              true};
+    case 3:
+      return {"m3", "paper method 3: 3D grid, cell = R_min, per-size half shell", true, true, true,
+              false};
+    case 4:
+      return {"m4", "paper method 4: 2D grid, cell = R_max, one stencil", false, false, false,
+              false};
+    case 5:
+      return {"m5", "paper method 5: 3D grid, cell = R_max, one half shell", true, false, false,
+              false};
+    default:
+      throw InputError(fmt::format("paper method must be 1..5, got {}", method));
+  }
+}
+
+void CellGridSearch::find_pairs(const SearchInput& in, std::vector<IndexPair>& out) {
+  validate_search_input(in);
+  const std::size_t n = in.position.size();
+  reset_counters(n);
+  out.clear();
+  if (n == 0) return;
+  lay_grid(in);
+  sort_into_cells(in);
+  if (geometry_.hashed) {
+    build_hashed();
+    visit_all(hashed_, in, out);
+  } else {
+    visit_all(dense_, in, out);
+  }
+  counters_.pairs_found = out.size();
+}
+
+void CellGridSearch::lay_grid(const SearchInput& in) {
+  const std::size_t n = in.position.size();
+  const auto [rmin_it, rmax_it] = std::minmax_element(in.radius.begin(), in.radius.end());
+  const double rmin = *rmin_it;
+  const double rmax = *rmax_it;
+  const double period = in.period_z.value_or(0.0);
+
+  Vec3 lo, hi;
+  if (in.domain) {
+    lo = in.domain->lo;
+    hi = in.domain->hi;
+  } else {
+    lo = hi = in.position[0];
+    for (const Vec3& x : in.position) {
+      lo = lo.cwiseMin(x);
+      hi = hi.cwiseMax(x);
+    }
+  }
+  if (period > 0.0) {
+    lo.z() = 0.0;
+    hi.z() = period;
+  }
+  // The cell is widened by the margin so a pair at exactly k nominal cells still fits in k cells.
+  const double b = (config_.cell_from_min_radius ? rmin : rmax) + in.margin + kTouchTolerance;
+  double axis_cells[3];
+  for (int a = 0; a < 3; ++a) {
+    axis_cells[a] = (hi[a] - lo[a]) / b;
+    if (!(axis_cells[a] < kMaxCellsPerAxis)) {
+      throw InputError(
+          fmt::format("search {}: particles span {:.6g} m along {} = {:.3g} cells of side {:.6g} "
+                      "m; too many to "
+                      "index",
+                      config_.name, hi[a] - lo[a], "xyz"[a], axis_cells[a], b));
+    }
+  }
+  // Round-off bound: cell coordinates carry an error of a few ulps of the largest coordinate.
+  const double scale = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()) / b +
+                       std::max({axis_cells[0], axis_cells[1], axis_cells[2]});
+  const double slack = 16.0 * DBL_EPSILON * (scale + 1.0);
+  auto cells_for = [&](double reach) {
+    return static_cast<int>(std::ceil(reach / b * (1.0 + 8.0 * DBL_EPSILON) + slack));
+  };
+
+  reach_.resize(n);
+  int kmax = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double reach =
+        (config_.per_size_stencil ? in.radius[i] + rmax : 2.0 * rmax) + in.margin + kTouchTolerance;
+    reach_[i] = cells_for(reach);
+    kmax = std::max(kmax, reach_[i]);
+  }
+  small_radius_ = rmin * (1.0 + 1e-12);
+  if (config_.skip_far_for_smallest) {
+    k_small_ = cells_for(2.0 * rmin + in.margin + kTouchTolerance);
+    reach_back_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      reach_back_[i] = cells_for(rmin + in.radius[i] + in.margin + kTouchTolerance);
+    }
+  }
+
+  GridGeometry g;
+  g.origin = lo;
+  g.cell_xy = b;
+  g.nx = static_cast<std::int64_t>(axis_cells[0]) + 1;
+  g.ny = static_cast<std::int64_t>(axis_cells[1]) + 1;
+  g.periodic_z = period > 0.0;
+  if (!config_.three_d) {
+    g.nz = 1;
+    g.cell_z = hi.z() - lo.z();
+  } else if (g.periodic_z) {
+    // Cells must tile the period exactly; with fewer than 2k+1 layers the wrapped stencil would
+    // visit a layer twice, so such a thin periodic slab is searched as one layer.
+    g.nz = static_cast<std::int64_t>(period / b);
+    if (g.nz < 2 * kmax + 1) g.nz = 1;
+    g.cell_z = period / static_cast<double>(g.nz);
+  } else {
+    g.nz = static_cast<std::int64_t>(axis_cells[2]) + 1;
+    g.cell_z = b;
+  }
+  const double total =
+      static_cast<double>(g.nx) * static_cast<double>(g.ny) * static_cast<double>(g.nz);
+  g.hashed = total > kDenseCellsPerParticle * static_cast<double>(n) + kDenseCellFloor;
+  geometry_ = g;
+  counters_.cells_total = static_cast<std::uint64_t>(total);
+
+  const bool three_d = config_.three_d && g.nz > 1;
+  if (stencil_.kmax() != kmax || stencil_three_d_ != three_d) {
+    stencil_ = HalfStencil(kmax, three_d);
+    stencil_three_d_ = three_d;
+  }
+}
+
+void CellGridSearch::sort_into_cells(const SearchInput& in) {
+  const std::size_t n = in.position.size();
+  const GridGeometry& g = geometry_;
+  cell_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3 u = (in.position[i] - g.origin) / g.cell_xy;
+    CellCoord c{std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor(u.x())), 0, g.nx - 1),
+                std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor(u.y())), 0, g.ny - 1),
+                0};
+    if (g.nz > 1) {
+      const double uz = (in.position[i].z() - g.origin.z()) / g.cell_z;
+      c.z = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor(uz)), 0, g.nz - 1);
+    }
+    cell_[i] = c;
+  }
+  // Smallest-size particles first within a cell (method 2 scans only that segment backwards).
+  auto key_less = [this, &in](Index a, Index b) {
+    const CellCoord& ca = cell_[a];
+    const CellCoord& cb = cell_[b];
+    if (ca.z != cb.z) return ca.z < cb.z;
+    if (ca.y != cb.y) return ca.y < cb.y;
+    if (ca.x != cb.x) return ca.x < cb.x;
+    const bool small_a = in.radius[a] <= small_radius_;
+    const bool small_b = in.radius[b] <= small_radius_;
+    if (small_a != small_b) return small_a;
+    return a < b;
+  };
+  order_.resize(n);
+  if (g.hashed) {
+    std::iota(order_.begin(), order_.end(), Index{0});
+    std::sort(order_.begin(), order_.end(), key_less);
+  } else {
+    // Counting sort by linear cell id: O(N + cells).
+    dense_.reset(g.nx, g.ny, g.nz);
+    for (std::size_t i = 0; i < n; ++i) ++dense_.at(dense_.linear(cell_[i])).end;
+    std::uint32_t running = 0;
+    const std::int64_t cells = g.nx * g.ny * g.nz;
+    for (std::int64_t c = 0; c < cells; ++c) {
+      CellRange& r = dense_.at(c);
+      r.begin = running;
+      running += r.end;
+      r.small_end = r.begin;  // fill cursor
+      r.end = r.begin;
+    }
+    for (int pass = 0; pass < 2; ++pass) {  // smallest-size particles first, stable otherwise
+      for (std::size_t i = 0; i < n; ++i) {
+        if ((in.radius[i] <= small_radius_) != (pass == 0)) continue;
+        CellRange& r = dense_.at(dense_.linear(cell_[i]));
+        order_[r.end++] = static_cast<Index>(i);
+        if (pass == 0) r.small_end = r.end;
+      }
+    }
+  }
+  sorted_position_.resize(n);
+  sorted_radius_.resize(n);
+  for (std::size_t s = 0; s < n; ++s) {
+    sorted_position_[s] = in.position[order_[s]];
+    sorted_radius_[s] = in.radius[order_[s]];
+  }
+}
+
+void CellGridSearch::build_hashed() {
+  const std::size_t n = order_.size();
+  std::size_t occupied = 0;
+  for (std::size_t s = 1; s <= n; ++s) {
+    if (s == n || !(cell_[order_[s]] == cell_[order_[s - 1]])) ++occupied;
+  }
+  hashed_.reset(occupied);
+  for (std::size_t s = 0; s < n;) {
+    std::size_t e = s + 1;
+    while (e < n && cell_[order_[e]] == cell_[order_[s]]) ++e;
+    std::uint32_t small_end = static_cast<std::uint32_t>(s);
+    while (small_end < e && sorted_radius_[small_end] <= small_radius_) ++small_end;
+    hashed_.insert(cell_[order_[s]], CellRange{static_cast<std::uint32_t>(s), small_end,
+                                               static_cast<std::uint32_t>(e)});
+    s = e;
+  }
+}
+
+bool CellGridSearch::wrap(CellCoord& c) const {
+  const GridGeometry& g = geometry_;
+  if (c.x < 0 || c.x >= g.nx || c.y < 0 || c.y >= g.ny) return false;
+  if (g.periodic_z && g.nz > 1) {  // |dz| <= k < nz, so one wrap suffices
+    if (c.z < 0) {
+      c.z += g.nz;
+    } else if (c.z >= g.nz) {
+      c.z -= g.nz;
+    }
+    return true;
+  }
+  return c.z >= 0 && c.z < g.nz;
+}
+
+template <class Cells>
+void CellGridSearch::visit_all(const Cells& cells, const SearchInput& in,
+                               std::vector<IndexPair>& out) {
+  const std::size_t n = order_.size();
+  const double period = in.period_z.value_or(0.0);
+  const double margin = in.margin + kTouchTolerance;
+  const std::vector<CellOffset>& offsets = stencil_.offsets;
+  std::uint64_t cells_visited = 0, pairs_tested = 0;
+
+  for (std::size_t s = 0; s < n; ++s) {
+    const Vec3 xi = sorted_position_[s];
+    const double ri = sorted_radius_[s];
+    const Index pi = order_[s];
+    const CellCoord ci = cell_[pi];
+    std::uint32_t my_cells = 1, my_tests = 0;
+
+    auto scan = [&](std::uint32_t begin, std::uint32_t end) {
+      my_tests += end - begin;
+      for (std::uint32_t t = begin; t < end; ++t) {
+        const double cut = ri + sorted_radius_[t] + margin;
+        if (distance_squared(xi, sorted_position_[t], period) <= cut * cut) {
+          const Index pj = order_[t];
+          out.push_back(pi < pj ? IndexPair{pi, pj} : IndexPair{pj, pi});
+        }
+      }
+    };
+
+    CellRange r;
+    cells.find(ci, r);
+    scan(static_cast<std::uint32_t>(s) + 1, r.end);  // own cell: partners later in the order
+
+    const bool small = ri <= small_radius_;
+    const bool skip = config_.skip_far_for_smallest;
+    const int k_forward = (skip && small) ? std::min(k_small_, reach_[pi]) : reach_[pi];
+    for (std::uint32_t o = 0; o < stencil_.prefix_end[k_forward]; ++o) {
+      CellCoord c{ci.x + offsets[o].dx, ci.y + offsets[o].dy, ci.z + offsets[o].dz};
+      if (!wrap(c)) continue;
+      ++my_cells;
+      if (cells.find(c, r)) scan(r.begin, r.end);
+    }
+    if (skip && !small && reach_back_[pi] > k_small_) {
+      // Far ring of the backward half, smallest-size partners only (they skipped it).
+      for (std::uint32_t o = stencil_.prefix_end[k_small_];
+           o < stencil_.prefix_end[reach_back_[pi]]; ++o) {
+        CellCoord c{ci.x - offsets[o].dx, ci.y - offsets[o].dy, ci.z - offsets[o].dz};
+        if (!wrap(c)) continue;
+        ++my_cells;
+        if (cells.find(c, r)) scan(r.begin, r.small_end);
+      }
+    }
+    cells_per_particle_[pi] = my_cells;
+    tests_per_particle_[pi] = my_tests;
+    cells_visited += my_cells;
+    pairs_tested += my_tests;
+  }
+  counters_.cells_visited = cells_visited;
+  counters_.pairs_tested = pairs_tested;
+}
+
+}  // namespace drumlab

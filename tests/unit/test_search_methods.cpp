@@ -1,0 +1,197 @@
+// One suite over every contact-search method, each checked against the brute-force oracle: the
+// same pair set, every pair once, on inputs chosen to break grids (size ratios 1, 3, 10, centres on
+// cell faces, negative and far-from-origin coordinates, deep columns, dense clusters, periodic z,
+// a Verlet margin, sparse inputs that force the hashed cell index).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "engine/search/cell_grid.hpp"
+#include "engine/search/contact_search.hpp"
+#include "engine/search/half_stencil.hpp"
+
+namespace drumlab {
+namespace {
+
+struct Cloud {
+  std::vector<Vec3> x;
+  std::vector<double> r;
+};
+
+/// Random spheres in a box; radii drawn from {r0, ratio*r0, (1+ratio)/2*r0}.
+Cloud random_box(std::size_t n, double ratio, const Vec3& lo, const Vec3& size, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double r0 = 0.005;
+  const double radii[3] = {r0, 0.5 * (1.0 + ratio) * r0, ratio * r0};
+  Cloud c;
+  for (std::size_t i = 0; i < n; ++i) {
+    c.x.push_back(lo + Vec3(u(rng) * size.x(), u(rng) * size.y(), u(rng) * size.z()));
+    c.r.push_back(radii[i % 3]);
+  }
+  return c;
+}
+
+std::vector<IndexPair> sorted_pairs(ContactSearch& s, const Cloud& c, double margin = 0.0,
+                                    std::optional<double> period = std::nullopt,
+                                    std::optional<Box> domain = std::nullopt) {
+  SearchInput in{c.x, c.r, margin, domain, period};
+  std::vector<IndexPair> out;
+  s.find_pairs(in, out);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+class SearchMethod : public ::testing::TestWithParam<std::string> {
+ protected:
+  void expect_same_as_brute(const Cloud& c, double margin = 0.0,
+                            std::optional<double> period = std::nullopt,
+                            std::optional<Box> domain = std::nullopt) {
+    auto oracle = make_search("brute");
+    auto method = make_search(GetParam());
+    const auto expected = sorted_pairs(*oracle, c, margin, period, domain);
+    const auto got = sorted_pairs(*method, c, margin, period, domain);
+    ASSERT_EQ(std::adjacent_find(got.begin(), got.end()), got.end()) << "a pair was found twice";
+    EXPECT_EQ(got.size(), expected.size());
+    EXPECT_EQ(got, expected);
+    EXPECT_EQ(method->counters().pairs_found, got.size());
+    EXPECT_GE(method->counters().pairs_tested, got.size());
+  }
+};
+
+TEST_P(SearchMethod, RandomBoxSizeRatio1) {
+  expect_same_as_brute(random_box(3000, 1.0, Vec3::Zero(), Vec3(0.3, 0.3, 0.15), 1));
+}
+
+TEST_P(SearchMethod, RandomBoxSizeRatio3) {
+  expect_same_as_brute(random_box(3000, 3.0, Vec3::Zero(), Vec3(0.4, 0.3, 0.15), 2));
+}
+
+TEST_P(SearchMethod, RandomBoxSizeRatio10) {
+  expect_same_as_brute(random_box(2000, 10.0, Vec3::Zero(), Vec3(0.6, 0.5, 0.3), 3));
+}
+
+TEST_P(SearchMethod, CentresOnCellFacesTouching) {
+  // Simple cubic lattices of touching spheres whose centres sit on multiples of the cell side:
+  // every neighbour is at exactly r_i + r_j, which must count as a contact.
+  Cloud c;
+  for (double r : {0.005, 0.010, 0.015}) {
+    const double y0 = r == 0.005 ? 0.0 : (r == 0.010 ? 0.1 : 0.2);
+    for (int iz = 0; iz < 4; ++iz)
+      for (int iy = 0; iy < 4; ++iy)
+        for (int ix = 0; ix < 12; ++ix) {
+          c.x.emplace_back((2 * ix + 1) * r, y0 + (2 * iy + 1) * r, (2 * iz + 1) * r);
+          c.r.push_back(r);
+        }
+  }
+  expect_same_as_brute(c);
+  // Also on the paper's fixed grid with origin (0, 0, 0).
+  expect_same_as_brute(c, 0.0, std::nullopt, Box{Vec3::Zero(), Vec3(0.5, 0.5, 0.5)});
+  auto brute = make_search("brute");
+  EXPECT_GT(sorted_pairs(*brute, c).size(), 3 * 12 * 4 * 4u);  // the lattices really touch
+}
+
+TEST_P(SearchMethod, NegativeAndFarFromOriginCoordinates) {
+  expect_same_as_brute(random_box(1500, 3.0, Vec3(-0.7, -0.2, -0.5), Vec3(0.3, 0.3, 0.2), 4));
+  expect_same_as_brute(random_box(1500, 3.0, Vec3(1e5, -2e5, 3e4), Vec3(0.3, 0.3, 0.2), 5));
+}
+
+TEST_P(SearchMethod, DeepColumn) {
+  expect_same_as_brute(random_box(3000, 3.0, Vec3::Zero(), Vec3(0.1, 0.1, 2.0), 6));
+}
+
+TEST_P(SearchMethod, DenseClusterInSparseCloud) {
+  Cloud c = random_box(400, 3.0, Vec3::Zero(), Vec3(2.0, 2.0, 1.0), 7);
+  const Cloud cluster = random_box(1500, 3.0, Vec3(1.0, 1.0, 0.5), Vec3(0.04, 0.04, 0.04), 8);
+  c.x.insert(c.x.end(), cluster.x.begin(), cluster.x.end());
+  c.r.insert(c.r.end(), cluster.r.begin(), cluster.r.end());
+  expect_same_as_brute(c);
+}
+
+TEST_P(SearchMethod, FarApartParticlesUseSparseIndex) {
+  Cloud c = random_box(300, 3.0, Vec3::Zero(), Vec3(0.1, 0.1, 0.1), 9);
+  const Cloud far = random_box(300, 3.0, Vec3(5e3, 4e3, 3e3), Vec3(0.1, 0.1, 0.1), 10);
+  c.x.insert(c.x.end(), far.x.begin(), far.x.end());
+  c.r.insert(c.r.end(), far.r.begin(), far.r.end());
+  expect_same_as_brute(c);
+  auto method = make_search(GetParam());
+  sorted_pairs(*method, c);
+  if (auto* grid = dynamic_cast<CellGridSearch*>(method.get())) {
+    EXPECT_TRUE(grid->geometry().hashed) << "a dense grid over this box would need ~1e16 cells";
+  }
+}
+
+TEST_P(SearchMethod, PeriodicZ) {
+  // Particles near both ends must pair across the periodic boundary (minimum image).
+  Cloud c = random_box(3000, 3.0, Vec3::Zero(), Vec3(0.3, 0.3, 0.3), 11);
+  expect_same_as_brute(c, 0.0, 0.3);
+  Cloud thin = random_box(800, 3.0, Vec3::Zero(), Vec3(0.3, 0.3, 0.09), 12);
+  expect_same_as_brute(thin, 0.0, 0.09);  // too thin for a 3D stencil: searched as one layer
+}
+
+TEST_P(SearchMethod, VerletMargin) {
+  expect_same_as_brute(random_box(2000, 3.0, Vec3::Zero(), Vec3(0.3, 0.3, 0.15), 13), 0.004);
+}
+
+TEST_P(SearchMethod, TinyInputs) {
+  expect_same_as_brute(Cloud{});
+  expect_same_as_brute(Cloud{{Vec3(1, 2, 3)}, {0.01}});
+  expect_same_as_brute(Cloud{{Vec3(0, 0, 0), Vec3(0.02, 0, 0)}, {0.01, 0.01}});
+  expect_same_as_brute(Cloud{{Vec3(0, 0, 0), Vec3(0, 0, 0)}, {0.01, 0.01}});  // coincident
+}
+
+TEST_P(SearchMethod, RejectsBadInput) {
+  auto method = make_search(GetParam());
+  std::vector<IndexPair> out;
+  Cloud nan{{Vec3(0, std::nan(""), 0)}, {0.01}};
+  EXPECT_THROW(method->find_pairs(SearchInput{nan.x, nan.r, 0.0, std::nullopt, std::nullopt}, out),
+               InputError);
+  Cloud negative{{Vec3(0, 0, 0)}, {-0.01}};
+  EXPECT_THROW(
+      method->find_pairs(SearchInput{negative.x, negative.r, 0.0, std::nullopt, std::nullopt}, out),
+      InputError);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllMethods, SearchMethod, ::testing::ValuesIn(search_method_names()),
+                         [](const auto& info) { return info.param; });
+
+TEST(HalfStencil, CellCountsMatchThePaper) {
+  // The paper's stencil sizes for k = 4, 5, 6 (2D, cell = R_min) and k = 2 (cell = R_max).
+  EXPECT_EQ(half_stencil_cells(4, false), 41u);
+  EXPECT_EQ(half_stencil_cells(5, false), 61u);
+  EXPECT_EQ(half_stencil_cells(6, false), 85u);
+  EXPECT_EQ(half_stencil_cells(2, false), 13u);
+  EXPECT_EQ(half_stencil_cells(2, true), 63u);  // true half shell (paper: 13 x 5 = 65)
+  for (bool three_d : {false, true}) {
+    const HalfStencil st(6, three_d);
+    for (int k = 0; k <= 6; ++k) EXPECT_EQ(st.prefix_end[k] + 1, half_stencil_cells(k, three_d));
+  }
+}
+
+TEST(CellGrid, InteriorParticleVisitsThePaperStencil) {
+  // A small particle (r = R_min) with R_max = 3 R_min, far from the grid edges, in method 1
+  // visits k = 4 -> 41 cells; a large one k = 6 -> 85.
+  Cloud c;
+  c.x = {Vec3(0.5, 0.5, 0.05), Vec3(0.3, 0.3, 0.05), Vec3(0.0, 0.0, 0.0), Vec3(1.0, 1.0, 0.1)};
+  c.r = {0.005, 0.015, 0.005, 0.005};
+  CellGridSearch m1(paper_method(1));
+  sorted_pairs(m1, c);
+  EXPECT_EQ(m1.reach_cells(0), 4);
+  EXPECT_EQ(m1.reach_cells(1), 6);
+  EXPECT_EQ(m1.cells_visited_per_particle()[0], 41u);
+  EXPECT_EQ(m1.cells_visited_per_particle()[1], 85u);
+}
+
+TEST(SearchFactory, UnknownMethodNamesTheValidOnes) {
+  try {
+    make_search("m7");
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("m7"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("brute"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace drumlab
