@@ -1,0 +1,218 @@
+#include "engine/fill/random_fill.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+#include <random>
+
+#include <fmt/format.h>
+
+namespace drumlab {
+namespace {
+
+constexpr int kAttemptsPerLevel = 2000;  ///< tries for one particle before the level is raised
+
+/// Area of the segment of a circle of radius R below a chord at height h above its lowest point.
+double segment_area(double R, double h) {
+  h = std::clamp(h, 0.0, 2.0 * R);
+  const double d = R - h;
+  return R * R * std::acos(d / R) - d * std::sqrt(std::max(0.0, R * R - d * d));
+}
+
+/// Height h of the segment with the given area (bisection; area is monotone in h).
+double segment_height(double R, double area) {
+  if (area >= std::numbers::pi * R * R) return 2.0 * R;
+  double lo = 0.0, hi = 2.0 * R;
+  for (int it = 0; it < 100; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (segment_area(R, mid) < area ? lo : hi) = mid;
+  }
+  return hi;
+}
+
+/// Uniform cell grid over the drum's bounding box with cells at least as wide as the largest
+/// contact distance, so any overlapping particle lies in one of the 27 surrounding cells.
+class OverlapGrid {
+ public:
+  OverlapGrid(double radius, double depth, double min_cell, std::size_t expected) {
+    const double volume = 4.0 * radius * radius * depth;
+    // Cells no smaller than the contact range; coarser if that would mean many more cells than
+    // particles (keeps memory O(N) for tiny particles in a big drum).
+    cell_ = std::max(
+        min_cell, std::cbrt(volume / static_cast<double>(std::max<std::size_t>(expected, 1) * 4)));
+    origin_ = Vec3(-radius, -radius, 0.0);
+    n_[0] = n_[1] = std::max(1, static_cast<int>(std::ceil(2.0 * radius / cell_)));
+    n_[2] = std::max(1, static_cast<int>(std::ceil(depth / cell_)));
+    head_.assign(static_cast<std::size_t>(n_[0]) * n_[1] * n_[2], -1);
+  }
+
+  bool overlaps(const Vec3& x, double r, const Particles& p) const {
+    const auto c = cell_of(x);
+    for (int k = std::max(0, c[2] - 1); k <= std::min(n_[2] - 1, c[2] + 1); ++k) {
+      for (int j = std::max(0, c[1] - 1); j <= std::min(n_[1] - 1, c[1] + 1); ++j) {
+        for (int i = std::max(0, c[0] - 1); i <= std::min(n_[0] - 1, c[0] + 1); ++i) {
+          for (std::int64_t q = head_[flat(i, j, k)]; q >= 0; q = next_[q]) {
+            const double reach = r + p.radius[q];
+            if ((p.position[q] - x).squaredNorm() < reach * reach) return true;
+          }
+        }
+      }
+    }
+    return false;
+  }
+
+  void insert(std::size_t index, const Vec3& x) {
+    const auto c = cell_of(x);
+    if (next_.size() <= index) next_.resize(index + 1, -1);
+    auto& h = head_[flat(c[0], c[1], c[2])];
+    next_[index] = h;
+    h = static_cast<std::int64_t>(index);
+  }
+
+ private:
+  std::array<int, 3> cell_of(const Vec3& x) const {
+    std::array<int, 3> c;
+    for (int d = 0; d < 3; ++d) {
+      c[d] = std::clamp(static_cast<int>(std::floor((x[d] - origin_[d]) / cell_)), 0, n_[d] - 1);
+    }
+    return c;
+  }
+  std::size_t flat(int i, int j, int k) const {
+    return (static_cast<std::size_t>(k) * n_[1] + j) * n_[0] + i;
+  }
+
+  double cell_ = 1.0;
+  Vec3 origin_ = Vec3::Zero();
+  std::array<int, 3> n_{1, 1, 1};
+  std::vector<std::int64_t> head_;
+  std::vector<std::int64_t> next_;
+};
+
+/// Unit vector "up" in the drum's cross-section: against the in-plane part of gravity.
+Eigen::Vector2d up_direction(const Vec3& gravity) {
+  const Eigen::Vector2d g(gravity.x(), gravity.y());
+  if (g.norm() < 1e-12) return Eigen::Vector2d(0.0, 1.0);
+  return -g.normalized();
+}
+
+double solid_volume(const SceneConfig& scene, const std::vector<std::size_t>& counts) {
+  double v = 0.0;
+  for (std::size_t c = 0; c < counts.size(); ++c) {
+    const double r = scene.classes[c].radius;
+    v += static_cast<double>(counts[c]) * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  }
+  return v;
+}
+
+}  // namespace
+
+std::vector<std::size_t> class_counts(const SceneConfig& scene) {
+  const auto& classes = scene.classes;
+  if (classes.empty())
+    throw InputError(fmt::format("{}: particles: no size classes", scene.source));
+  const double rmax = scene.max_radius();
+  std::vector<double> weight(classes.size());
+  for (std::size_t c = 0; c < classes.size(); ++c) {
+    const double s = classes[c].radius / rmax;  // scaled, so weights are O(1)
+    weight[c] = classes[c].volume_fraction / (s * s * s);
+  }
+  const double total = std::accumulate(weight.begin(), weight.end(), 0.0);
+  const auto n = static_cast<double>(scene.fill.count);
+  std::vector<std::size_t> counts(classes.size());
+  std::vector<double> remainder(classes.size());
+  std::size_t assigned = 0;
+  for (std::size_t c = 0; c < classes.size(); ++c) {
+    const double exact = n * weight[c] / total;
+    // Round values within 1e-9 of an integer to it, so exact splits do not depend on rounding.
+    const double near = std::round(exact);
+    const double base =
+        std::abs(exact - near) < 1e-9 * std::max(1.0, exact) ? near : std::floor(exact);
+    counts[c] = static_cast<std::size_t>(base);
+    remainder[c] = exact - base;
+    assigned += counts[c];
+  }
+  std::vector<std::size_t> order(classes.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return remainder[a] > remainder[b]; });
+  for (std::size_t k = 0; assigned < scene.fill.count; k = (k + 1) % order.size()) {
+    ++counts[order[k]];
+    ++assigned;
+  }
+  for (std::size_t k = order.size(); assigned > scene.fill.count; --k) {  // only via rounding up
+    auto& c = counts[order[(k - 1) % order.size()]];
+    if (c > 0) --c, --assigned;
+  }
+  return counts;
+}
+
+Particles random_fill(const SceneConfig& scene) {
+  if (scene.fill.kind != FillKind::random) {
+    throw InputError(
+        fmt::format("{}: fill.kind: random_fill needs kind = \"random\"", scene.source));
+  }
+  const auto counts = class_counts(scene);
+  const double R = 0.5 * scene.drum.diameter;
+  const double H = scene.drum.depth;
+  const double rmax = scene.max_radius();
+  const std::size_t total = scene.fill.count;
+
+  // Level of the fill region: a circular segment of the cross-section times the depth.
+  const double region_volume = solid_volume(scene, counts) / scene.fill.volume_fraction;
+  double level = -R + segment_height(R, region_volume / H);  // along "up", from the axis
+  const Eigen::Vector2d up = up_direction(scene.gravity);
+  const Eigen::Vector2d side(up.y(), -up.x());
+
+  // Largest classes first: small spheres fit the gaps between big ones, not the other way round.
+  std::vector<std::size_t> order(counts.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return scene.classes[a].radius > scene.classes[b].radius;
+  });
+
+  Particles p;
+  p.reserve(total);
+  OverlapGrid grid(R, H, 2.0 * rmax, total);
+  std::mt19937_64 rng(scene.fill.seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double grow = 0.02 * scene.drum.diameter;
+
+  for (const std::size_t c : order) {
+    const double r = scene.classes[c].radius;
+    const double reach = R - r;  // centre distance from the axis
+    for (std::size_t n = 0; n < counts[c]; ++n) {
+      bool placed = false;
+      while (!placed) {
+        const double top = std::clamp(level, -reach + 0.5 * r, reach);
+        // Half-width of the segment below `top` of the disc of radius `reach`.
+        const double half = top >= 0.0 ? reach : std::sqrt(reach * reach - top * top);
+        for (int attempt = 0; attempt < kAttemptsPerLevel && !placed; ++attempt) {
+          Eigen::Vector2d q;
+          do {  // uniform in that segment
+            const double u = -reach + unit(rng) * (top + reach);
+            const double s = -half + unit(rng) * 2.0 * half;
+            q = u * up + s * side;
+          } while (q.squaredNorm() > reach * reach);
+          const Vec3 x(q.x(), q.y(), r + unit(rng) * (H - 2.0 * r));
+          if (grid.overlaps(x, r, p)) continue;
+          grid.insert(p.size(), x);
+          p.add(x, r, scene.material.density, static_cast<std::uint8_t>(c));
+          placed = true;
+        }
+        if (placed) break;
+        if (level >= reach) {
+          throw InputError(fmt::format(
+              "{}: fill: cannot place {} of {} particles (radius {} m) anywhere in the drum; "
+              "lower fill.count or fill.volume_fraction",
+              scene.source, total - p.size(), total, r));
+        }
+        level += grow;
+      }
+    }
+  }
+  return p;
+}
+
+}  // namespace drumlab
