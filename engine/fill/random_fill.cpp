@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <numeric>
+#include <optional>
 #include <random>
 
 #include <fmt/format.h>
@@ -106,6 +107,46 @@ double solid_volume(const SceneConfig& scene, const std::vector<std::size_t>& co
   return v;
 }
 
+/// The drum's cross-section seen from gravity: "up" against its in-plane part.
+struct CrossSection {
+  explicit CrossSection(const SceneConfig& scene)
+      : up(up_direction(scene.gravity)),
+        side(up.y(), -up.x()),
+        R(0.5 * scene.drum.diameter),
+        H(scene.drum.depth) {}
+
+  /// Uniform random centre of a sphere of radius r inside the drum (one radius from the mantle
+  /// and the end planes) and below `level`, measured from the axis along `up`.
+  Vec3 sample_centre(double r, double level, std::mt19937_64& rng) const {
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const double reach = R - r;
+    const double top = std::clamp(level, -reach + 0.5 * r, reach);
+    // Half-width of the disc of radius `reach` at the level `top`: the segment's widest chord.
+    const double half = top >= 0.0 ? reach : std::sqrt(reach * reach - top * top);
+    Eigen::Vector2d q;
+    do {
+      const double u = -reach + unit(rng) * (top + reach);
+      const double s = -half + unit(rng) * 2.0 * half;
+      q = u * up + s * side;
+    } while (q.squaredNorm() > reach * reach);
+    return Vec3(q.x(), q.y(), r + unit(rng) * (H - 2.0 * r));
+  }
+
+  Eigen::Vector2d up, side;
+  double R, H;
+};
+
+/// Class indices, largest radius first: small spheres fit the gaps between big ones, not the
+/// other way round.
+std::vector<std::size_t> largest_first(const SceneConfig& scene) {
+  std::vector<std::size_t> order(scene.classes.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return scene.classes[a].radius > scene.classes[b].radius;
+  });
+  return order;
+}
+
 }  // namespace
 
 std::vector<std::size_t> class_counts(const SceneConfig& scene) {
@@ -141,10 +182,6 @@ std::vector<std::size_t> class_counts(const SceneConfig& scene) {
     ++counts[order[k]];
     ++assigned;
   }
-  for (std::size_t k = order.size(); assigned > scene.fill.count; --k) {  // only via rounding up
-    auto& c = counts[order[(k - 1) % order.size()]];
-    if (c > 0) --c, --assigned;
-  }
   return counts;
 }
 
@@ -154,61 +191,37 @@ Particles random_fill(const SceneConfig& scene) {
         fmt::format("{}: fill.kind: random_fill needs kind = \"random\"", scene.source));
   }
   const auto counts = class_counts(scene);
-  const double R = 0.5 * scene.drum.diameter;
-  const double H = scene.drum.depth;
-  const double rmax = scene.max_radius();
   const std::size_t total = scene.fill.count;
-
+  const CrossSection drum(scene);
   // Level of the fill region: a circular segment of the cross-section times the depth.
   const double region_volume = solid_volume(scene, counts) / scene.fill.volume_fraction;
-  double level = -R + segment_height(R, region_volume / H);  // along "up", from the axis
-  const Eigen::Vector2d up = up_direction(scene.gravity);
-  const Eigen::Vector2d side(up.y(), -up.x());
-
-  // Largest classes first: small spheres fit the gaps between big ones, not the other way round.
-  std::vector<std::size_t> order(counts.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return scene.classes[a].radius > scene.classes[b].radius;
-  });
+  double level = -drum.R + segment_height(drum.R, region_volume / drum.H);
 
   Particles p;
   p.reserve(total);
-  OverlapGrid grid(R, H, 2.0 * rmax, total);
+  OverlapGrid grid(drum.R, drum.H, 2.0 * scene.max_radius(), total);
   std::mt19937_64 rng(scene.fill.seed);
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const double grow = 0.02 * scene.drum.diameter;
-
-  for (const std::size_t c : order) {
+  for (const std::size_t c : largest_first(scene)) {
     const double r = scene.classes[c].radius;
-    const double reach = R - r;  // centre distance from the axis
     for (std::size_t n = 0; n < counts[c]; ++n) {
-      bool placed = false;
-      while (!placed) {
-        const double top = std::clamp(level, -reach + 0.5 * r, reach);
-        // Half-width of the segment below `top` of the disc of radius `reach`.
-        const double half = top >= 0.0 ? reach : std::sqrt(reach * reach - top * top);
-        for (int attempt = 0; attempt < kAttemptsPerLevel && !placed; ++attempt) {
-          Eigen::Vector2d q;
-          do {  // uniform in that segment
-            const double u = -reach + unit(rng) * (top + reach);
-            const double s = -half + unit(rng) * 2.0 * half;
-            q = u * up + s * side;
-          } while (q.squaredNorm() > reach * reach);
-          const Vec3 x(q.x(), q.y(), r + unit(rng) * (H - 2.0 * r));
-          if (grid.overlaps(x, r, p)) continue;
-          grid.insert(p.size(), x);
-          p.add(x, r, scene.material.density, static_cast<std::uint8_t>(c));
-          placed = true;
+      for (;;) {
+        std::optional<Vec3> x;
+        for (int attempt = 0; attempt < kAttemptsPerLevel && !x; ++attempt) {
+          x = drum.sample_centre(r, level, rng);
+          if (grid.overlaps(*x, r, p)) x.reset();
         }
-        if (placed) break;
-        if (level >= reach) {
+        if (x) {
+          grid.insert(p.size(), *x);
+          p.add(*x, r, scene.material.density, static_cast<std::uint8_t>(c));
+          break;
+        }
+        if (level >= drum.R - r) {
           throw InputError(fmt::format(
               "{}: fill: cannot place {} of {} particles (radius {} m) anywhere in the drum; "
               "lower fill.count or fill.volume_fraction",
               scene.source, total - p.size(), total, r));
         }
-        level += grow;
+        level += 0.02 * scene.drum.diameter;  // no room left below the level: raise it
       }
     }
   }

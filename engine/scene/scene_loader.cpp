@@ -123,8 +123,10 @@ class Scope {
     const toml::node* node = table_->get(key);
     if (!node) return std::nullopt;
     const toml::array* array = node->as_array();
-    if (!array || array->size() != 3) {
+    if (!array)
       fail(key, fmt::format("expected an array of three numbers, got {}", type_name(*node)));
+    if (array->size() != 3) {
+      fail(key, fmt::format("expected an array of three numbers, got {} elements", array->size()));
     }
     Vec3 v;
     for (int k = 0; k < 3; ++k) {
