@@ -23,19 +23,19 @@ struct StepTimers {
 
 /// Snapshot of physical health, computed on demand (not every step).
 struct Diagnostics {
-  double kinetic_energy = 0.0;      ///< translational, J
-  double rotational_energy = 0.0;   ///< J
-  double potential_energy = 0.0;    ///< gravitational, relative to the drum axis, J
-  double elastic_energy = 0.0;      ///< stored in normal contacts, J
-  double max_overlap_ratio = 0.0;   ///< max overlap / smaller radius over all contacts
-  std::size_t outside_drum = 0;     ///< particle centres outside the drum volume
-  std::size_t non_finite = 0;       ///< particles with a non-finite position or velocity
-  std::size_t contacts = 0;         ///< particle-particle contacts
+  double kinetic_energy = 0.0;     ///< translational, J
+  double rotational_energy = 0.0;  ///< J
+  double potential_energy = 0.0;   ///< gravitational, relative to the drum axis, J
+  double elastic_energy = 0.0;     ///< stored in normal contacts, J
+  double max_overlap_ratio = 0.0;  ///< max overlap / smaller radius over all contacts
+  std::size_t outside_drum = 0;    ///< particle centres outside the drum volume
+  std::size_t non_finite = 0;      ///< particles with a non-finite position or velocity
+  std::size_t contacts = 0;        ///< particle-particle contacts
   std::size_t wall_contacts = 0;
 };
 
 struct SimulationOptions {
-  bool allow_unsafe_dt = false;  ///< accept dt above the Rayleigh time
+  bool allow_unsafe_dt = false;     ///< accept dt above the Rayleigh time
   double dt_factor_override = 0.0;  ///< > 0 replaces the scene's dt_factor
 };
 
@@ -82,6 +82,14 @@ class Simulation {
 
  private:
   struct Impl;
+  void validate_particles();
+  void choose_time_step(const SimulationOptions& options);
+  /// Search, contact list update, pair and wall forces. history_dt: time since the last call
+  /// (0 for the initial state); count: add to the timers and search totals.
+  void compute_forces(double history_dt, bool count);
+  void kick(double h);
+  void drift();
+
   SceneConfig scene_;
   Particles particles_;
   std::unique_ptr<ContactSearch> search_;
