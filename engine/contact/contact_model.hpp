@@ -5,6 +5,7 @@
 // particle-wall contacts. The choice is made here, once, at run time; the pair and wall loops in
 // contact_model.cpp are templates over <normal law, tangential?, rolling?> so the chosen law
 // inlines and a scene without friction does no tangential or rotational work.
+#include <Eigen/Geometry>
 #include <array>
 #include <span>
 #include <variant>
