@@ -82,6 +82,14 @@ class Simulation {
 
  private:
   struct Impl;
+  void validate_particles();
+  void choose_time_step(const SimulationOptions& options);
+  /// Search, contact list update, pair and wall forces. history_dt: time since the last call
+  /// (0 for the initial state); count: add to the timers and search totals.
+  void compute_forces(double history_dt, bool count);
+  void kick(double h);
+  void drift();
+
   SceneConfig scene_;
   Particles particles_;
   std::unique_ptr<ContactSearch> search_;

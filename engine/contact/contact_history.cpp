@@ -1,0 +1,69 @@
+#include "engine/contact/contact_history.hpp"
+
+#include <algorithm>
+
+namespace drumlab {
+
+void ContactList::clear() {
+  row_start_.clear();
+  col_.clear();
+  history_.clear();
+}
+
+void ContactList::update(std::span<const IndexPair> pairs, std::size_t n_particles) {
+  row_start_.swap(old_row_start_);
+  col_.swap(old_col_);
+  history_.swap(old_history_);
+  build_rows(pairs, n_particles);
+  transfer_history();
+}
+
+void ContactList::build_rows(std::span<const IndexPair> pairs, std::size_t n) {
+  // Counting sort by i.
+  row_start_.assign(n + 1, 0);
+  for (const IndexPair& p : pairs) ++row_start_[p.i + 1];
+  for (std::size_t i = 0; i < n; ++i) row_start_[i + 1] += row_start_[i];
+  fill_.assign(row_start_.begin(), row_start_.end() - 1);
+  col_.resize(pairs.size());
+  for (const IndexPair& p : pairs) col_[fill_[p.i]++] = p.j;
+  // Rows are short (a few contacts): insertion sort by j.
+  for (std::size_t i = 0; i < n; ++i) {
+    Index* begin = col_.data() + row_start_[i];
+    Index* end = col_.data() + row_start_[i + 1];
+    for (Index* a = begin + 1; a < end; ++a) {
+      const Index v = *a;
+      Index* b = a;
+      for (; b > begin && *(b - 1) > v; --b) *b = *(b - 1);
+      *b = v;
+    }
+  }
+}
+
+void ContactList::transfer_history() {
+  history_.resize(col_.size());
+  const std::size_t old_rows = old_row_start_.empty() ? 0 : old_row_start_.size() - 1;
+  for (std::size_t i = 0; i + 1 < row_start_.size(); ++i) {
+    std::size_t ko = i < old_rows ? old_row_start_[i] : 0;
+    const std::size_t ko_end = i < old_rows ? old_row_start_[i + 1] : 0;
+    for (std::size_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {
+      const Index j = col_[k];
+      while (ko < ko_end && old_col_[ko] < j) ++ko;
+      if (ko < ko_end && old_col_[ko] == j) {
+        history_[k] = old_history_[ko];
+      } else {
+        history_[k].setZero();
+      }
+    }
+  }
+}
+
+const Vec3* ContactList::find(Index i, Index j) const {
+  if (static_cast<std::size_t>(i) + 1 >= row_start_.size()) return nullptr;
+  const auto begin = col_.begin() + static_cast<std::ptrdiff_t>(row_start_[i]);
+  const auto end = col_.begin() + static_cast<std::ptrdiff_t>(row_start_[i + 1]);
+  const auto it = std::lower_bound(begin, end, j);
+  if (it == end || *it != j) return nullptr;
+  return &history_[static_cast<std::size_t>(it - col_.begin())];
+}
+
+}  // namespace drumlab

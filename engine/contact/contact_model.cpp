@@ -1,0 +1,207 @@
+#include "engine/contact/contact_model.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace drumlab {
+namespace {
+
+void check_material(const Material& m, const char* what) {
+  if (!(m.youngs_modulus > 0.0) || !std::isfinite(m.youngs_modulus)) {
+    throw InputError(
+        fmt::format("{}.youngs_modulus must be positive, got {}", what, m.youngs_modulus));
+  }
+  if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5)) {
+    throw InputError(
+        fmt::format("{}.poisson_ratio must be in (-1, 0.5), got {}", what, m.poisson_ratio));
+  }
+  if (!(m.restitution > 0.0 && m.restitution <= 1.0)) {
+    throw InputError(fmt::format("{}.restitution must be in (0, 1], got {}", what, m.restitution));
+  }
+  if (!(m.friction >= 0.0) || !(m.rolling_friction >= 0.0)) {
+    throw InputError(fmt::format("{}: friction and rolling_friction must be >= 0", what));
+  }
+}
+
+// Relative velocity at the contact, normal part and force of one contact; shared by both loops.
+template <class Normal, bool Tangential, bool Rolling>
+struct ContactKernel {
+  const ContactLaw<Normal>& law;
+
+  // Returns the force on i; adds torques to *ti (and, for a pair, *tj; tj null for a wall).
+  // v: relative translational velocity of i w.r.t. the other body at the contact (without the
+  // spin of i and j); n: unit normal towards i; ai, aj: branch lengths; wi, wj: spins;
+  // stop_rate: see RollingResistance; history_dt: time over which xi is incremented.
+  Vec3 operator()(Vec3 v, const Vec3& n, double delta, double r_eff, double m_eff, double ai,
+                  double aj, const Vec3& wi, const Vec3& wj, Vec3& xi, double stop_rate,
+                  double history_dt, Vec3& ti, Vec3* tj) const {
+    if constexpr (Tangential) v -= (ai * wi + aj * wj).cross(n);
+    const double vn = v.dot(n);
+    const double fn = law.normal.force(delta, vn, r_eff, m_eff);
+    Vec3 f = fn * n;
+    if constexpr (Tangential) {
+      const Vec3 vt = v - vn * n;
+      const TangentialCoefficients c = law.normal.tangential(delta, r_eff, m_eff);
+      const Vec3 ft = law.tangential.force(xi, n, vt, c, std::abs(fn), history_dt);
+      f += ft;
+      const Vec3 nxft = n.cross(ft);
+      ti -= ai * nxft;
+      if (tj) *tj -= aj * nxft;
+    }
+    if constexpr (Rolling) {
+      const Vec3 m = law.rolling.torque(wi - wj, std::abs(fn), r_eff, stop_rate);
+      ti += m;
+      if (tj) *tj -= m;
+    }
+    return f;
+  }
+};
+
+template <class Normal, bool Tangential, bool Rolling>
+void pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts, double period,
+               double dt, double history_dt) {
+  const ContactKernel<Normal, Tangential, Rolling> kernel{law};
+  const auto row = contacts.row_start();
+  const auto col = contacts.col();
+  const auto hist = contacts.history();
+  const double half_period = 0.5 * period;
+  for (std::size_t i = 0; i < contacts.rows(); ++i) {
+    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
+      const Index j = col[k];
+      Vec3 d = p.position[i] - p.position[j];
+      if (period > 0.0) {
+        if (d.z() > half_period) d.z() -= period;
+        if (d.z() < -half_period) d.z() += period;
+      }
+      const double sum_r = p.radius[i] + p.radius[j];
+      const double dist2 = d.squaredNorm();
+      if (dist2 >= sum_r * sum_r || dist2 == 0.0) {
+        hist[k].setZero();  // touching within the search tolerance only: no contact yet
+        continue;
+      }
+      const double dist = std::sqrt(dist2);
+      const Vec3 n = d / dist;
+      const double delta = sum_r - dist;
+      const double r_eff = p.radius[i] * p.radius[j] / sum_r;
+      const double m_eff = 1.0 / (p.inv_mass[i] + p.inv_mass[j]);
+      const double stop_rate = dt * (p.inv_inertia[i] + p.inv_inertia[j]);
+      const Vec3 f = kernel(p.velocity[i] - p.velocity[j], n, delta, r_eff, m_eff,
+                            p.radius[i] - 0.5 * delta, p.radius[j] - 0.5 * delta, p.omega[i],
+                            p.omega[j], hist[k], stop_rate, history_dt, p.torque[i], &p.torque[j]);
+      p.force[i] += f;
+      p.force[j] -= f;
+    }
+  }
+}
+
+template <class Normal, bool Tangential, bool Rolling>
+void wall_loop(const ContactLaw<Normal>& law, Particles& p, const Drum& drum, double omega,
+               WallHistory& history, double dt, double history_dt) {
+  const ContactKernel<Normal, Tangential, Rolling> kernel{law};
+  const Vec3 wall_spin(0.0, 0.0, omega);
+  const std::size_t parts = drum.periodic() ? 1 : kWallParts;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec3& x = p.position[i];
+    const double r = p.radius[i];
+    for (std::size_t part = 0; part < parts; ++part) {
+      const WallContact c = drum.contact(static_cast<WallPart>(part), x, r);
+      Vec3& xi = history[i][part];
+      if (c.overlap <= 0.0) {
+        xi.setZero();
+        continue;
+      }
+      const double a = r - 0.5 * c.overlap;
+      const Vec3 point = x - a * c.normal;
+      const Vec3 v = p.velocity[i] - Drum::wall_velocity(point, omega);
+      // The wall's spin enters only through its surface velocity: branch length 0 on its side.
+      const Vec3 f = kernel(v, c.normal, c.overlap, r, p.mass[i], a, 0.0, p.omega[i], wall_spin, xi,
+                            dt * p.inv_inertia[i], history_dt, p.torque[i], nullptr);
+      p.force[i] += f;
+    }
+  }
+}
+
+template <class Normal>
+ContactLaw<Normal> make_law(const Normal& n, const MindlinTangential& t,
+                            const RollingResistance& r) {
+  return {n, t, r};
+}
+
+NormalVariant make_normal(const SceneConfig& s, const Material& other, double restitution) {
+  if (s.contact.normal == NormalLaw::linear) {
+    if (!(s.contact.linear_stiffness > 0.0) || !std::isfinite(s.contact.linear_stiffness)) {
+      throw InputError(
+          fmt::format("contact.linear_stiffness must be positive for the linear law, "
+                      "got {}",
+                      s.contact.linear_stiffness));
+    }
+    return LinearSpringDashpot(s.contact.linear_stiffness, restitution);
+  }
+  return HertzNormal(effective_youngs_modulus(s.material, other),
+                     effective_shear_modulus(s.material, other), restitution);
+}
+
+}  // namespace
+
+ContactModel::ContactModel(const SceneConfig& scene) {
+  check_material(scene.material, "material");
+  check_material(scene.wall, "wall");
+  pair_ = {make_normal(scene, scene.material, scene.material.restitution),
+           MindlinTangential{scene.material.friction},
+           RollingResistance{scene.material.rolling_friction}};
+  wall_ = {make_normal(scene, scene.wall, scene.wall.restitution),
+           MindlinTangential{scene.wall.friction}, RollingResistance{scene.wall.rolling_friction}};
+  pair_tangential_ = scene.material.friction > 0.0;
+  pair_rolling_ = scene.material.rolling_friction > 0.0;
+  wall_tangential_ = scene.wall.friction > 0.0;
+  wall_rolling_ = scene.wall.rolling_friction > 0.0;
+}
+
+void ContactModel::add_pair_forces(Particles& p, ContactList& contacts, double period, double dt,
+                                   double history_dt) const {
+  std::visit(
+      [&](const auto& normal) {
+        const auto law = make_law(normal, pair_.tangential, pair_.rolling);
+        using N = std::decay_t<decltype(normal)>;
+        if (pair_tangential_ && pair_rolling_) {
+          pair_loop<N, true, true>(law, p, contacts, period, dt, history_dt);
+        } else if (pair_tangential_) {
+          pair_loop<N, true, false>(law, p, contacts, period, dt, history_dt);
+        } else if (pair_rolling_) {
+          pair_loop<N, false, true>(law, p, contacts, period, dt, history_dt);
+        } else {
+          pair_loop<N, false, false>(law, p, contacts, period, dt, history_dt);
+        }
+      },
+      pair_.normal);
+}
+
+void ContactModel::add_wall_forces(Particles& p, const Drum& drum, double omega,
+                                   WallHistory& history, double dt, double history_dt) const {
+  std::visit(
+      [&](const auto& normal) {
+        const auto law = make_law(normal, wall_.tangential, wall_.rolling);
+        using N = std::decay_t<decltype(normal)>;
+        if (wall_tangential_ && wall_rolling_) {
+          wall_loop<N, true, true>(law, p, drum, omega, history, dt, history_dt);
+        } else if (wall_tangential_) {
+          wall_loop<N, true, false>(law, p, drum, omega, history, dt, history_dt);
+        } else if (wall_rolling_) {
+          wall_loop<N, false, true>(law, p, drum, omega, history, dt, history_dt);
+        } else {
+          wall_loop<N, false, false>(law, p, drum, omega, history, dt, history_dt);
+        }
+      },
+      wall_.normal);
+}
+
+double ContactModel::pair_elastic_energy(double delta, double r_eff) const {
+  return std::visit([&](const auto& n) { return n.elastic_energy(delta, r_eff); }, pair_.normal);
+}
+
+double ContactModel::wall_elastic_energy(double delta, double r) const {
+  return std::visit([&](const auto& n) { return n.elastic_energy(delta, r); }, wall_.normal);
+}
+
+}  // namespace drumlab

@@ -1,0 +1,83 @@
+#pragma once
+// Composes the contact of a scene from its parts: a normal law (Hertz or linear spring-dashpot),
+// optionally the Mindlin tangential spring with history (only if friction > 0) and optionally
+// rolling resistance (only if rolling_friction > 0), separately for particle-particle and
+// particle-wall contacts. The choice is made here, once, at run time; the pair and wall loops in
+// contact_model.cpp are templates over <normal law, tangential?, rolling?> so the chosen law
+// inlines and a scene without friction does no tangential or rotational work.
+#include <Eigen/Geometry>
+#include <array>
+#include <span>
+#include <variant>
+#include <vector>
+
+#include "engine/contact/contact_history.hpp"
+#include "engine/contact/hertz_mindlin.hpp"
+#include "engine/contact/linear_spring_dashpot.hpp"
+#include "engine/contact/rolling_resistance.hpp"
+#include "engine/drum.hpp"
+#include "engine/particles.hpp"
+#include "engine/scene/scene_config.hpp"
+
+namespace drumlab {
+
+/// One composed contact law. Tangential/rolling parts are only used when the flags say so.
+template <class Normal>
+struct ContactLaw {
+  Normal normal;
+  MindlinTangential tangential;
+  RollingResistance rolling;
+};
+
+using NormalVariant = std::variant<HertzNormal, LinearSpringDashpot>;
+
+/// Tangential displacement of each particle against each wall part (cylinder, low cap, high cap).
+using WallHistory = std::vector<std::array<Vec3, kWallParts>>;
+
+class ContactModel {
+ public:
+  /// Particle-particle: scene.material with itself. Particle-wall: E*, G* from scene.material
+  /// combined with scene.wall; restitution, friction and rolling friction from scene.wall;
+  /// R* = r, m* = m. Throws InputError for unusable parameters.
+  explicit ContactModel(const SceneConfig& scene);
+
+  bool pair_tangential() const { return pair_tangential_; }
+  bool pair_rolling() const { return pair_rolling_; }
+  bool wall_tangential() const { return wall_tangential_; }
+  bool wall_rolling() const { return wall_rolling_; }
+  /// True if any contact can apply a torque (else rotation need not be integrated).
+  bool uses_rotation() const {
+    return pair_tangential_ || pair_rolling_ || wall_tangential_ || wall_rolling_;
+  }
+
+  /// Adds the forces (and torques) of every contact in `contacts` to p.force / p.torque and
+  /// updates the contacts' history. period > 0: minimum image along z. dt: the time step;
+  /// history_dt: time since the previous evaluation (dt, or 0 for the very first one).
+  void add_pair_forces(Particles& p, ContactList& contacts, double period, double dt,
+                       double history_dt) const;
+  /// Adds the wall forces of the drum turning at omega (rad/s). history.size() == p.size().
+  void add_wall_forces(Particles& p, const Drum& drum, double omega, WallHistory& history,
+                       double dt, double history_dt) const;
+
+  /// Elastic energy of a particle-particle / particle-wall normal overlap delta (J).
+  double pair_elastic_energy(double delta, double r_eff) const;
+  double wall_elastic_energy(double delta, double r) const;
+
+  const NormalVariant& pair_normal() const { return pair_.normal; }
+  const NormalVariant& wall_normal() const { return wall_.normal; }
+
+ private:
+  struct Parts {
+    NormalVariant normal;
+    MindlinTangential tangential;
+    RollingResistance rolling;
+  };
+  Parts pair_;
+  Parts wall_;
+  bool pair_tangential_ = false;
+  bool pair_rolling_ = false;
+  bool wall_tangential_ = false;
+  bool wall_rolling_ = false;
+};
+
+}  // namespace drumlab

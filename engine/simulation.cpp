@@ -1,0 +1,289 @@
+#include "engine/simulation.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "engine/contact/contact_history.hpp"
+#include "engine/contact/contact_model.hpp"
+#include "engine/drum.hpp"
+
+namespace drumlab {
+
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+/// "Centre outside the drum" tolerance, relative to the drum radius (round-off only).
+constexpr double kOutsideTolerance = 1e-9;
+/// Largest overlap / radius a healthy run may show.
+constexpr double kMaxOverlapRatio = 0.5;
+
+double seconds_between(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+
+std::string scene_label(const SceneConfig& s) {
+  if (!s.source.empty()) return s.source;
+  return s.name.empty() ? std::string("scene") : s.name;
+}
+
+double smallest_radius(const SceneConfig& scene, const Particles& p) {
+  if (!p.empty()) return p.min_radius();
+  double r = std::numeric_limits<double>::infinity();
+  for (const ParticleClass& c : scene.classes) r = std::min(r, c.radius);
+  return r;
+}
+
+}  // namespace
+
+double rayleigh_time(double radius, const Material& m) {
+  const double g = m.youngs_modulus / (2.0 * (1.0 + m.poisson_ratio));
+  return std::numbers::pi * radius * std::sqrt(m.density / g) / (0.1631 * m.poisson_ratio + 0.8766);
+}
+
+struct Simulation::Impl {
+  explicit Impl(const SceneConfig& s) : drum(s.drum), model(s) {}
+  Drum drum;
+  ContactModel model;
+  ContactList contacts;
+  std::vector<IndexPair> pairs;
+  WallHistory wall_history;
+};
+
+Simulation::Simulation(const SceneConfig& scene, Particles particles, SimulationOptions options)
+    : scene_(scene), particles_(std::move(particles)) {
+  impl_ = std::make_unique<Impl>(scene_);
+  search_ = make_search(scene_.search_method);
+  gravity_ = drum_frame_gravity(scene_.gravity, scene_.drum.tilt);
+  omega_ = scene_.drum.omega;
+  validate_particles();
+  choose_time_step(options);
+  impl_->wall_history.assign(particles_.size(), {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
+  // Forces of the initial state, for the first half kick (no history increment, not counted).
+  compute_forces(0.0, false);
+}
+
+Simulation::~Simulation() = default;
+
+void Simulation::validate_particles() {
+  Particles& p = particles_;
+  const std::size_t n = p.size();
+  if (p.position.size() != n || p.velocity.size() != n || p.omega.size() != n ||
+      p.force.size() != n || p.torque.size() != n || p.mass.size() != n || p.inv_mass.size() != n ||
+      p.inv_inertia.size() != n) {
+    throw InputError("particles: arrays of different lengths");
+  }
+  const Drum& drum = impl_->drum;
+  if (drum.periodic() && n > 0 && !(drum.depth() > 4.0 * p.max_radius())) {
+    throw InputError(fmt::format(
+        "{}: drum.depth = {} m is too short for periodic ends (must exceed 4 x the largest radius "
+        "{} m)",
+        scene_label(scene_), drum.depth(), p.max_radius()));
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec3& x = p.position[i];
+    if (!x.allFinite() || !p.velocity[i].allFinite() || !p.omega[i].allFinite()) {
+      throw InputError(fmt::format("particle {}: non-finite position or velocity", i));
+    }
+    if (drum.periodic()) x.z() = drum.wrap_z(x.z());
+    if (!drum.contains_centre(x, 0.0)) {
+      throw InputError(
+          fmt::format("{}: particle {} at ({:.6g}, {:.6g}, {:.6g}) m lies outside the drum (R = {} "
+                      "m, H = {} m)",
+                      scene_label(scene_), i, x.x(), x.y(), x.z(), drum.radius(), drum.depth()));
+    }
+    for (std::size_t part = 0; part < kWallParts; ++part) {
+      const WallContact c = drum.contact(static_cast<WallPart>(part), x, p.radius[i]);
+      if (c.overlap > 0.5 * p.radius[i]) {
+        throw InputError(fmt::format(
+            "{}: particle {} at ({:.6g}, {:.6g}, {:.6g}) m penetrates the drum wall by {:.3g} m "
+            "(more than half its radius)",
+            scene_label(scene_), i, x.x(), x.y(), x.z(), c.overlap));
+      }
+    }
+  }
+}
+
+void Simulation::choose_time_step(const SimulationOptions& options) {
+  const double r_min = smallest_radius(scene_, particles_);
+  if (!(r_min > 0.0) || !std::isfinite(r_min)) {
+    throw InputError(fmt::format("{}: no particles and no particle classes to choose dt from",
+                                 scene_label(scene_)));
+  }
+  rayleigh_time_ = drumlab::rayleigh_time(r_min, scene_.material);
+  const double factor =
+      options.dt_factor_override > 0.0 ? options.dt_factor_override : scene_.time.dt_factor;
+  dt_ = scene_.time.dt ? *scene_.time.dt : factor * rayleigh_time_;
+  if (!(dt_ > 0.0) || !std::isfinite(dt_)) {
+    throw InputError(
+        fmt::format("{}: time step must be positive, got {} s (time.dt or "
+                    "time.dt_factor)",
+                    scene_label(scene_), dt_));
+  }
+  if (dt_ > rayleigh_time_ && !options.allow_unsafe_dt) {
+    throw InputError(fmt::format(
+        "{}: time.dt = {:.6g} s is above the Rayleigh time {:.6g} s (stability limit); use a "
+        "smaller dt or --unsafe-dt",
+        scene_label(scene_), dt_, rayleigh_time_));
+  }
+}
+
+void Simulation::compute_forces(double history_dt, bool count) {
+  const auto t0 = Clock::now();
+  SearchInput in;
+  in.position = particles_.position;
+  in.radius = particles_.radius;
+  in.margin = 0.0;
+  if (impl_->drum.periodic()) in.period_z = impl_->drum.depth();
+  try {
+    search_->find_pairs(in, impl_->pairs);
+  } catch (const InputError& e) {
+    if (!count) throw;  // initial state: the input is at fault
+    throw UnstableError(fmt::format("unstable at step {} (t = {:.6g} s): contact search failed: {}",
+                                    steps_ + 1, time_ + dt_, e.what()));
+  }
+  const auto t1 = Clock::now();
+  if (count) {
+    const SearchCounters& c = search_->counters();
+    search_totals_.cells_visited += c.cells_visited;
+    search_totals_.pairs_tested += c.pairs_tested;
+    search_totals_.pairs_found += c.pairs_found;
+    search_totals_.cells_total = c.cells_total;  // grid size of the latest step, not a sum
+  }
+  impl_->contacts.update(impl_->pairs, particles_.size());
+  particles_.clear_forces();
+  const double period = impl_->drum.periodic() ? impl_->drum.depth() : 0.0;
+  impl_->model.add_pair_forces(particles_, impl_->contacts, period, dt_, history_dt);
+  const auto t2 = Clock::now();
+  impl_->model.add_wall_forces(particles_, impl_->drum, omega_, impl_->wall_history, dt_,
+                               history_dt);
+  const auto t3 = Clock::now();
+  if (count) {
+    timers_.search += seconds_between(t0, t1);
+    timers_.forces += seconds_between(t1, t2);
+    timers_.walls += seconds_between(t2, t3);
+  }
+}
+
+void Simulation::kick(double h) {
+  Particles& p = particles_;
+  const std::size_t n = p.size();
+  for (std::size_t i = 0; i < n; ++i) p.velocity[i] += h * (p.inv_mass[i] * p.force[i] + gravity_);
+  if (impl_->model.uses_rotation()) {
+    for (std::size_t i = 0; i < n; ++i) p.omega[i] += (h * p.inv_inertia[i]) * p.torque[i];
+  }
+}
+
+void Simulation::drift() {
+  Particles& p = particles_;
+  const std::size_t n = p.size();
+  for (std::size_t i = 0; i < n; ++i) p.position[i] += dt_ * p.velocity[i];
+  if (impl_->drum.periodic()) {
+    for (std::size_t i = 0; i < n; ++i) p.position[i].z() = impl_->drum.wrap_z(p.position[i].z());
+  }
+}
+
+void Simulation::step() {
+  // Velocity Verlet: half kick with the forces of the current positions, drift, new forces,
+  // half kick. Spheres need no orientation, so rotation is the same scheme on omega.
+  const auto t0 = Clock::now();
+  kick(0.5 * dt_);
+  drift();
+  const auto t1 = Clock::now();
+  compute_forces(dt_, true);
+  const auto t2 = Clock::now();
+  kick(0.5 * dt_);
+  const auto t3 = Clock::now();
+  timers_.integration += seconds_between(t0, t1) + seconds_between(t2, t3);
+  time_ += dt_;
+  drum_angle_ += omega_ * dt_;
+  ++steps_;
+}
+
+void Simulation::advance(std::uint64_t n) {
+  const std::uint64_t every = scene_.output.diagnostics_every;
+  for (std::uint64_t k = 0; k < n; ++k) {
+    step();
+    if (every > 0 && steps_ % every == 0) check_stability();
+  }
+  check_stability();
+}
+
+void Simulation::set_search_method(std::string_view name) {
+  search_ = make_search(name);  // throws before replacing anything if the name is unknown
+  scene_.search_method = std::string(name);
+}
+
+void Simulation::set_drum_omega(double omega) {
+  if (!std::isfinite(omega)) throw InputError("drum angular velocity must be finite");
+  omega_ = omega;
+}
+
+Diagnostics Simulation::diagnostics() const {
+  const Particles& p = particles_;
+  const Drum& drum = impl_->drum;
+  const ContactModel& model = impl_->model;
+  const double tol = kOutsideTolerance * drum.radius();
+  Diagnostics d;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec3& x = p.position[i];
+    d.kinetic_energy += 0.5 * p.mass[i] * p.velocity[i].squaredNorm();
+    d.rotational_energy += 0.5 * p.omega[i].squaredNorm() / p.inv_inertia[i];
+    d.potential_energy -= p.mass[i] * gravity_.dot(x);
+    if (!x.allFinite() || !p.velocity[i].allFinite() || !p.omega[i].allFinite()) {
+      ++d.non_finite;
+      continue;
+    }
+    if (!drum.contains_centre(x, tol)) ++d.outside_drum;
+    for (std::size_t part = 0; part < kWallParts; ++part) {
+      const WallContact c = drum.contact(static_cast<WallPart>(part), x, p.radius[i]);
+      if (c.overlap <= 0.0) continue;
+      ++d.wall_contacts;
+      d.elastic_energy += model.wall_elastic_energy(c.overlap, p.radius[i]);
+      d.max_overlap_ratio = std::max(d.max_overlap_ratio, c.overlap / p.radius[i]);
+    }
+  }
+  const ContactList& contacts = impl_->contacts;
+  const auto row = contacts.row_start();
+  const auto col = contacts.col();
+  const double period = drum.periodic() ? drum.depth() : 0.0;
+  for (std::size_t i = 0; i < contacts.rows(); ++i) {
+    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
+      const Index j = col[k];
+      Vec3 dx = p.position[i] - p.position[j];
+      if (period > 0.0) dx.z() -= period * std::round(dx.z() / period);
+      const double delta = p.radius[i] + p.radius[j] - dx.norm();
+      if (!(delta > 0.0)) continue;
+      ++d.contacts;
+      const double r_eff = p.radius[i] * p.radius[j] / (p.radius[i] + p.radius[j]);
+      d.elastic_energy += model.pair_elastic_energy(delta, r_eff);
+      d.max_overlap_ratio =
+          std::max(d.max_overlap_ratio, delta / std::min(p.radius[i], p.radius[j]));
+    }
+  }
+  return d;
+}
+
+void Simulation::check_stability() const {
+  const Diagnostics d = diagnostics();
+  const auto fail = [&](const std::string& why) {
+    throw UnstableError(fmt::format("unstable at step {} (t = {:.6g} s): {}; try a smaller time.dt",
+                                    steps_, time_, why));
+  };
+  if (d.non_finite > 0) {
+    fail(fmt::format("{} particle(s) with non-finite position or velocity", d.non_finite));
+  }
+  if (d.outside_drum > 0) {
+    fail(fmt::format("{} particle centre(s) outside the drum", d.outside_drum));
+  }
+  if (d.max_overlap_ratio > kMaxOverlapRatio) {
+    fail(fmt::format("overlap of {:.3g} radii (limit {})", d.max_overlap_ratio, kMaxOverlapRatio));
+  }
+}
+
+}  // namespace drumlab
