@@ -1,8 +1,34 @@
+// drumlab: the headless command line. Exit codes: 0 success, 1 unexpected failure, 2 bad input
+// (scene, CSV, option, output path), 3 the simulation became unstable.
+#include <cstdio>
+#include <exception>
+
+#include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include "app/cli/commands.hpp"
+#include "engine/types.hpp"
+
 int main(int argc, char** argv) {
-  CLI::App app{"drumlab: DEM of granular flow in rotating drums"};
+  CLI::App app{"drumlab: DEM of granular flow in rotating drums, with switchable contact search"};
   app.require_subcommand(1);
-  CLI11_PARSE(app, argc, argv);
+  drumlab::cli::add_run_command(app);
+  drumlab::cli::add_info_command(app);
+  drumlab::cli::add_contacts_command(app);
+  drumlab::cli::add_paper_table_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const drumlab::InputError& e) {
+    fmt::print(stderr, "drumlab: error: {}\n", e.what());
+    return 2;
+  } catch (const drumlab::UnstableError& e) {
+    fmt::print(stderr, "drumlab: unstable: {}\n", e.what());
+    return 3;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "drumlab: failed: {}\n", e.what());
+    return 1;
+  }
   return 0;
 }

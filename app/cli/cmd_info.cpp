@@ -1,0 +1,96 @@
+// drumlab info SCENE: derived quantities of a scene, without simulating it.
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "app/cli/commands.hpp"
+#include "app/cli/scene_setup.hpp"
+#include "engine/fill/paper_packing.hpp"
+#include "engine/fill/random_fill.hpp"
+#include "engine/search/cell_grid.hpp"
+#include "engine/simulation.hpp"
+
+namespace drumlab::cli {
+
+namespace {
+
+/// Bytes per particle held by the engine (particle arrays, search scratch, ~6 contacts with
+/// history) and per grid cell; an estimate, stated as such.
+constexpr double kBytesPerParticle = 5 * 24 + 4 * 8 + 1 + 4 + (24 + 8 + 24 + 4 + 4 + 8) + 6 * 48;
+constexpr double kBytesPerCell = 12;
+
+void print_info(const std::string& file) {
+  const SceneConfig scene = load_scene(file);
+  const bool dynamic = scene.fill.kind == FillKind::random;
+  std::vector<std::size_t> counts;
+  if (dynamic) {
+    counts = class_counts(scene);
+  } else {
+    const auto c = paper_packing_counts(scene.fill.box);
+    counts.assign(c.begin(), c.end());
+  }
+  std::size_t total = 0;
+  double solid = 0.0;
+  fmt::print("scene             {} ({})\n", scene.name, file);
+  if (!scene.description.empty()) fmt::print("description       {}\n", scene.description);
+  for (std::size_t c = 0; c < scene.classes.size(); ++c) {
+    const double r = scene.classes[c].radius;
+    fmt::print("class {:<11} r = {} m, {} particles\n", scene.classes[c].name, r, counts[c]);
+    total += counts[c];
+    solid += static_cast<double>(counts[c]) * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  }
+  const double r_drum = 0.5 * scene.drum.diameter;
+  const double drum_volume = std::numbers::pi * r_drum * r_drum * scene.drum.depth;
+  fmt::print("particles         {} (solid volume {:.4g} m^3)\n", total, solid);
+  fmt::print("drum              D = {} m, H = {} m, omega = {} rad/s, tilt = {:.3g} deg, ends {}\n",
+             scene.drum.diameter, scene.drum.depth, scene.drum.omega,
+             scene.drum.tilt * 180.0 / std::numbers::pi,
+             scene.drum.ends == DrumEnds::caps ? "caps" : "periodic");
+  if (dynamic) {
+    fmt::print(
+        "fill              {:.1f} % of the drum volume once settled (at solid fraction 0.6)\n",
+        100.0 * solid / 0.6 / drum_volume);
+  }
+  const double t_r = rayleigh_time(scene.min_radius(), scene.material);
+  const double dt = scene.time.dt ? *scene.time.dt : scene.time.dt_factor * t_r;
+  fmt::print("Rayleigh time     {:.4g} s (smallest radius {} m)\n", t_r, scene.min_radius());
+  fmt::print("time step         {:.4g} s = {:.3g} Rayleigh times{}\n", dt, dt / t_r,
+             dt > t_r ? "  (ABOVE the stability limit: refused without --unsafe-dt)" : "");
+  const double fr = froude_number(scene);
+  fmt::print("Froude number     {:.4g} -> {} regime expected\n", fr, regime_for_froude(fr));
+  if (scene.drum.omega != 0.0) {
+    const double rev = 2.0 * std::numbers::pi / std::abs(scene.drum.omega);
+    fmt::print("one revolution    {:.4g} s = {:.0f} steps = {:.3g} particle-steps\n", rev, rev / dt,
+               rev / dt * static_cast<double>(total));
+  }
+  // Memory: particle state plus the grid of the scene's method (if it is one of m1..m5).
+  double cells = 0.0;
+  std::string grid;
+  if (scene.search_method.size() == 2 && scene.search_method[0] == 'm') {
+    const CellGridConfig g = paper_method(scene.search_method[1] - '0');
+    const double b = g.cell_from_min_radius ? scene.min_radius() : scene.max_radius();
+    const double nxy = std::ceil(scene.drum.diameter / b) + 1;
+    const double nz = g.three_d ? std::ceil(scene.drum.depth / b) + 1 : 1;
+    cells = nxy * nxy * nz;
+    grid = fmt::format(", grid ~{:.0f} x {:.0f} x {:.0f} cells of {} m", nxy, nxy, nz, b);
+  }
+  fmt::print("memory estimate   {:.1f} MiB ({:.0f} B/particle{})\n",
+             (kBytesPerParticle * static_cast<double>(total) + kBytesPerCell * cells) / 1048576.0,
+             kBytesPerParticle, grid);
+  fmt::print("search method     {} (set by the scene; `--method` overrides it in `run`)\n",
+             scene.search_method);
+  if (!dynamic) fmt::print("note              static packing: use `drumlab paper-table`\n");
+}
+
+}  // namespace
+
+void add_info_command(CLI::App& app) {
+  auto file = std::make_shared<std::string>();
+  CLI::App* cmd =
+      app.add_subcommand("info", "Derived quantities of a scene (counts, dt, Froude, memory)");
+  cmd->add_option("scene", *file, "scene file (TOML)")->required();
+  cmd->callback([file] { print_info(*file); });
+}
+
+}  // namespace drumlab::cli

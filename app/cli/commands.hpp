@@ -1,0 +1,12 @@
+#pragma once
+// Each subcommand of the `drumlab` CLI lives in its own file and registers itself here.
+#include <CLI/CLI.hpp>
+
+namespace drumlab::cli {
+
+void add_contacts_command(CLI::App& app);
+void add_paper_table_command(CLI::App& app);
+void add_run_command(CLI::App& app);
+void add_info_command(CLI::App& app);
+
+}  // namespace drumlab::cli
