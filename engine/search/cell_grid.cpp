@@ -4,6 +4,7 @@
 #include <cfloat>
 #include <cmath>
 #include <numeric>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -281,11 +282,27 @@ void CellGridSearch::visit_all(const Cells& cells, const SearchInput& in,
     const bool small = ri <= small_radius_;
     const bool skip = config_.skip_far_for_smallest;
     const int k_forward = (skip && small) ? std::min(k_small_, reach_[pi]) : reach_[pi];
-    for (std::uint32_t o = 0; o < stencil_.prefix_end[k_forward]; ++o) {
-      CellCoord c{ci.x + offsets[o].dx, ci.y + offsets[o].dy, ci.z + offsets[o].dz};
-      if (!wrap(c)) continue;
-      ++my_cells;
-      if (cells.find(c, r)) scan(r.begin, r.end);
+    if constexpr (std::is_same_v<Cells, DenseCellIndex>) {
+      // Rows of cells are contiguous in the sorted order: two lookups per row.
+      for (const StencilRow& row : stencil_.rows[k_forward]) {
+        CellCoord c{0, ci.y + row.dy, ci.z + row.dz};
+        if (!wrap(c)) continue;
+        const std::int64_t x0 = std::max<std::int64_t>(ci.x + row.dx_lo, 0);
+        const std::int64_t x1 = std::min<std::int64_t>(ci.x + row.dx_hi, geometry_.nx - 1);
+        if (x0 > x1) continue;
+        my_cells += static_cast<std::uint32_t>(x1 - x0 + 1);
+        c.x = x0;
+        const std::uint32_t begin = cells.cell(c).begin;
+        c.x = x1;
+        scan(begin, cells.cell(c).end);
+      }
+    } else {
+      for (std::uint32_t o = 0; o < stencil_.prefix_end[k_forward]; ++o) {
+        CellCoord c{ci.x + offsets[o].dx, ci.y + offsets[o].dy, ci.z + offsets[o].dz};
+        if (!wrap(c)) continue;
+        ++my_cells;
+        if (cells.find(c, r)) scan(r.begin, r.end);
+      }
     }
     if (skip && !small && reach_back_[pi] > k_small_) {
       // Far ring of the backward half, smallest-size partners only (they skipped it).

@@ -30,6 +30,10 @@ class DenseCellIndex {
     r = cells_[static_cast<std::size_t>(id)];
     return r.end > r.begin;
   }
+  /// The range of an in-grid cell (empty ranges included).
+  const CellRange& cell(const CellCoord& c) const {
+    return cells_[static_cast<std::size_t>(linear(c))];
+  }
   CellRange& at(std::int64_t linear_id) { return cells_[static_cast<std::size_t>(linear_id)]; }
 
  private:

@@ -37,6 +37,17 @@ HalfStencil::HalfStencil(int kmax, bool three_d) {
     prefix_end[k] = static_cast<std::uint32_t>(std::count_if(
         offsets.begin(), offsets.end(), [k](const CellOffset& o) { return ring(o) <= k; }));
   }
+  rows.resize(static_cast<std::size_t>(kmax) + 1);
+  for (int k = 1; k <= kmax; ++k) {
+    std::vector<StencilRow>& r = rows[k];
+    r.push_back({0, 0, 1, k});  // the rest of the own row
+    for (int dy = 1; dy <= k; ++dy) r.push_back({dy, 0, -k, k});
+    if (three_d) {
+      for (int dz = 1; dz <= k; ++dz) {
+        for (int dy = -k; dy <= k; ++dy) r.push_back({dy, dz, -k, k});
+      }
+    }
+  }
 }
 
 std::uint64_t half_stencil_cells(int k, bool three_d) {

@@ -16,11 +16,18 @@ struct CellOffset {
   std::int32_t dx, dy, dz;
 };
 
+/// A run of cells along x at fixed (dy, dz): with x fastest in memory it is one contiguous slice
+/// of the cell-sorted particles, so a dense grid reads it with two lookups instead of one per cell.
+struct StencilRow {
+  std::int32_t dy, dz, dx_lo, dx_hi;
+};
+
 /// Forward half-shell offsets within Chebyshev distance kmax (own cell excluded), sorted by ring
 /// (Chebyshev distance) so the offsets within distance k form a prefix of length prefix_end[k].
 struct HalfStencil {
   std::vector<CellOffset> offsets;
-  std::vector<std::uint32_t> prefix_end;  ///< size kmax + 1; prefix_end[0] == 0
+  std::vector<std::uint32_t> prefix_end;      ///< size kmax + 1; prefix_end[0] == 0
+  std::vector<std::vector<StencilRow>> rows;  ///< rows[k]: the same half shell of reach k as rows
 
   HalfStencil() = default;
   HalfStencil(int kmax, bool three_d);
