@@ -1,0 +1,100 @@
+// `drumlab run` and `drumlab info` end to end: a small drum runs and reports; bad scenes and a time
+// step above the stability limit give one-line errors with exit code 2; a forced unstable run stops
+// with exit code 3 and says why.
+#include <gtest/gtest.h>
+
+#include "tests/unit/cli_runner.hpp"
+
+namespace drumlab::test {
+namespace {
+
+/// A small drum: 300 particles of two sizes, short run.
+std::string small_scene(const std::string& time_table = "dt_factor = 0.2\nduration = 0.01") {
+  return R"(search = "m5"
+[drum]
+diameter = 0.2
+depth = 0.05
+omega = 2.0
+[[particles]]
+radius = 0.004
+volume_fraction = 0.5
+[[particles]]
+radius = 0.008
+volume_fraction = 0.5
+[material]
+density = 2500.0
+youngs_modulus = 5e6
+poisson_ratio = 0.3
+restitution = 0.5
+friction = 0.5
+[fill]
+count = 300
+settle_time = 0.01
+[time]
+)" + time_table + "\n[output]\ndiagnostics_every = 20\n";
+}
+
+TEST(CliRun, SmallDrumRunsAndReportsThroughput) {
+  TempDir dir("run");
+  const auto scene = dir.write("small.toml", small_scene());
+  for (const char* method : {"m1", "m2", "m3", "m4", "m5", "brute"}) {
+    const auto r = run_cli("run " + scene.string() + " --method " + method);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("particle-steps/s"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("outside drum 0, non-finite 0"), std::string::npos) << r.output;
+  }
+}
+
+TEST(CliRun, BadScenesGiveOneLineErrors) {
+  TempDir dir("run-bad");
+  struct Case {
+    std::string name, text, args, expected;
+  };
+  std::string negative = small_scene();
+  negative.replace(negative.find("radius = 0.004"), 14, "radius = -0.004");
+  std::string unknown_key = small_scene();
+  unknown_key.replace(unknown_key.find("omega = 2.0"), 11, "omgea = 2.0");
+  const std::vector<Case> cases = {
+      {"negative.toml", negative, "", "radius"},
+      {"typo.toml", unknown_key, "", "omgea"},
+      {"method.toml", small_scene(), "--method m6", "unknown search method 'm6'"},
+      {"bigdt.toml", small_scene("dt = 0.01\nduration = 0.01"), "",
+       "above the Rayleigh time"},
+      {"paper.toml", "", "", "cannot read scene file"},
+  };
+  for (const Case& c : cases) {
+    const auto path = c.text.empty() ? dir.path() / c.name : dir.write(c.name, c.text);
+    const auto r = run_cli("run " + path.string() + " " + c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.name << ": " << r.output;
+    EXPECT_NE(r.output.find(c.expected), std::string::npos) << c.name << ": " << r.output;
+    EXPECT_NE(r.output.find("drumlab: error: "), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("particle-steps/s"), std::string::npos) << "ran anyway: " << r.output;
+  }
+  const auto paper = run_cli(std::string("run ") + DRUMLAB_SCENES_DIR + "/paper_table1.toml");
+  EXPECT_EQ(paper.exit_code, 2) << paper.output;
+  EXPECT_NE(paper.output.find("fill.kind"), std::string::npos) << paper.output;
+}
+
+TEST(CliRun, TimeStepFarAboveTheLimitStopsAsUnstable) {
+  TempDir dir("run-unstable");
+  // dt = 20 Rayleigh times, forced with --unsafe-dt: the run must stop with a reason, exit 3.
+  const auto scene = dir.write("unstable.toml", small_scene("dt_factor = 1.0\nduration = 0.5"));
+  const auto r = run_cli("run " + scene.string() + " --unsafe-dt --dt-factor 20");
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("drumlab: unstable: "), std::string::npos) << r.output;
+}
+
+TEST(CliInfo, EveryShippedSceneHasInfo) {
+  for (const char* scene : {"drum_demo", "drum_paper", "paper_table1", "paper_table2",
+                            "teach_stencil", "tilted_drum", "mono_periodic"}) {
+    const auto r = run_cli(std::string("info ") + DRUMLAB_SCENES_DIR + "/" + scene + ".toml");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("Rayleigh time"), std::string::npos) << r.output;
+  }
+  const auto demo = run_cli(std::string("info ") + DRUMLAB_SCENES_DIR + "/drum_demo.toml");
+  EXPECT_NE(demo.output.find("18825"), std::string::npos) << demo.output;
+  EXPECT_NE(demo.output.find("Froude number     0.04587"), std::string::npos) << demo.output;
+}
+
+}  // namespace
+}  // namespace drumlab::test
