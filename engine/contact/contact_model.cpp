@@ -24,35 +24,45 @@ void check_material(const Material& m, const char* what) {
   }
 }
 
-// Relative velocity at the contact, normal part and force of one contact; shared by both loops.
+// One contact at one instant. n: unit normal towards i; delta: overlap; a_i, a_j: branch lengths
+// from the centres to the contact point (0 on a wall's side); stop_rate: see RollingResistance.
+struct ContactGeometry {
+  Vec3 n;
+  double delta;
+  double r_eff;
+  double m_eff;
+  double a_i;
+  double a_j;
+  double stop_rate;
+};
+
+// Force of one contact, shared by the pair and the wall loop. v: velocity of i relative to the
+// other body's surface, without the spins w_i, w_j; xi: the contact's tangential history,
+// incremented over history_dt. Returns the force on i and adds the torques to t_i and, for a
+// pair, *t_j (null for a wall).
 template <class Normal, bool Tangential, bool Rolling>
 struct ContactKernel {
   const ContactLaw<Normal>& law;
 
-  // Returns the force on i; adds torques to *ti (and, for a pair, *tj; tj null for a wall).
-  // v: relative translational velocity of i w.r.t. the other body at the contact (without the
-  // spin of i and j); n: unit normal towards i; ai, aj: branch lengths; wi, wj: spins;
-  // stop_rate: see RollingResistance; history_dt: time over which xi is incremented.
-  Vec3 operator()(Vec3 v, const Vec3& n, double delta, double r_eff, double m_eff, double ai,
-                  double aj, const Vec3& wi, const Vec3& wj, Vec3& xi, double stop_rate,
-                  double history_dt, Vec3& ti, Vec3* tj) const {
-    if constexpr (Tangential) v -= (ai * wi + aj * wj).cross(n);
-    const double vn = v.dot(n);
-    const double fn = law.normal.force(delta, vn, r_eff, m_eff);
-    Vec3 f = fn * n;
+  Vec3 operator()(const ContactGeometry& g, Vec3 v, const Vec3& w_i, const Vec3& w_j, Vec3& xi,
+                  double history_dt, Vec3& t_i, Vec3* t_j) const {
+    if constexpr (Tangential) v -= (g.a_i * w_i + g.a_j * w_j).cross(g.n);
+    const double vn = v.dot(g.n);
+    const double fn = law.normal.force(g.delta, vn, g.r_eff, g.m_eff);
+    Vec3 f = fn * g.n;
     if constexpr (Tangential) {
-      const Vec3 vt = v - vn * n;
-      const TangentialCoefficients c = law.normal.tangential(delta, r_eff, m_eff);
-      const Vec3 ft = law.tangential.force(xi, n, vt, c, std::abs(fn), history_dt);
+      const Vec3 vt = v - vn * g.n;
+      const TangentialCoefficients c = law.normal.tangential(g.delta, g.r_eff, g.m_eff);
+      const Vec3 ft = law.tangential.force(xi, g.n, vt, c, std::abs(fn), history_dt);
       f += ft;
-      const Vec3 nxft = n.cross(ft);
-      ti -= ai * nxft;
-      if (tj) *tj -= aj * nxft;
+      const Vec3 nxft = g.n.cross(ft);
+      t_i -= g.a_i * nxft;
+      if (t_j) *t_j -= g.a_j * nxft;
     }
     if constexpr (Rolling) {
-      const Vec3 m = law.rolling.torque(wi - wj, std::abs(fn), r_eff, stop_rate);
-      ti += m;
-      if (tj) *tj -= m;
+      const Vec3 m = law.rolling.torque(w_i - w_j, std::abs(fn), g.r_eff, g.stop_rate);
+      t_i += m;
+      if (t_j) *t_j -= m;
     }
     return f;
   }
@@ -81,14 +91,16 @@ void pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& contact
         continue;
       }
       const double dist = std::sqrt(dist2);
-      const Vec3 n = d / dist;
       const double delta = sum_r - dist;
-      const double r_eff = p.radius[i] * p.radius[j] / sum_r;
-      const double m_eff = 1.0 / (p.inv_mass[i] + p.inv_mass[j]);
-      const double stop_rate = dt * (p.inv_inertia[i] + p.inv_inertia[j]);
-      const Vec3 f = kernel(p.velocity[i] - p.velocity[j], n, delta, r_eff, m_eff,
-                            p.radius[i] - 0.5 * delta, p.radius[j] - 0.5 * delta, p.omega[i],
-                            p.omega[j], hist[k], stop_rate, history_dt, p.torque[i], &p.torque[j]);
+      const ContactGeometry g{d / dist,
+                              delta,
+                              p.radius[i] * p.radius[j] / sum_r,
+                              1.0 / (p.inv_mass[i] + p.inv_mass[j]),
+                              p.radius[i] - 0.5 * delta,
+                              p.radius[j] - 0.5 * delta,
+                              dt * (p.inv_inertia[i] + p.inv_inertia[j])};
+      const Vec3 f = kernel(g, p.velocity[i] - p.velocity[j], p.omega[i], p.omega[j], hist[k],
+                            history_dt, p.torque[i], &p.torque[j]);
       p.force[i] += f;
       p.force[j] -= f;
     }
@@ -113,10 +125,11 @@ void wall_loop(const ContactLaw<Normal>& law, Particles& p, const Drum& drum, do
       }
       const double a = r - 0.5 * c.overlap;
       const Vec3 point = x - a * c.normal;
-      const Vec3 v = p.velocity[i] - Drum::wall_velocity(point, omega);
-      // The wall's spin enters only through its surface velocity: branch length 0 on its side.
-      const Vec3 f = kernel(v, c.normal, c.overlap, r, p.mass[i], a, 0.0, p.omega[i], wall_spin, xi,
-                            dt * p.inv_inertia[i], history_dt, p.torque[i], nullptr);
+      const ContactGeometry g{c.normal, c.overlap, r, p.mass[i], a, 0.0, dt * p.inv_inertia[i]};
+      // The wall's spin enters through its surface velocity (branch length 0 on its side) and
+      // through the relative rotation rate seen by rolling resistance.
+      const Vec3 f = kernel(g, p.velocity[i] - Drum::wall_velocity(point, omega), p.omega[i],
+                            wall_spin, xi, history_dt, p.torque[i], nullptr);
       p.force[i] += f;
     }
   }

@@ -138,5 +138,56 @@ TEST(HertzCollision, RestitutionAtTheDefaultTimeStep) {
   }
 }
 
+// Particle-wall: a sphere hitting the end cap head on. The wall contact uses R* = r, m* = m and E*
+// combined from the particle and wall materials, with the wall's restitution. Elastic Hertz:
+// duration within 2 % of Hertz theory; damped linear law: restitution within 1 % of the wall's e.
+double wall_bounce(SceneConfig s, double v, double dt, double* duration) {
+  s.time.dt = dt;
+  Particles p;
+  p.add(Vec3(0.0, 0.0, 0.5), kRadius, s.material.density);
+  p.velocity[0] = Vec3(0.0, 0.0, v);
+  s.drum.depth = 0.5 + kRadius + 1e-4;
+  Simulation sim(s, std::move(p));
+  double t_in = -1.0;
+  for (int k = 0; k < 1'000'000; ++k) {
+    sim.step();
+    const bool touching = sim.diagnostics().wall_contacts > 0;
+    if (t_in < 0.0 && touching) t_in = sim.time();
+    if (t_in >= 0.0 && !touching) {
+      *duration = sim.time() - t_in;
+      return -sim.particles().velocity[0].z() / v;
+    }
+  }
+  return 0.0;
+}
+
+TEST(WallCollision, HertzDurationAndLinearRestitutionAgainstTheCap) {
+  SceneConfig s = test::make_scene(kRadius);
+  s.material.restitution = 1.0;
+  s.wall = s.material;
+  s.wall.youngs_modulus = 2e7;  // a stiffer wall: E* combines both
+  s.wall.poisson_ratio = 0.25;
+  const double m = 2.0 * pair_mass(s);
+  const HertzNormal law(effective_youngs_modulus(s.material, s.wall),
+                        effective_shear_modulus(s.material, s.wall), 1.0);
+  const double t_c = law.contact_duration(kRadius, m, 1.0);
+  double duration = 0.0;
+  const double e_hertz = wall_bounce(s, 1.0, t_c / 2000.0, &duration);
+  std::printf("wall hertz: duration %.6e s (theory %.6e s), restitution %.6f\n", duration, t_c,
+              e_hertz);
+  EXPECT_NEAR(duration, t_c, 0.02 * t_c);
+  EXPECT_NEAR(e_hertz, 1.0, 1e-3);
+
+  s.contact.normal = NormalLaw::linear;
+  s.contact.linear_stiffness = 1e4;
+  s.wall.restitution = 0.7;
+  const LinearSpringDashpot lin(1e4, 0.7);
+  const double e_lin = wall_bounce(s, 1.0, lin.contact_duration(m) / 1000.0, &duration);
+  std::printf("wall linear: restitution %.6f (set 0.7), duration %.6e s (exact %.6e s)\n", e_lin,
+              duration, lin.contact_duration(m));
+  EXPECT_NEAR(e_lin, 0.7, 0.007);
+  EXPECT_NEAR(duration, lin.contact_duration(m), 0.01 * lin.contact_duration(m));
+}
+
 }  // namespace
 }  // namespace drumlab

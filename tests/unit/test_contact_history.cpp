@@ -1,0 +1,89 @@
+// CSR contact list and the transfer of tangential history between steps.
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "engine/contact/contact_history.hpp"
+
+namespace drumlab {
+namespace {
+
+void set_history(ContactList& c, Index i, Index j, const Vec3& v) {
+  const Vec3* h = c.find(i, j);
+  ASSERT_NE(h, nullptr);
+  c.history()[static_cast<std::size_t>(h - c.history().data())] = v;
+}
+
+TEST(ContactList, BuildsRowsSortedByIAndJ) {
+  ContactList c;
+  const std::vector<IndexPair> pairs{{3, 7}, {0, 5}, {3, 4}, {0, 2}, {1, 6}, {3, 5}};
+  c.update(pairs, 8);
+  EXPECT_EQ(c.size(), 6u);
+  EXPECT_EQ(c.rows(), 8u);
+  const std::vector<std::size_t> rows(c.row_start().begin(), c.row_start().end());
+  EXPECT_EQ(rows, (std::vector<std::size_t>{0, 2, 3, 3, 6, 6, 6, 6, 6}));
+  const std::vector<Index> cols(c.col().begin(), c.col().end());
+  EXPECT_EQ(cols, (std::vector<Index>{2, 5, 6, 4, 5, 7}));
+  for (const auto& p : pairs) {
+    ASSERT_NE(c.find(p.i, p.j), nullptr);
+    EXPECT_EQ(*c.find(p.i, p.j), Vec3::Zero());
+  }
+  EXPECT_EQ(c.find(0, 3), nullptr);
+  EXPECT_EQ(c.find(7, 3), nullptr);
+  EXPECT_EQ(c.find(20, 21), nullptr);
+}
+
+TEST(ContactList, HistoryFollowsPersistingContactsOnly) {
+  ContactList c;
+  c.update(std::vector<IndexPair>{{0, 1}, {1, 2}, {0, 3}}, 4);
+  set_history(c, 0, 1, Vec3(1, 0, 0));
+  set_history(c, 1, 2, Vec3(0, 2, 0));
+  set_history(c, 0, 3, Vec3(0, 0, 3));
+  // (1,2) ends, (2,3) and (0,2) appear, the order of the search output changes.
+  c.update(std::vector<IndexPair>{{2, 3}, {0, 3}, {0, 2}, {0, 1}}, 4);
+  EXPECT_EQ(c.size(), 4u);
+  EXPECT_EQ(*c.find(0, 1), Vec3(1, 0, 0));
+  EXPECT_EQ(*c.find(0, 3), Vec3(0, 0, 3));
+  EXPECT_EQ(*c.find(0, 2), Vec3::Zero());
+  EXPECT_EQ(*c.find(2, 3), Vec3::Zero());
+  EXPECT_EQ(c.find(1, 2), nullptr);
+  // A contact that ended and comes back starts from zero.
+  c.update(std::vector<IndexPair>{{1, 2}, {0, 1}}, 4);
+  EXPECT_EQ(*c.find(1, 2), Vec3::Zero());
+  EXPECT_EQ(*c.find(0, 1), Vec3(1, 0, 0));
+  c.update(std::vector<IndexPair>{}, 4);
+  EXPECT_EQ(c.size(), 0u);
+  c.update(std::vector<IndexPair>{{0, 1}}, 4);
+  EXPECT_EQ(*c.find(0, 1), Vec3::Zero());
+}
+
+TEST(ContactList, ParticleCountMayChange) {
+  ContactList c;
+  c.update(std::vector<IndexPair>{{0, 1}}, 2);
+  set_history(c, 0, 1, Vec3(1, 2, 3));
+  c.update(std::vector<IndexPair>{{0, 1}, {4, 5}}, 6);
+  EXPECT_EQ(*c.find(0, 1), Vec3(1, 2, 3));
+  EXPECT_EQ(*c.find(4, 5), Vec3::Zero());
+  c.clear();
+  EXPECT_EQ(c.size(), 0u);
+  c.update(std::vector<IndexPair>{{0, 1}}, 2);
+  EXPECT_EQ(*c.find(0, 1), Vec3::Zero());
+}
+
+TEST(ContactList, LongRowsAreSortedAndMatched) {
+  ContactList c;
+  std::vector<IndexPair> pairs;
+  for (Index j = 40; j > 0; --j) pairs.push_back({0, j});
+  c.update(pairs, 41);
+  for (Index j = 1; j <= 40; j += 3) set_history(c, 0, j, Vec3(j, 0, 0));
+  std::vector<IndexPair> next;
+  for (Index j = 1; j <= 40; j += 2) next.push_back({0, j});
+  c.update(next, 41);
+  for (Index j = 1; j <= 40; j += 2) {
+    const double expected = (j - 1) % 3 == 0 ? j : 0.0;
+    EXPECT_EQ(c.find(0, j)->x(), expected) << j;
+  }
+}
+
+}  // namespace
+}  // namespace drumlab

@@ -1,0 +1,157 @@
+// Contact laws against hand-computed values.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "engine/contact/hertz_mindlin.hpp"
+#include "engine/contact/linear_spring_dashpot.hpp"
+#include "engine/contact/rolling_resistance.hpp"
+
+namespace drumlab {
+namespace {
+
+Material glass() {
+  return Material{2500.0, 5e6, 0.3, 0.5, 0.5, 0.1};
+}
+
+TEST(EffectiveModuli, IdenticalMaterials) {
+  const Material m = glass();
+  EXPECT_NEAR(effective_youngs_modulus(m, m), 5e6 / (2.0 * (1.0 - 0.09)), 1e-6);
+  const double g = 5e6 / (2.0 * 1.3);
+  EXPECT_NEAR(effective_shear_modulus(m, m), g / (2.0 * (2.0 - 0.3)), 1e-6);
+}
+
+TEST(EffectiveModuli, DifferentMaterialsCombineInSeries) {
+  const Material a = glass();
+  Material b = glass();
+  b.youngs_modulus = 2e9;
+  b.poisson_ratio = 0.25;
+  const double expected = 1.0 / (0.91 / 5e6 + (1.0 - 0.0625) / 2e9);
+  EXPECT_NEAR(effective_youngs_modulus(a, b), expected, 1e-6 * expected);
+  // A rigid wall leaves the particle's own E / (1 - nu^2).
+  b.youngs_modulus = 1e30;
+  EXPECT_NEAR(effective_youngs_modulus(a, b), 5e6 / 0.91, 1e-3);
+}
+
+TEST(HertzNormal, ElasticForceIsFourThirdsEStarSqrtRDelta32) {
+  const HertzNormal h(2.0e6, 1.0e6, 1.0);
+  // R* = 0.005 m, delta = 1e-4 m: 4/3 * 2e6 * sqrt(0.005) * 1e-6 = 0.18856180831641267 N.
+  EXPECT_NEAR(h.force(1e-4, 0.0, 0.005, 0.01), 0.18856180831641267, 1e-15);
+  EXPECT_EQ(h.beta, 0.0);
+  EXPECT_EQ(h.force(1e-4, -1.0, 0.005, 0.01), h.force(1e-4, 0.0, 0.005, 0.01));
+}
+
+TEST(HertzNormal, DampingFollowsTheTsujiForm) {
+  const double e = 0.5;
+  const HertzNormal h(2.0e6, 1.0e6, e);
+  const double l = std::log(e);
+  const double beta = l / std::sqrt(l * l + std::numbers::pi * std::numbers::pi);
+  EXPECT_NEAR(h.beta, beta, 1e-15);
+  const double delta = 1e-4, r = 0.005, m = 0.01, vn = -0.3;
+  const double s_n = 2.0 * 2.0e6 * std::sqrt(r * delta);
+  const double gamma = -2.0 * std::sqrt(5.0 / 6.0) * beta * std::sqrt(s_n * m);
+  EXPECT_NEAR(h.force(delta, vn, r, m), 2.0 / 3.0 * s_n * delta - gamma * vn, 1e-12);
+  // Approaching (vn < 0) adds repulsion; separating fast enough gives an (unclipped) attraction.
+  EXPECT_GT(h.force(delta, vn, r, m), h.force(delta, 0.0, r, m));
+  EXPECT_LT(h.force(1e-9, 10.0, r, m), 0.0);
+}
+
+TEST(HertzNormal, TangentialStiffnessIsEightGStarSqrtRDelta) {
+  const HertzNormal h(2.0e6, 1.0e6, 0.5);
+  const TangentialCoefficients c = h.tangential(1e-4, 0.005, 0.01);
+  EXPECT_NEAR(c.stiffness, 8.0 * 1.0e6 * std::sqrt(0.005 * 1e-4), 1e-9);
+  EXPECT_NEAR(c.damping, -2.0 * std::sqrt(5.0 / 6.0) * h.beta * std::sqrt(c.stiffness * 0.01),
+              1e-12);
+}
+
+TEST(HertzNormal, ElasticEnergyIsTheIntegralOfTheForce) {
+  const HertzNormal h(2.0e6, 1.0e6, 1.0);
+  const double d = 2e-4, eps = 1e-9;
+  const double numeric =
+      (h.elastic_energy(d + eps, 0.005) - h.elastic_energy(d - eps, 0.005)) / (2.0 * eps);
+  EXPECT_NEAR(numeric, h.force(d, 0.0, 0.005, 1.0), 1e-6 * h.force(d, 0.0, 0.005, 1.0));
+}
+
+TEST(LinearSpringDashpot, ForceAndDampingForExactRestitution) {
+  const double k = 1e4, e = 0.5, m = 0.005;
+  const LinearSpringDashpot law(k, e);
+  const double l = std::log(e);
+  const double gamma =
+      2.0 * std::sqrt(m * k) * (-l) / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
+  EXPECT_NEAR(law.damping(m), gamma, 1e-12);
+  EXPECT_NEAR(law.force(1e-4, -0.2, 0.005, m), k * 1e-4 + gamma * 0.2, 1e-12);
+  // Not clipped: a separating contact can pull.
+  EXPECT_LT(law.force(1e-6, 1.0, 0.005, m), 0.0);
+  const double wd = std::sqrt(k / m - std::pow(gamma / (2.0 * m), 2));
+  EXPECT_NEAR(law.contact_duration(m), std::numbers::pi / wd, 1e-15);
+  EXPECT_NEAR(LinearSpringDashpot(k, 1.0).contact_duration(m), std::numbers::pi * std::sqrt(m / k),
+              1e-15);
+  EXPECT_NEAR(law.elastic_energy(2e-3, 0.0), 0.5 * k * 4e-6, 1e-15);
+  EXPECT_NEAR(law.tangential(0.0, 0.0, m).stiffness, 2.0 / 7.0 * k, 1e-12);
+}
+
+TEST(MindlinTangential, StickingSpringAccumulatesDisplacement) {
+  const MindlinTangential t{0.5};
+  const TangentialCoefficients c{1000.0, 0.0};
+  const Vec3 n(0.0, 0.0, 1.0);
+  Vec3 xi = Vec3::Zero();
+  const Vec3 vt(0.01, 0.0, 0.0);
+  Vec3 f = Vec3::Zero();
+  for (int k = 0; k < 10; ++k) f = t.force(xi, n, vt, c, 10.0, 1e-3);
+  EXPECT_NEAR(xi.x(), 1e-4, 1e-15);
+  EXPECT_NEAR(f.x(), -0.1, 1e-12);  // -k_t xi, well below mu F_n = 5 N
+  EXPECT_NEAR(f.y(), 0.0, 1e-15);
+}
+
+TEST(MindlinTangential, CoulombLimitCapsTheForceAndRescalesTheSpring) {
+  const MindlinTangential t{0.5};
+  const TangentialCoefficients c{1000.0, 2.0};
+  const Vec3 n(0.0, 0.0, 1.0);
+  Vec3 xi(0.02, 0.01, 0.0);  // spring force 22 N, limit 0.5 * 10 N
+  const Vec3 vt(0.1, -0.2, 0.0);
+  const Vec3 f = t.force(xi, n, vt, c, 10.0, 1e-3);
+  EXPECT_NEAR(f.norm(), 5.0, 1e-12);
+  // Direction of the trial force, and the spring now gives exactly the limit force.
+  const Vec3 trial = -1000.0 * (Vec3(0.02, 0.01, 0.0) + 1e-3 * vt) - 2.0 * vt;
+  EXPECT_NEAR((f.normalized() - trial.normalized()).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((-c.stiffness * xi - c.damping * vt - f).norm(), 0.0, 1e-12);
+}
+
+TEST(MindlinTangential, HistoryIsRotatedIntoTheNewTangentPlaneKeepingItsLength) {
+  const MindlinTangential t{10.0};
+  const TangentialCoefficients c{1000.0, 0.0};
+  Vec3 xi(1e-4, 0.0, 0.0);  // tangent to the old normal z
+  const double a = 0.1;
+  const Vec3 n(std::sin(a), 0.0, std::cos(a));  // the contact turned by 0.1 rad about y
+  t.force(xi, n, Vec3::Zero(), c, 100.0, 1e-3);
+  EXPECT_NEAR(xi.dot(n), 0.0, 1e-18);
+  EXPECT_NEAR(xi.norm(), 1e-4, 1e-18);
+  EXPECT_NEAR(xi.x(), 1e-4 * std::cos(a), 1e-18);
+}
+
+TEST(RollingResistance, ConstantTorqueOpposesRelativeRotation) {
+  const RollingResistance roll{0.1};
+  const Vec3 w(0.0, 3.0, 4.0);
+  const Vec3 m = roll.torque(w, 2.0, 0.005, 1e-6);
+  EXPECT_NEAR(m.norm(), 0.1 * 0.005 * 2.0, 1e-15);  // mu_r R* |F_n|
+  EXPECT_NEAR((m.normalized() + w.normalized()).norm(), 0.0, 1e-15);
+}
+
+TEST(RollingResistance, RegularisedBelowTheRateTheTorqueStopsInOneStep) {
+  const RollingResistance roll{0.1};
+  const double m_max = 0.1 * 0.005 * 2.0;
+  const double stop_rate = 10.0;  // dt (1/I_i + 1/I_j)
+  const double w0 = m_max * stop_rate;
+  const Vec3 slow(0.25 * w0, 0.0, 0.0);
+  const Vec3 m = roll.torque(slow, 2.0, 0.005, stop_rate);
+  EXPECT_NEAR(m.x(), -0.25 * m_max, 1e-15);               // linear in omega_rel
+  EXPECT_NEAR(slow.x() + m.x() * stop_rate, 0.0, 1e-15);  // one step removes it exactly
+  // Continuous at the threshold, and zero at rest.
+  EXPECT_NEAR(roll.torque(Vec3(w0 * (1 + 1e-12), 0, 0), 2.0, 0.005, stop_rate).x(), -m_max, 1e-12);
+  EXPECT_NEAR(roll.torque(Vec3(w0 * (1 - 1e-12), 0, 0), 2.0, 0.005, stop_rate).x(), -m_max, 1e-12);
+  EXPECT_EQ(roll.torque(Vec3::Zero(), 2.0, 0.005, stop_rate), Vec3::Zero());
+}
+
+}  // namespace
+}  // namespace drumlab
