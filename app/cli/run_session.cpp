@@ -1,0 +1,122 @@
+#include "app/cli/run_session.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "app/cli/run_report.hpp"
+#include "app/cli/scene_setup.hpp"
+#include "engine/fill/random_fill.hpp"
+
+namespace drumlab::cli {
+
+namespace {
+
+/// Steps of the turning phase: --steps, --revolutions, or the scene's duration/revolutions.
+std::uint64_t turning_steps(const RunOptions& opt, const SceneConfig& scene, double dt) {
+  if (opt.steps > 0) return opt.steps;
+  const double omega = std::abs(scene.drum.omega);
+  double seconds = 0.0;
+  if (opt.revolutions > 0.0 || scene.time.revolutions) {
+    const double revs = opt.revolutions > 0.0 ? opt.revolutions : *scene.time.revolutions;
+    if (omega == 0.0) {
+      throw InputError(fmt::format("{}: drum.omega: revolutions need a turning drum", opt.scene));
+    }
+    seconds = revs * 2.0 * std::numbers::pi / omega;
+  } else if (scene.time.duration) {
+    seconds = *scene.time.duration;
+  } else {
+    throw InputError(fmt::format(
+        "{}: time: set duration or revolutions in the scene, or pass --steps/--revolutions",
+        opt.scene));
+  }
+  return static_cast<std::uint64_t>(std::ceil(seconds / dt));
+}
+
+/// Advances `steps` in chunks no longer than the diagnostics interval and `until_frame`.
+void advance_phase(Simulation& sim, std::uint64_t steps, const std::string& label,
+                   std::uint64_t every, std::span<FrameObserver* const> observers) {
+  ProgressBar bar(label, steps);
+  const std::uint64_t chunk = std::max<std::uint64_t>(1, sim.scene().output.diagnostics_every);
+  std::uint64_t frame = 0;
+  auto emit = [&] {
+    for (FrameObserver* o : observers) o->on_frame(sim, frame);
+    ++frame;
+  };
+  if (every > 0) emit();
+  for (std::uint64_t done = 0; done < steps;) {
+    std::uint64_t n = std::min(chunk, steps - done);
+    if (every > 0) n = std::min(n, every - done % every);
+    sim.advance(n);
+    done += n;
+    if (every > 0 && done % every == 0) emit();
+    bar.update(done);
+  }
+  bar.finish();
+}
+
+}  // namespace
+
+void add_run_options(CLI::App* cmd, RunOptions& opt) {
+  cmd->add_option("--method", opt.method,
+                  "contact search method (overrides the scene): brute, m1..m5");
+  auto* steps = cmd->add_option("--steps", opt.steps, "turning steps after settling");
+  cmd->add_option("--revolutions", opt.revolutions, "drum revolutions after settling")
+      ->check(CLI::PositiveNumber)
+      ->excludes(steps);
+  cmd->add_option("--dt-factor", opt.dt_factor, "time step as a fraction of the Rayleigh time")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--settle-time", opt.settle_time, "seconds of settling (default: the scene's)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--threads", opt.threads, "OpenMP threads")->check(CLI::Range(1, 1024));
+  cmd->add_flag("--unsafe-dt", opt.unsafe_dt, "allow a time step above the Rayleigh time");
+}
+
+void run_session(const RunOptions& opt, std::span<FrameObserver* const> observers) {
+  SceneConfig scene = load_dynamic_scene(opt.scene);
+  if (!opt.method.empty()) scene.search_method = opt.method;
+#ifdef _OPENMP
+  omp_set_num_threads(opt.threads);
+#endif
+  if (opt.threads > 1) {
+    fmt::print("note: --threads {}: this version's step loop is serial; threads are not used yet\n",
+               opt.threads);
+  }
+  Particles particles = random_fill(scene);
+  SimulationOptions sim_options;
+  sim_options.allow_unsafe_dt = opt.unsafe_dt;
+  sim_options.dt_factor_override = opt.dt_factor;
+  Simulation sim(scene, std::move(particles), sim_options);
+  const std::uint64_t turn_steps = turning_steps(opt, scene, sim.dt());
+  const double settle_time = opt.settle_time >= 0.0 ? opt.settle_time : scene.fill.settle_time;
+  const auto settle_steps = static_cast<std::uint64_t>(std::ceil(settle_time / sim.dt()));
+  std::uint64_t every = opt.every;
+  if (every == 0 && opt.frames > 0) every = std::max<std::uint64_t>(1, turn_steps / opt.frames);
+  if (every == 0 && !observers.empty()) every = std::max<std::uint64_t>(1, turn_steps / 100);
+
+  fmt::print("scene             {} ({})\n", scene.name, opt.scene);
+  fmt::print(
+      "plan              settle {} steps ({:.3g} s, drum at rest), then turn {} steps ({:.3g} s, "
+      "{:.3g} rev)\n",
+      settle_steps, settle_time, turn_steps, static_cast<double>(turn_steps) * sim.dt(),
+      static_cast<double>(turn_steps) * sim.dt() * std::abs(scene.drum.omega) /
+          (2.0 * std::numbers::pi));
+  if (settle_steps > 0) {
+    sim.set_drum_omega(0.0);
+    advance_phase(sim, settle_steps, "settle", 0, {});
+    sim.set_drum_omega(scene.drum.omega);
+  }
+  PhaseMeter meter(sim);
+  advance_phase(sim, turn_steps, "turn", observers.empty() ? 0 : every, observers);
+  const PhaseStats stats = meter.finish();
+  for (FrameObserver* o : observers) o->on_finish(sim);
+  fmt::print("-- turning phase --\n");
+  print_summary(sim, stats);
+}
+
+}  // namespace drumlab::cli

@@ -1,0 +1,43 @@
+#pragma once
+// The run loop shared by `run`, `demo` and `render`: load a scene, fill, settle with the drum at
+// rest, turn the drum, and call scheduled observers (writers, renderers) between steps — never
+// inside the step loop.
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "engine/simulation.hpp"
+
+namespace drumlab::cli {
+
+struct RunOptions {
+  std::string scene;
+  std::string method;
+  std::uint64_t steps = 0;
+  double revolutions = 0.0;
+  double dt_factor = 0.0;
+  int threads = 1;
+  bool unsafe_dt = false;
+  double settle_time = -1.0;  ///< < 0: the scene's fill.settle_time
+  std::uint64_t every = 0;    ///< steps between frames for observers (0: the run decides)
+  std::uint64_t frames = 0;   ///< if > 0, spread this many frames over the turning phase
+};
+
+/// A scheduled observer: called at the start of the turning phase (frame 0) and every
+/// `every` steps after it, then once at the end. It reads the simulation and must not change it.
+class FrameObserver {
+ public:
+  virtual ~FrameObserver() = default;
+  virtual void on_frame(const Simulation& sim, std::uint64_t frame) = 0;
+  virtual void on_finish(const Simulation& /*sim*/) {}
+};
+
+/// Adds the options of RunOptions (except the scene) to a subcommand.
+void add_run_options(CLI::App* cmd, RunOptions& opt);
+
+/// Runs the scene as planned by `opt` and prints the summary of the turning phase.
+void run_session(const RunOptions& opt, std::span<FrameObserver* const> observers = {});
+
+}  // namespace drumlab::cli
