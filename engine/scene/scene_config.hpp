@@ -53,17 +53,17 @@ enum class FillKind {
 
 struct FillConfig {
   FillKind kind = FillKind::random;
-  std::size_t count = 0;           ///< total particles (random fill), split by volume fraction
-  double volume_fraction = 0.35;   ///< solid fraction of the random fill region
-  std::uint64_t seed = 1;          ///< random fill seed
-  double settle_time = 0.5;        ///< s of settling with the drum at rest before it turns
+  std::size_t count = 0;              ///< total particles (random fill), split by volume fraction
+  double volume_fraction = 0.35;      ///< solid fraction of the random fill region
+  std::uint64_t seed = 1;             ///< random fill seed
+  double settle_time = 0.5;           ///< s of settling with the drum at rest before it turns
   Vec3 box = Vec3(1.85, 1.80, 0.15);  ///< paper packing box [0, box), m
 };
 
 struct TimeConfig {
-  std::optional<double> dt;         ///< explicit time step (s); otherwise dt_factor * Rayleigh time
-  double dt_factor = 0.2;           ///< fraction of the Rayleigh time of the smallest particle
-  std::optional<double> duration;   ///< simulated seconds after settling
+  std::optional<double> dt;        ///< explicit time step (s); otherwise dt_factor * Rayleigh time
+  double dt_factor = 0.2;          ///< fraction of the Rayleigh time of the smallest particle
+  std::optional<double> duration;  ///< simulated seconds after settling
   std::optional<double> revolutions;
 };
 
@@ -73,8 +73,8 @@ struct OutputConfig {
 };
 
 struct SceneConfig {
-  std::string name;         ///< from the file name unless set
-  std::string source;       ///< file the scene came from (for error messages)
+  std::string name;    ///< from the file name unless set
+  std::string source;  ///< file the scene came from (for error messages)
   std::string description;
   Vec3 gravity = Vec3(0.0, -9.81, 0.0);  ///< lab frame, m/s^2
   DrumConfig drum;

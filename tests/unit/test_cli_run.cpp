@@ -31,7 +31,8 @@ friction = 0.5
 count = 300
 settle_time = 0.01
 [time]
-)" + time_table + "\n[output]\ndiagnostics_every = 20\n";
+)" + time_table +
+         "\n[output]\ndiagnostics_every = 20\n";
 }
 
 TEST(CliRun, SmallDrumRunsAndReportsThroughput) {
@@ -58,8 +59,7 @@ TEST(CliRun, BadScenesGiveOneLineErrors) {
       {"negative.toml", negative, "", "radius"},
       {"typo.toml", unknown_key, "", "omgea"},
       {"method.toml", small_scene(), "--method m6", "unknown search method 'm6'"},
-      {"bigdt.toml", small_scene("dt = 0.01\nduration = 0.01"), "",
-       "above the Rayleigh time"},
+      {"bigdt.toml", small_scene("dt = 0.01\nduration = 0.01"), "", "above the Rayleigh time"},
       {"paper.toml", "", "", "cannot read scene file"},
   };
   for (const Case& c : cases) {
