@@ -84,6 +84,9 @@ void print_summary(const Simulation& sim, const PhaseStats& phase) {
       phase.search.pairs_found > 0 ? static_cast<double>(phase.search.pairs_tested) /
                                          static_cast<double>(phase.search.pairs_found)
                                    : 0.0);
+  if (const std::string extra = sim.search().report(); !extra.empty()) {
+    fmt::print("search detail     {}\n", extra);
+  }
   fmt::print(
       "energy            kinetic {:.5g} J, rotational {:.5g} J, potential {:.5g} J, elastic {:.5g} "
       "J\n",

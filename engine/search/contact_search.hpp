@@ -64,6 +64,9 @@ class ContactSearch {
   /// too large to index); never returns a partial answer.
   virtual void find_pairs(const SearchInput& in, std::vector<IndexPair>& out) = 0;
 
+  /// Method-specific figures for people (e.g. Verlet rebuilds); empty if there are none.
+  virtual std::string report() const { return {}; }
+
   /// Cell side used in the last call (m), 0 for methods without a grid.
   virtual double cell_size() const { return 0.0; }
 

@@ -4,19 +4,34 @@
 #include "engine/search/brute_force.hpp"
 #include "engine/search/cell_grid.hpp"
 #include "engine/search/contact_search.hpp"
+#include "engine/search/verlet_list.hpp"
 
 namespace drumlab {
 
+namespace {
+
+/// Skin of the Verlet lists, in units of the smallest radius.
+constexpr double kDefaultSkinFactor = 0.3;
+
+bool is_paper_method(std::string_view name) {
+  return name.size() == 2 && name[0] == 'm' && name[1] >= '1' && name[1] <= '5';
+}
+
+}  // namespace
+
 std::vector<std::string> search_method_names() {
-  return {"brute", "m1", "m2", "m3", "m4", "m5"};
+  return {"brute", "m1", "m2", "m3", "m4", "m5", "verlet", "verlet:m2"};
 }
 
 std::unique_ptr<ContactSearch> make_search(std::string_view name) {
   if (name == "brute") return std::make_unique<BruteForceSearch>();
-  if (name.size() == 2 && name[0] == 'm' && name[1] >= '1' && name[1] <= '5') {
-    return std::make_unique<CellGridSearch>(paper_method(name[1] - '0'));
+  if (is_paper_method(name)) return std::make_unique<CellGridSearch>(paper_method(name[1] - '0'));
+  // "verlet" lists built by m5; "verlet:mN" by another grid.
+  if (name == "verlet" || (name.starts_with("verlet:") && is_paper_method(name.substr(7)))) {
+    const std::string_view builder = name == "verlet" ? "m5" : name.substr(7);
+    return std::make_unique<VerletListSearch>(make_search(builder), kDefaultSkinFactor);
   }
-  throw InputError(fmt::format("unknown search method '{}' (valid: {})", name,
+  throw InputError(fmt::format("unknown search method '{}' (valid: {}, or verlet:m1..m5)", name,
                                fmt::join(search_method_names(), ", ")));
 }
 

@@ -154,7 +154,11 @@ TEST_P(SearchMethod, RejectsBadInput) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllMethods, SearchMethod, ::testing::ValuesIn(search_method_names()),
-                         [](const auto& info) { return info.param; });
+                         [](const auto& info) {
+                           std::string name = info.param;
+                           std::replace(name.begin(), name.end(), ':', '_');
+                           return name;
+                         });
 
 TEST(HalfStencil, CellCountsMatchThePaper) {
   // The paper's stencil sizes for k = 4, 5, 6 (2D, cell = R_min) and k = 2 (cell = R_max).

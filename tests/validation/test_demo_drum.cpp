@@ -49,7 +49,7 @@ TEST(SearchMethodsInADrum, TrajectoriesAreIdenticalForEveryMethod) {
   SceneConfig scene = load_scene(std::string(DRUMLAB_SCENES_DIR) + "/teach_stencil.toml");
   const Particles start = random_fill(scene);
   std::vector<Vec3> reference;
-  for (const char* method : {"brute", "m1", "m2", "m3", "m4", "m5"}) {
+  for (const std::string& method : search_method_names()) {
     scene.search_method = method;
     Simulation sim(scene, start);
     sim.advance(1500);

@@ -1,0 +1,49 @@
+#pragma once
+// Verlet (neighbour) lists with a skin, built by any other method: pairs within margin + skin are
+// listed once, and every call only re-tests the listed pairs. The list is rebuilt when a particle
+// has moved more than half the skin since the last build (then no pair outside the list can have
+// come within the margin), or when the particle count, radii, margin or period changed.
+// The check runs on every call, so a contact can never be missed ("dangerous" builds: none).
+#include <memory>
+#include <string>
+
+#include "engine/search/contact_search.hpp"
+
+namespace drumlab {
+
+class VerletListSearch final : public ContactSearch {
+ public:
+  /// `builder` finds the listed pairs; skin = skin_factor x the smallest radius (m).
+  VerletListSearch(std::unique_ptr<ContactSearch> builder, double skin_factor);
+
+  std::string_view name() const override { return name_; }
+  std::string_view description() const override { return description_; }
+  void find_pairs(const SearchInput& in, std::vector<IndexPair>& out) override;
+  double cell_size() const override { return builder_->cell_size(); }
+
+  std::string report() const override;
+  const ContactSearch& builder() const { return *builder_; }
+  double skin() const { return skin_; }
+  /// Rebuilds and calls so far (a rebuild happens on the first call too).
+  std::uint64_t rebuilds() const { return rebuilds_; }
+  std::uint64_t calls() const { return calls_; }
+  /// Pairs in the current list.
+  std::size_t list_size() const { return list_.size(); }
+
+ private:
+  bool needs_rebuild(const SearchInput& in) const;
+  void rebuild(const SearchInput& in);
+
+  std::unique_ptr<ContactSearch> builder_;
+  double skin_factor_;
+  double skin_ = 0.0;
+  std::string name_, description_;
+  std::vector<IndexPair> list_;  ///< pairs within margin + skin at the last build
+  std::vector<Vec3> reference_;  ///< positions at the last build
+  std::vector<double> radius_;   ///< radii at the last build
+  double margin_ = -1.0;
+  double period_ = 0.0;
+  std::uint64_t rebuilds_ = 0, calls_ = 0;
+};
+
+}  // namespace drumlab

@@ -1,0 +1,70 @@
+// Verlet lists over moving particles: every call must return the brute-force contact set, while
+// rebuilding only when a particle has moved more than half the skin.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "engine/search/verlet_list.hpp"
+
+namespace drumlab {
+namespace {
+
+std::vector<IndexPair> sorted(ContactSearch& s, const SearchInput& in) {
+  std::vector<IndexPair> out;
+  s.find_pairs(in, out);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+TEST(VerletList, MatchesBruteForceWhileParticlesMove) {
+  std::mt19937_64 rng(42);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Vec3> x;
+  std::vector<double> r;
+  std::vector<Vec3> v;
+  for (int i = 0; i < 1500; ++i) {
+    x.emplace_back(0.3 * u(rng), 0.3 * u(rng), 0.1 * u(rng));
+    r.push_back(i % 3 == 0 ? 0.015 : 0.005);
+    v.emplace_back(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
+  }
+  for (const char* builder : {"m1", "m2", "m5"}) {
+    auto verlet = make_search(std::string("verlet:") + builder);
+    auto brute = make_search("brute");
+    auto* list = dynamic_cast<VerletListSearch*>(verlet.get());
+    ASSERT_NE(list, nullptr);
+    std::vector<Vec3> pos = x;
+    for (int step = 0; step < 60; ++step) {
+      const SearchInput in{pos, r, 0.0, std::nullopt, std::nullopt};
+      ASSERT_EQ(sorted(*verlet, in), sorted(*brute, in)) << builder << " step " << step;
+      for (std::size_t i = 0; i < pos.size(); ++i) pos[i] += 2e-4 * v[i];  // <= 1.7e-4 m/step
+    }
+    // skin = 0.3 x 5 mm = 1.5 mm: a rebuild at most every ~4 steps, and at least every 9.
+    EXPECT_GT(list->rebuilds(), 1u);
+    EXPECT_LT(list->rebuilds(), 30u);
+    EXPECT_EQ(list->calls(), 60u);
+  }
+}
+
+TEST(VerletList, RebuildsWhenTheInputChanges) {
+  auto verlet = make_search("verlet");
+  auto* list = dynamic_cast<VerletListSearch*>(verlet.get());
+  std::vector<Vec3> x{Vec3(0, 0, 0), Vec3(0.021, 0, 0)};
+  std::vector<double> r{0.01, 0.01};
+  std::vector<IndexPair> out;
+  verlet->find_pairs({x, r, 0.0, std::nullopt, std::nullopt}, out);
+  EXPECT_TRUE(out.empty());
+  verlet->find_pairs({x, r, 0.0, std::nullopt, std::nullopt}, out);
+  EXPECT_EQ(list->rebuilds(), 1u);
+  r[1] = 0.012;  // radii changed: the list must be rebuilt
+  verlet->find_pairs({x, r, 0.0, std::nullopt, std::nullopt}, out);
+  EXPECT_EQ(list->rebuilds(), 2u);
+  EXPECT_EQ(out.size(), 1u);
+  x[1].x() = 1.0;  // a jump far beyond half the skin
+  verlet->find_pairs({x, r, 0.0, std::nullopt, std::nullopt}, out);
+  EXPECT_EQ(list->rebuilds(), 3u);
+  EXPECT_TRUE(out.empty());
+}
+
+}  // namespace
+}  // namespace drumlab
