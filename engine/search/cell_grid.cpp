@@ -8,14 +8,12 @@
 
 #include <fmt/format.h>
 
+#include "engine/search/grid_axes.hpp"
 #include "engine/search/search_input.hpp"
 
 namespace drumlab {
 
 namespace {
-
-/// Cells along one axis are capped so that cell coordinates stay exact in doubles and int64.
-constexpr double kMaxCellsPerAxis = 1099511627776.0;  // 2^40
 
 /// A dense array is used while it costs at most this many cells per particle (plus a floor).
 constexpr double kDenseCellsPerParticle = 64.0;
@@ -70,41 +68,12 @@ void CellGridSearch::lay_grid(const SearchInput& in) {
   const double rmax = *rmax_it;
   const double period = in.period_z.value_or(0.0);
 
-  Vec3 lo, hi;
-  if (in.domain) {
-    lo = in.domain->lo;
-    hi = in.domain->hi;
-  } else {
-    lo = hi = in.position[0];
-    for (const Vec3& x : in.position) {
-      lo = lo.cwiseMin(x);
-      hi = hi.cwiseMax(x);
-    }
-  }
-  if (period > 0.0) {
-    lo.z() = 0.0;
-    hi.z() = period;
-  }
+  const Box bounds = search_bounds(in);
+  const Vec3& lo = bounds.lo;
   // The cell is widened by the margin so a pair at exactly k nominal cells still fits in k cells.
   const double b = (config_.cell_from_min_radius ? rmin : rmax) + in.margin + kTouchTolerance;
-  double axis_cells[3];
-  for (int a = 0; a < 3; ++a) {
-    axis_cells[a] = (hi[a] - lo[a]) / b;
-    if (!(axis_cells[a] < kMaxCellsPerAxis)) {
-      throw InputError(
-          fmt::format("search {}: particles span {:.6g} m along {} = {:.3g} cells of side {:.6g} "
-                      "m; too many to "
-                      "index",
-                      config_.name, hi[a] - lo[a], "xyz"[a], axis_cells[a], b));
-    }
-  }
-  // Round-off bound: cell coordinates carry an error of a few ulps of the largest coordinate.
-  const double scale = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff()) / b +
-                       std::max({axis_cells[0], axis_cells[1], axis_cells[2]});
-  const double slack = 16.0 * DBL_EPSILON * (scale + 1.0);
-  auto cells_for = [&](double reach) {
-    return static_cast<int>(std::ceil(reach / b * (1.0 + 8.0 * DBL_EPSILON) + slack));
-  };
+  const GridAxes axes(bounds, b, config_.name);
+  auto cells_for = [&](double reach) { return axes.reach_cells(reach); };
 
   reach_.resize(n);
   int kmax = 0;
@@ -126,12 +95,12 @@ void CellGridSearch::lay_grid(const SearchInput& in) {
   GridGeometry g;
   g.origin = lo;
   g.cell_xy = b;
-  g.nx = static_cast<std::int64_t>(axis_cells[0]) + 1;
-  g.ny = static_cast<std::int64_t>(axis_cells[1]) + 1;
+  g.nx = axes.cells(0);
+  g.ny = axes.cells(1);
   g.periodic_z = period > 0.0;
   if (!config_.three_d) {
     g.nz = 1;
-    g.cell_z = hi.z() - lo.z();
+    g.cell_z = bounds.hi.z() - lo.z();
   } else if (g.periodic_z) {
     // Cells must tile the period exactly; with fewer than 2k+1 layers the wrapped stencil would
     // visit a layer twice, so such a thin periodic slab is searched as one layer.
@@ -139,7 +108,7 @@ void CellGridSearch::lay_grid(const SearchInput& in) {
     if (g.nz < 2 * kmax + 1) g.nz = 1;
     g.cell_z = period / static_cast<double>(g.nz);
   } else {
-    g.nz = static_cast<std::int64_t>(axis_cells[2]) + 1;
+    g.nz = axes.cells(2);
     g.cell_z = b;
   }
   const double total =

@@ -1,0 +1,51 @@
+#include "engine/search/grid_axes.hpp"
+
+#include <fmt/format.h>
+
+namespace drumlab {
+
+namespace {
+
+/// Cells along one axis are capped so that cell coordinates stay exact in doubles and int64.
+constexpr double kMaxCellsPerAxis = 1099511627776.0;  // 2^40
+
+}  // namespace
+
+Box search_bounds(const SearchInput& in) {
+  Box box;
+  if (in.domain) {
+    box = *in.domain;
+  } else if (!in.position.empty()) {
+    box.lo = box.hi = in.position[0];
+    for (const Vec3& x : in.position) {
+      box.lo = box.lo.cwiseMin(x);
+      box.hi = box.hi.cwiseMax(x);
+    }
+  }
+  if (in.period_z) {
+    box.lo.z() = 0.0;
+    box.hi.z() = *in.period_z;
+  }
+  return box;
+}
+
+GridAxes::GridAxes(const Box& bounds, double b, std::string_view method) : lo_(bounds.lo), b_(b) {
+  double largest = 0.0;
+  for (int a = 0; a < 3; ++a) {
+    const double cells = (bounds.hi[a] - bounds.lo[a]) / b;
+    if (!(cells < kMaxCellsPerAxis)) {
+      throw InputError(fmt::format(
+          "search {}: particles span {:.6g} m along {} = {:.3g} cells of side {:.6g} m; too many "
+          "to index",
+          method, bounds.hi[a] - bounds.lo[a], "xyz"[a], cells, b));
+    }
+    n_[a] = static_cast<std::int64_t>(cells) + 1;
+    largest = std::max(largest, cells);
+  }
+  // Cell coordinates carry an error of a few ulps of the largest coordinate, in cells.
+  const double scale =
+      std::max(bounds.lo.cwiseAbs().maxCoeff(), bounds.hi.cwiseAbs().maxCoeff()) / b + largest;
+  slack_ = 16.0 * DBL_EPSILON * (scale + 1.0);
+}
+
+}  // namespace drumlab
