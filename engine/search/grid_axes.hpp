@@ -22,6 +22,8 @@ class GridAxes {
   GridAxes(const Box& bounds, double b, std::string_view method);
 
   double side() const { return b_; }
+  /// Round-off bound on cell coordinates, in cells.
+  double slack() const { return slack_; }
   /// Cells along axis a (>= 1): floor(extent / b) + 1, so the upper bound lies inside.
   std::int64_t cells(int a) const { return n_[a]; }
   /// Smallest k such that two points at most `reach` apart are at most k cells apart.

@@ -4,6 +4,7 @@
 #include "engine/search/brute_force.hpp"
 #include "engine/search/cell_grid.hpp"
 #include "engine/search/contact_search.hpp"
+#include "engine/search/multilevel_grid.hpp"
 #include "engine/search/verlet_list.hpp"
 
 namespace drumlab {
@@ -20,18 +21,20 @@ bool is_paper_method(std::string_view name) {
 }  // namespace
 
 std::vector<std::string> search_method_names() {
-  return {"brute", "m1", "m2", "m3", "m4", "m5", "verlet", "verlet:m2"};
+  return {"brute", "m1", "m2", "m3", "m4", "m5", "mlgrid", "verlet", "verlet:m2", "verlet:mlgrid"};
 }
 
 std::unique_ptr<ContactSearch> make_search(std::string_view name) {
   if (name == "brute") return std::make_unique<BruteForceSearch>();
   if (is_paper_method(name)) return std::make_unique<CellGridSearch>(paper_method(name[1] - '0'));
+  if (name == "mlgrid") return std::make_unique<MultiLevelGridSearch>();
   // "verlet" lists built by m5; "verlet:mN" by another grid.
-  if (name == "verlet" || (name.starts_with("verlet:") && is_paper_method(name.substr(7)))) {
+  if (name == "verlet" || (name.starts_with("verlet:") &&
+                           (is_paper_method(name.substr(7)) || name.substr(7) == "mlgrid"))) {
     const std::string_view builder = name == "verlet" ? "m5" : name.substr(7);
     return std::make_unique<VerletListSearch>(make_search(builder), kDefaultSkinFactor);
   }
-  throw InputError(fmt::format("unknown search method '{}' (valid: {}, or verlet:m1..m5)", name,
+  throw InputError(fmt::format("unknown search method '{}' (valid: {}, or verlet:<grid>)", name,
                                fmt::join(search_method_names(), ", ")));
 }
 

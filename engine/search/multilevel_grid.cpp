@@ -1,0 +1,330 @@
+#include "engine/search/multilevel_grid.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <type_traits>
+
+#include <fmt/format.h>
+
+#include "engine/search/grid_axes.hpp"
+#include "engine/search/search_input.hpp"
+
+namespace drumlab {
+
+namespace {
+
+/// Up to this many distinct radii get a level each; beyond, radii are binned by factors of 2.
+constexpr std::size_t kMaxExactLevels = 8;
+constexpr double kDenseCellsPerParticle = 64.0;
+constexpr double kDenseCellFloor = 1048576.0;  // 2^20
+
+/// Tests particle (xi, ri, pi) against slots [begin, end) of a level; returns the tests made.
+template <class Level>
+std::uint32_t scan_slots(const Vec3& xi, double ri, Index pi, const Level& level,
+                         std::uint32_t begin, std::uint32_t end, double margin, double period,
+                         std::vector<IndexPair>& out) {
+  for (std::uint32_t t = begin; t < end; ++t) {
+    const double cut = ri + level.radius[t] + margin;
+    if (distance_squared(xi, level.position[t], period) <= cut * cut) {
+      const Index pj = level.order[t];
+      out.push_back(pi < pj ? IndexPair{pi, pj} : IndexPair{pj, pi});
+    }
+  }
+  return end > begin ? end - begin : 0;
+}
+
+}  // namespace
+
+void MultiLevelGridSearch::find_pairs(const SearchInput& in, std::vector<IndexPair>& out) {
+  validate_search_input(in);
+  const std::size_t n = in.position.size();
+  reset_counters(n);
+  out.clear();
+  if (n == 0) return;
+  assign_levels(in);
+  std::uint64_t cells_total = 0;
+  for (Level& level : levels_) {
+    lay_level(level, in);
+    cells_total += static_cast<std::uint64_t>(level.n[0] * level.n[1] * level.n[2]);
+  }
+  for (const Level& level : levels_) {
+    if (level.hashed) {
+      visit_level(level, level.hashed_index, in, out);
+    } else {
+      visit_level(level, level.dense, in, out);
+    }
+  }
+  counters_.cells_total = cells_total;
+  counters_.pairs_found = out.size();
+}
+
+void MultiLevelGridSearch::assign_levels(const SearchInput& in) {
+  const std::size_t n = in.position.size();
+  std::vector<double> distinct(in.radius.begin(), in.radius.end());
+  std::sort(distinct.begin(), distinct.end());
+  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+  const double rmin = distinct.front();
+  std::vector<int> raw(n);
+  int top = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double r = in.radius[i];
+    raw[i] = distinct.size() <= kMaxExactLevels
+                 ? static_cast<int>(std::lower_bound(distinct.begin(), distinct.end(), r) -
+                                    distinct.begin())
+                 : std::min(200, static_cast<int>(std::floor(std::log2(r / rmin))));
+    top = std::max(top, raw[i]);
+  }
+  // Keep only occupied levels, smallest first.
+  std::vector<int> compact(static_cast<std::size_t>(top) + 1, -1);
+  for (int l : raw) compact[l] = 0;
+  int next = 0;
+  for (int& c : compact) {
+    if (c == 0) c = next++;
+  }
+  levels_.resize(static_cast<std::size_t>(next));
+  for (Level& level : levels_) {
+    level.order.clear();
+    level.rmax = 0.0;
+  }
+  level_of_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    Level& level = levels_[compact[raw[i]]];
+    level_of_[i] = static_cast<std::uint8_t>(compact[raw[i]]);
+    level.order.push_back(static_cast<Index>(i));
+    level.rmax = std::max(level.rmax, in.radius[i]);
+  }
+}
+
+void MultiLevelGridSearch::lay_level(Level& level, const SearchInput& in) {
+  const Box bounds = search_bounds(in);
+  const double reach = 2.0 * level.rmax + in.margin + kTouchTolerance;
+  const GridAxes axes(bounds, reach, "mlgrid");
+  level.origin = bounds.lo;
+  level.b = axes.side();
+  level.k = axes.reach_cells(reach);
+  level.n[0] = axes.cells(0);
+  level.n[1] = axes.cells(1);
+  level.periodic = in.period_z.has_value();
+  slack_ = std::max(slack_, axes.slack());
+  if (level.periodic) {
+    // Layers must tile the period; fewer than 2k+1 would make the stencil visit one twice.
+    level.n[2] = static_cast<std::int64_t>(*in.period_z / level.b);
+    if (level.n[2] < 2 * level.k + 1) level.n[2] = 1;
+    level.bz = *in.period_z / static_cast<double>(level.n[2]);
+  } else {
+    level.n[2] = axes.cells(2);
+    level.bz = level.b;
+  }
+  const bool three_d = level.n[2] > 1;
+  if (level.stencil.kmax() != level.k || level.stencil.rows.empty() ||
+      (level.stencil.offsets.size() > 0 && (level.stencil.offsets.back().dz != 0) != three_d)) {
+    level.stencil = HalfStencil(level.k, three_d);
+  }
+  const double m = static_cast<double>(level.order.size());
+  const double total = static_cast<double>(level.n[0]) * static_cast<double>(level.n[1]) *
+                       static_cast<double>(level.n[2]);
+  level.hashed = total > kDenseCellsPerParticle * m + kDenseCellFloor;
+
+  // Cells of the members, then sort them by cell.
+  std::vector<CellCoord> cell_of(level.order.size());
+  for (std::size_t s = 0; s < level.order.size(); ++s) {
+    const Vec3& x = in.position[level.order[s]];
+    CellCoord c{axes.coord(x.x(), 0), axes.coord(x.y(), 1), 0};
+    if (three_d) {
+      c.z = level.periodic
+                ? std::min<std::int64_t>(static_cast<std::int64_t>(std::floor(x.z() / level.bz)),
+                                         level.n[2] - 1)
+                : axes.coord(x.z(), 2);
+    }
+    cell_of[s] = c;
+  }
+  std::vector<std::size_t> perm(level.order.size());
+  std::iota(perm.begin(), perm.end(), std::size_t{0});
+  std::sort(perm.begin(), perm.end(), [&](std::size_t a, std::size_t b) {
+    const CellCoord& ca = cell_of[a];
+    const CellCoord& cb = cell_of[b];
+    if (ca.z != cb.z) return ca.z < cb.z;
+    if (ca.y != cb.y) return ca.y < cb.y;
+    if (ca.x != cb.x) return ca.x < cb.x;
+    return a < b;
+  });
+  const std::vector<Index> members = level.order;
+  const std::size_t count = members.size();
+  level.position.resize(count);
+  level.radius.resize(count);
+  level.cell.resize(count);
+  for (std::size_t s = 0; s < count; ++s) {
+    level.order[s] = members[perm[s]];
+    level.cell[s] = cell_of[perm[s]];
+    level.position[s] = in.position[level.order[s]];
+    level.radius[s] = in.radius[level.order[s]];
+  }
+  // Cell ranges.
+  if (level.hashed) {
+    std::size_t occupied = 0;
+    for (std::size_t s = 0; s < count; ++s)
+      occupied += (s == 0 || !(level.cell[s] == level.cell[s - 1]));
+    level.hashed_index.reset(occupied);
+  } else {
+    level.dense.reset(level.n[0], level.n[1], level.n[2]);
+  }
+  for (std::size_t s = 0; s < count;) {
+    std::size_t e = s + 1;
+    while (e < count && level.cell[e] == level.cell[s]) ++e;
+    const CellRange r{static_cast<std::uint32_t>(s), static_cast<std::uint32_t>(e),
+                      static_cast<std::uint32_t>(e)};
+    if (level.hashed) {
+      level.hashed_index.insert(level.cell[s], r);
+    } else {
+      level.dense.at(level.dense.linear(level.cell[s])) = r;
+    }
+    s = e;
+  }
+  if (!level.hashed) {
+    // Empty cells get empty ranges positioned at the next occupied slot, so a row of cells
+    // [c0, c1] is the slice [begin(c0), end(c1)).
+    const std::int64_t cells = level.n[0] * level.n[1] * level.n[2];
+    std::uint32_t next = static_cast<std::uint32_t>(count);
+    for (std::int64_t c = cells - 1; c >= 0; --c) {
+      CellRange& r = level.dense.at(c);
+      if (r.end > r.begin) {
+        next = r.begin;
+      } else {
+        r = CellRange{next, next, next};
+      }
+    }
+  }
+}
+
+bool MultiLevelGridSearch::wrap(const Level& level, CellCoord& c) const {
+  if (c.x < 0 || c.x >= level.n[0] || c.y < 0 || c.y >= level.n[1]) return false;
+  if (level.periodic && level.n[2] > 1) {
+    if (c.z < 0) {
+      c.z += level.n[2];
+    } else if (c.z >= level.n[2]) {
+      c.z -= level.n[2];
+    }
+    return true;
+  }
+  return c.z >= 0 && c.z < level.n[2];
+}
+
+template <class Cells>
+void MultiLevelGridSearch::visit_level(const Level& level, const Cells& cells,
+                                       const SearchInput& in, std::vector<IndexPair>& out) {
+  const double period = in.period_z.value_or(0.0);
+  const double margin = in.margin + kTouchTolerance;
+  const std::size_t l = static_cast<std::size_t>(&level - levels_.data());
+  for (std::size_t s = 0; s < level.order.size(); ++s) {
+    const Vec3& xi = level.position[s];
+    const double ri = level.radius[s];
+    const Index pi = level.order[s];
+    const CellCoord ci = level.cell[s];
+    std::uint32_t my_cells = 1, my_tests = 0;
+    CellRange r;
+    cells.find(ci, r);
+    my_tests += scan_slots(xi, ri, pi, level, static_cast<std::uint32_t>(s) + 1, r.end, margin,
+                           period, out);
+    if constexpr (std::is_same_v<Cells, DenseCellIndex>) {
+      for (const StencilRow& row : level.stencil.rows[level.k]) {
+        CellCoord c{0, ci.y + row.dy, ci.z + row.dz};
+        if (!wrap(level, c)) continue;
+        const std::int64_t x0 = std::max<std::int64_t>(ci.x + row.dx_lo, 0);
+        const std::int64_t x1 = std::min<std::int64_t>(ci.x + row.dx_hi, level.n[0] - 1);
+        if (x0 > x1) continue;
+        my_cells += static_cast<std::uint32_t>(x1 - x0 + 1);
+        c.x = x0;
+        const std::uint32_t begin = cells.cell(c).begin;
+        c.x = x1;
+        my_tests += scan_slots(xi, ri, pi, level, begin, cells.cell(c).end, margin, period, out);
+      }
+    } else {
+      const auto& offsets = level.stencil.offsets;
+      for (std::uint32_t o = 0; o < level.stencil.prefix_end[level.k]; ++o) {
+        CellCoord c{ci.x + offsets[o].dx, ci.y + offsets[o].dy, ci.z + offsets[o].dz};
+        if (!wrap(level, c)) continue;
+        ++my_cells;
+        if (cells.find(c, r)) {
+          my_tests += scan_slots(xi, ri, pi, level, r.begin, r.end, margin, period, out);
+        }
+      }
+    }
+    cells_per_particle_[pi] = my_cells;
+    tests_per_particle_[pi] = my_tests;
+    for (std::size_t h = l + 1; h < levels_.size(); ++h) {
+      const Level& big = levels_[h];
+      if (big.hashed) {
+        visit_cross(l, s, big, big.hashed_index, in, out);
+      } else {
+        visit_cross(l, s, big, big.dense, in, out);
+      }
+    }
+    counters_.cells_visited += cells_per_particle_[pi];
+    counters_.pairs_tested += tests_per_particle_[pi];
+  }
+}
+
+template <class Cells>
+void MultiLevelGridSearch::visit_cross(std::size_t small_level, std::size_t slot, const Level& big,
+                                       const Cells& cells, const SearchInput& in,
+                                       std::vector<IndexPair>& out) {
+  const Level& level = levels_[small_level];
+  const Vec3& xi = level.position[slot];
+  const double ri = level.radius[slot];
+  const Index pi = level.order[slot];
+  const double period = in.period_z.value_or(0.0);
+  const double margin = in.margin + kTouchTolerance;
+  const double half = ri + big.rmax + margin;
+  // Cell range of the box [x - half, x + half] per axis, widened by the round-off slack.
+  std::int64_t lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) {
+    const double side = a == 2 ? big.bz : big.b;
+    const double origin = (a == 2 && big.periodic) ? 0.0 : big.origin[a];
+    lo[a] = static_cast<std::int64_t>(std::floor((xi[a] - half - origin) / side - slack_));
+    hi[a] = static_cast<std::int64_t>(std::floor((xi[a] + half - origin) / side + slack_));
+  }
+  const bool wrap_z = big.periodic && big.n[2] > 1 && hi[2] - lo[2] + 1 < big.n[2];
+  if (!wrap_z) {
+    lo[2] = std::max<std::int64_t>(lo[2], 0);
+    hi[2] = std::min<std::int64_t>(hi[2], big.n[2] - 1);
+  }
+  lo[0] = std::max<std::int64_t>(lo[0], 0);
+  hi[0] = std::min<std::int64_t>(hi[0], big.n[0] - 1);
+  lo[1] = std::max<std::int64_t>(lo[1], 0);
+  hi[1] = std::min<std::int64_t>(hi[1], big.n[1] - 1);
+  if (lo[0] > hi[0] || lo[1] > hi[1]) return;
+  std::uint32_t my_cells = 0, my_tests = 0;
+  for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
+    const std::int64_t cz = wrap_z ? ((z % big.n[2]) + big.n[2]) % big.n[2] : z;
+    for (std::int64_t cy = lo[1]; cy <= hi[1]; ++cy) {
+      if constexpr (std::is_same_v<Cells, DenseCellIndex>) {
+        my_cells += static_cast<std::uint32_t>(hi[0] - lo[0] + 1);
+        const std::uint32_t begin = cells.cell(CellCoord{lo[0], cy, cz}).begin;
+        const std::uint32_t end = cells.cell(CellCoord{hi[0], cy, cz}).end;
+        my_tests += scan_slots(xi, ri, pi, big, begin, end, margin, period, out);
+      } else {
+        for (std::int64_t cx = lo[0]; cx <= hi[0]; ++cx) {
+          ++my_cells;
+          CellRange r;
+          if (cells.find(CellCoord{cx, cy, cz}, r)) {
+            my_tests += scan_slots(xi, ri, pi, big, r.begin, r.end, margin, period, out);
+          }
+        }
+      }
+    }
+  }
+  cells_per_particle_[pi] += my_cells;
+  tests_per_particle_[pi] += my_tests;
+}
+
+std::string MultiLevelGridSearch::report() const {
+  std::string text = fmt::format("{} levels:", levels_.size());
+  for (const Level& level : levels_) {
+    text += fmt::format(" [{} particles, cell {:.4g} m{}]", level.order.size(), level.b,
+                        level.hashed ? ", hashed" : "");
+  }
+  return text;
+}
+
+}  // namespace drumlab
