@@ -8,6 +8,7 @@
 #include "app/cli/scene_setup.hpp"
 #include "engine/fill/paper_packing.hpp"
 #include "engine/fill/random_fill.hpp"
+#include "engine/search/auto_select.hpp"
 #include "engine/search/cell_grid.hpp"
 #include "engine/simulation.hpp"
 
@@ -78,8 +79,16 @@ void print_info(const std::string& file) {
   fmt::print("memory estimate   {:.1f} MiB ({:.0f} B/particle{})\n",
              (kBytesPerParticle * static_cast<double>(total) + kBytesPerCell * cells) / 1048576.0,
              kBytesPerParticle, grid);
-  fmt::print("search method     {} (set by the scene; `--method` overrides it in `run`)\n",
-             scene.search_method);
+  if (scene.search_method == "auto" && dynamic) {
+    const Particles fill = random_fill(scene);
+    const SearchChoice choice = choose_search_method(scene, dt, fill.position, fill.radius);
+    fmt::print("search method     auto -> {} (paper's rule: {})\n", choice.method,
+               choice.paper_rule);
+    fmt::print("why               {}\n", choice.reason);
+  } else {
+    fmt::print("search method     {} (set by the scene; `--method` overrides it in `run`)\n",
+               scene.search_method);
+  }
   if (!dynamic) fmt::print("note              static packing: use `drumlab paper-table`\n");
 }
 

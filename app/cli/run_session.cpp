@@ -12,6 +12,7 @@
 #include "app/cli/run_report.hpp"
 #include "app/cli/scene_setup.hpp"
 #include "engine/fill/random_fill.hpp"
+#include "engine/search/auto_select.hpp"
 
 namespace drumlab::cli {
 
@@ -88,6 +89,15 @@ void run_session(const RunOptions& opt, std::span<FrameObserver* const> observer
                opt.threads);
   }
   Particles particles = random_fill(scene);
+  if (scene.search_method == "auto") {
+    const double dt =
+        scene.time.dt.value_or((opt.dt_factor > 0.0 ? opt.dt_factor : scene.time.dt_factor) *
+                               rayleigh_time(scene.min_radius(), scene.material));
+    const SearchChoice choice =
+        choose_search_method(scene, dt, particles.position, particles.radius);
+    fmt::print("search auto       -> {}: {}\n", choice.method, choice.reason);
+    scene.search_method = choice.method;
+  }
   SimulationOptions sim_options;
   sim_options.allow_unsafe_dt = opt.unsafe_dt;
   sim_options.dt_factor_override = opt.dt_factor;

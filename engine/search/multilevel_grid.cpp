@@ -140,15 +140,31 @@ void MultiLevelGridSearch::lay_level(Level& level, const SearchInput& in) {
     cell_of[s] = c;
   }
   std::vector<std::size_t> perm(level.order.size());
-  std::iota(perm.begin(), perm.end(), std::size_t{0});
-  std::sort(perm.begin(), perm.end(), [&](std::size_t a, std::size_t b) {
-    const CellCoord& ca = cell_of[a];
-    const CellCoord& cb = cell_of[b];
-    if (ca.z != cb.z) return ca.z < cb.z;
-    if (ca.y != cb.y) return ca.y < cb.y;
-    if (ca.x != cb.x) return ca.x < cb.x;
-    return a < b;
-  });
+  if (level.hashed) {
+    std::iota(perm.begin(), perm.end(), std::size_t{0});
+    std::sort(perm.begin(), perm.end(), [&](std::size_t a, std::size_t b) {
+      const CellCoord& ca = cell_of[a];
+      const CellCoord& cb = cell_of[b];
+      if (ca.z != cb.z) return ca.z < cb.z;
+      if (ca.y != cb.y) return ca.y < cb.y;
+      if (ca.x != cb.x) return ca.x < cb.x;
+      return a < b;
+    });
+  } else {  // counting sort by cell: O(members + cells), stable
+    level.dense.reset(level.n[0], level.n[1], level.n[2]);
+    for (const CellCoord& c : cell_of) ++level.dense.at(level.dense.linear(c)).end;
+    std::uint32_t running = 0;
+    const std::int64_t cells = level.n[0] * level.n[1] * level.n[2];
+    for (std::int64_t c = 0; c < cells; ++c) {
+      CellRange& r = level.dense.at(c);
+      const std::uint32_t size = r.end;
+      r = CellRange{running, running, running};
+      running += size;
+    }
+    for (std::size_t s = 0; s < cell_of.size(); ++s) {
+      perm[level.dense.at(level.dense.linear(cell_of[s])).end++] = s;
+    }
+  }
   const std::vector<Index> members = level.order;
   const std::size_t count = members.size();
   level.position.resize(count);
@@ -160,40 +176,19 @@ void MultiLevelGridSearch::lay_level(Level& level, const SearchInput& in) {
     level.position[s] = in.position[level.order[s]];
     level.radius[s] = in.radius[level.order[s]];
   }
-  // Cell ranges.
-  if (level.hashed) {
-    std::size_t occupied = 0;
-    for (std::size_t s = 0; s < count; ++s)
-      occupied += (s == 0 || !(level.cell[s] == level.cell[s - 1]));
-    level.hashed_index.reset(occupied);
-  } else {
-    level.dense.reset(level.n[0], level.n[1], level.n[2]);
+  if (!level.hashed) return;  // the counting sort filled the dense ranges
+  std::size_t occupied = 0;
+  for (std::size_t s = 0; s < count; ++s) {
+    occupied += (s == 0 || !(level.cell[s] == level.cell[s - 1]));
   }
+  level.hashed_index.reset(occupied);
   for (std::size_t s = 0; s < count;) {
     std::size_t e = s + 1;
     while (e < count && level.cell[e] == level.cell[s]) ++e;
     const CellRange r{static_cast<std::uint32_t>(s), static_cast<std::uint32_t>(e),
                       static_cast<std::uint32_t>(e)};
-    if (level.hashed) {
-      level.hashed_index.insert(level.cell[s], r);
-    } else {
-      level.dense.at(level.dense.linear(level.cell[s])) = r;
-    }
+    level.hashed_index.insert(level.cell[s], r);
     s = e;
-  }
-  if (!level.hashed) {
-    // Empty cells get empty ranges positioned at the next occupied slot, so a row of cells
-    // [c0, c1] is the slice [begin(c0), end(c1)).
-    const std::int64_t cells = level.n[0] * level.n[1] * level.n[2];
-    std::uint32_t next = static_cast<std::uint32_t>(count);
-    for (std::int64_t c = cells - 1; c >= 0; --c) {
-      CellRange& r = level.dense.at(c);
-      if (r.end > r.begin) {
-        next = r.begin;
-      } else {
-        r = CellRange{next, next, next};
-      }
-    }
   }
 }
 

@@ -38,7 +38,7 @@ settle_time = 0.01
 TEST(CliRun, SmallDrumRunsAndReportsThroughput) {
   TempDir dir("run");
   const auto scene = dir.write("small.toml", small_scene());
-  for (const char* method : {"m1", "m2", "m3", "m4", "m5", "brute"}) {
+  for (const char* method : {"m1", "m2", "m3", "m4", "m5", "brute", "mlgrid", "verlet", "auto"}) {
     const auto r = run_cli("run " + scene.string() + " --method " + method);
     EXPECT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("particle-steps/s"), std::string::npos) << r.output;

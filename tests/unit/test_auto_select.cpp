@@ -1,0 +1,38 @@
+// `auto` picks a method that exists, says why, and states the paper's rule as the baseline.
+#include <gtest/gtest.h>
+
+#include "engine/fill/random_fill.hpp"
+#include "engine/search/auto_select.hpp"
+#include "engine/search/contact_search.hpp"
+
+namespace drumlab {
+namespace {
+
+TEST(AutoSelect, ShallowAndDeepDrums) {
+  for (const char* file : {"teach_stencil.toml", "tilted_drum.toml"}) {
+    const SceneConfig scene = load_scene(std::string(DRUMLAB_SCENES_DIR) + "/" + file);
+    const Particles p = random_fill(scene);
+    const SearchChoice choice = choose_search_method(scene, 1e-4, p.position, p.radius, 2);
+    EXPECT_NO_THROW(make_search(choice.method)) << choice.method;
+    EXPECT_EQ(choice.paper_rule, scene.drum.depth / scene.drum.diameter < 0.5 ? "m2" : "m5");
+    EXPECT_NE(choice.reason.find("paper's rule picks " + choice.paper_rule), std::string::npos);
+    ASSERT_EQ(choice.candidates.size(), 6u);
+    // The ranking is by the model; the first two were timed.
+    EXPECT_LE(choice.candidates[0].model_ns_per_particle,
+              choice.candidates[1].model_ns_per_particle);
+    EXPECT_GT(choice.candidates[1].measured_ns_per_particle, 0.0);
+    EXPECT_LT(choice.candidates[2].measured_ns_per_particle, 0.0);
+  }
+}
+
+TEST(AutoSelect, VerletListOnlyWhenRebuildsAreRare) {
+  const SceneConfig scene = load_scene(std::string(DRUMLAB_SCENES_DIR) + "/teach_stencil.toml");
+  const Particles p = random_fill(scene);
+  EXPECT_TRUE(
+      choose_search_method(scene, 1e-5, p.position, p.radius, 0).method.starts_with("verlet:"));
+  EXPECT_FALSE(
+      choose_search_method(scene, 1e-2, p.position, p.radius, 0).method.starts_with("verlet"));
+}
+
+}  // namespace
+}  // namespace drumlab
