@@ -1,5 +1,7 @@
 // drumlab run SCENE [--method M] [--steps N | --revolutions R] [--dt-factor F] [--threads N]
-// drumlab demo      (the demo drum, scenes/drum_demo.toml)
+//              [--vtu DIR [--contacts-vtk] [--grid-vtk]] [--h5 FILE] [--every K]
+//              [--checkpoint FILE [--checkpoint-every K]] [--restart FILE]
+// drumlab demo      (the demo drum, scenes/drum_demo.toml; VTU series in out/demo/vtu/)
 #include "app/cli/commands.hpp"
 #include "app/cli/run_session.hpp"
 #include "app/cli/scene_setup.hpp"
@@ -19,6 +21,9 @@ void add_run_command(CLI::App& app) {
   add_run_options(demo, *demo_opt);
   demo->callback([demo_opt] {
     demo_opt->scene = shipped_scene("drum_demo.toml");
+#ifdef DRUMLAB_WITH_RENDER
+    if (demo_opt->vtu_dir.empty()) demo_opt->vtu_dir = "out/demo/vtu";
+#endif
     run_session(*demo_opt);
   });
 }
