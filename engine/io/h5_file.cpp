@@ -154,6 +154,16 @@ bool exists(hid_t loc, const std::string& name) {
   return H5Lexists(loc, name.c_str(), H5P_DEFAULT) > 0;
 }
 
+std::size_t element_count(hid_t loc, const std::string& name) {
+  if (!exists(loc, name)) fail(loc, name, "missing dataset");
+  Handle set(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (set.get() < 0) fail(loc, name, "cannot open dataset");
+  Handle space(H5Dget_space(set.get()), H5Sclose);
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  if (n < 0) fail(loc, name, "cannot read the size of dataset");
+  return static_cast<std::size_t>(n);
+}
+
 void write(hid_t loc, const std::string& name, std::span<const double> data,
            std::vector<hsize_t> dims) {
   if (product(dims) != data.size()) fail(loc, name, "shape does not match data for");

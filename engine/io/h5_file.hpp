@@ -42,6 +42,8 @@ void close_file(Handle& file, const std::filesystem::path& path);
 Handle create_group(hid_t loc, const std::string& name);
 Handle open_group(hid_t loc, const std::string& name);
 bool exists(hid_t loc, const std::string& name);
+/// Number of values in a dataset (product of its dimensions); throws InputError if missing.
+std::size_t element_count(hid_t loc, const std::string& name);
 
 /// Writes a dataset of shape dims (row-major). data.size() must equal the product of dims.
 void write(hid_t loc, const std::string& name, std::span<const double> data,
