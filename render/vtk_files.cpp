@@ -21,8 +21,21 @@
 namespace drumlab {
 namespace {
 
+/// VTK's own multi-line error output is replaced by our one-line InputError.
+class QuietVtk {
+ public:
+  QuietVtk() : was_(vtkObject::GetGlobalWarningDisplay()) { vtkObject::GlobalWarningDisplayOff(); }
+  ~QuietVtk() { vtkObject::SetGlobalWarningDisplay(was_); }
+  QuietVtk(const QuietVtk&) = delete;
+  QuietVtk& operator=(const QuietVtk&) = delete;
+
+ private:
+  vtkTypeBool was_;
+};
+
 template <class Writer>
 bool write_with(vtkDataObject* data, const std::filesystem::path& file) {
+  const QuietVtk quiet;
   vtkNew<Writer> w;
   w->SetInputData(data);
   w->SetFileName(file.c_str());
