@@ -109,8 +109,10 @@ std::string xdmf_for_series(const std::string& h5_name, const std::vector<double
     const std::size_t n = counts[k];
     x << fmt::format("      <Grid Name=\"{}\" GridType=\"Uniform\">\n", g);
     x << fmt::format("        <Time Value=\"{:.17g}\"/>\n", times[k]);
-    x << fmt::format("        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"{}\"/>\n",
-                     n);
+    x << fmt::format(
+        "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"{}\" "
+        "NodesPerElement=\"1\"/>\n",
+        n);
     x << "        <Geometry GeometryType=\"XYZ\">\n";
     data_item(x, h5_name, "/" + g + "/position", n, 3, "Float", 8);
     x << "        </Geometry>\n";
