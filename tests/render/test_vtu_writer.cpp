@@ -24,6 +24,7 @@
 #include "render/vtk_files.hpp"
 #include "render/vtu_series_writer.hpp"
 #include "tests/unit/cli_runner.hpp"
+#include "tests/unit/file_size_limit.hpp"
 #include "tests/unit/output_test_scene.hpp"
 
 namespace drumlab::test {
@@ -166,6 +167,20 @@ TEST(VtuSeries, BadPathsGiveInputErrorAndLeaveNoFile) {
   std::filesystem::create_directories(dir.path() / "taken.vtu" / "x");
   EXPECT_THROW(write_vtk_xml(particles_dataset(*sim), dir.path() / "taken.vtu"), InputError);
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 2);
+}
+
+TEST(VtuSeries, FullDiskStopsWithInputErrorAndLeavesNoFile) {
+  TempDir dir("vtu-full");
+  const auto sim = settled_simulation(output_scene(), 5);
+  const auto file = dir.path() / "p.vtu";
+  {
+    const FileSizeLimit limit(4 * 1024);  // the particles need about 20 kB compressed
+    ASSERT_TRUE(limit.ok());
+    EXPECT_THROW(write_vtk_xml(particles_dataset(*sim), file), InputError);
+  }
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 0);
+  write_vtk_xml(particles_dataset(*sim), file);
+  EXPECT_TRUE(std::filesystem::exists(file));
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 
 #include "engine/io/checkpoint.hpp"
 #include "tests/unit/cli_runner.hpp"
+#include "tests/unit/file_size_limit.hpp"
 #include "tests/unit/output_test_scene.hpp"
 
 namespace drumlab::test {
@@ -139,6 +140,22 @@ TEST(Checkpoint, BadPathsAndFilesGiveInputErrors) {
   SimulationState unsorted = sim->state();
   unsorted.wall_history.pop_back();
   EXPECT_THROW(Simulation(scene, std::move(unsorted)), InputError);
+}
+
+TEST(Checkpoint, FullDiskLeavesNoFileUnderTheFinalName) {
+  TempDir dir("checkpoint-full-disk");
+  const SceneConfig scene = output_scene();
+  const auto sim = settled_simulation(scene, 10);
+  const SimulationState s = sim->state();
+  const auto file = dir.path() / "c.h5";
+  {
+    const FileSizeLimit limit(8 * 1024);  // the state needs about 60 kB
+    ASSERT_TRUE(limit.ok());
+    EXPECT_THROW(write_checkpoint(file, s, scene.name), InputError);
+  }
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 0);
+  write_checkpoint(file, s, scene.name);  // and with room it works
+  EXPECT_TRUE(std::filesystem::exists(file));
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "engine/io/h5_file.hpp"
 #include "engine/io/h5_series.hpp"
 #include "tests/unit/cli_runner.hpp"
+#include "tests/unit/file_size_limit.hpp"
 #include "tests/unit/output_test_scene.hpp"
 
 namespace drumlab::test {
@@ -96,6 +97,23 @@ TEST(H5Series, UnfinishedOrUnwritableSeriesLeavesNoFile) {
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 0);
   EXPECT_THROW(H5Series(dir.path() / "missing" / "s.h5"), InputError);
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "missing"));
+}
+
+TEST(H5Series, FullDiskStopsWithInputErrorAndLeavesNoFile) {
+  TempDir dir("h5-series-full");
+  const auto sim = settled_simulation(output_scene(), 5);
+  {
+    const FileSizeLimit limit(32 * 1024);  // a frame of 250 particles is about 25 kB
+    ASSERT_TRUE(limit.ok());
+    H5Series series(dir.path() / "s.h5");
+    EXPECT_THROW(
+        {
+          for (int k = 0; k < 10; ++k) series.write_frame(sim->particles(), sim->time(), k);
+          series.finish();
+        },
+        InputError);
+  }
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 0);
 }
 
 }  // namespace
