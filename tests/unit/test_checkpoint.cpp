@@ -109,6 +109,25 @@ TEST(Checkpoint, RestartAfterNStepsIsBitIdenticalToTwoN) {
   EXPECT_FALSE(same_bits(straight->particles().omega, amnesiac.particles().omega));
 }
 
+TEST(Checkpoint, RestartIsBitIdenticalWithPeriodicEndsTiltAndSwitchedSearch) {
+  TempDir dir("checkpoint-periodic");
+  std::string text = output_scene_text();
+  text.replace(text.find("omega = 3.0"), 11, "omega = 3.0\nends = \"periodic\"\ntilt_deg = 10");
+  const SceneConfig scene = parse_scene(text, "periodic-test");
+  ASSERT_EQ(scene.drum.ends, DrumEnds::periodic);
+  auto straight = settled_simulation(scene, kN);
+  straight->set_search_method("m2");
+  straight->advance(kN);
+
+  auto first = settled_simulation(scene, kN);
+  first->set_search_method("m2");
+  write_checkpoint(dir.path() / "half.h5", first->state(), scene.name);
+  Simulation continued(scene, read_checkpoint(dir.path() / "half.h5").state);
+  EXPECT_EQ(continued.search().name(), "m2");
+  continued.advance(kN);
+  expect_same_state(straight->state(), continued.state());
+}
+
 TEST(Checkpoint, RestartKeepsASwitchedSearchMethod) {
   const SceneConfig scene = output_scene();
   auto sim = settled_simulation(scene, 50);
