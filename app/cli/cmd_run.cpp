@@ -14,16 +14,20 @@ void add_run_command(CLI::App& app) {
       app.add_subcommand("run", "Simulate a scene: fill, settle, turn the drum, report");
   run->add_option("scene", opt->scene, "scene file (TOML)")->required();
   add_run_options(run, *opt);
+  run->add_option("--every", opt->every, "steps between output frames (default: 1/100 of the run)")
+      ->check(CLI::PositiveNumber);
   run->callback([opt] { run_session(*opt); });
 
   auto demo_opt = std::make_shared<RunOptions>();
+#ifdef DRUMLAB_WITH_RENDER
+  demo_opt->vtu_dir = "out/demo/vtu";  // the demo's VTU series for ParaView (--vtu DIR moves it)
+#endif
   CLI::App* demo = app.add_subcommand("demo", "Run the demo drum (scenes/drum_demo.toml)");
   add_run_options(demo, *demo_opt);
+  demo->add_option("--every", demo_opt->every, "steps between output frames")
+      ->check(CLI::PositiveNumber);
   demo->callback([demo_opt] {
     demo_opt->scene = shipped_scene("drum_demo.toml");
-#ifdef DRUMLAB_WITH_RENDER
-    if (demo_opt->vtu_dir.empty()) demo_opt->vtu_dir = "out/demo/vtu";
-#endif
     run_session(*demo_opt);
   });
 }

@@ -77,8 +77,6 @@ void add_run_options(CLI::App* cmd, RunOptions& opt) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--threads", opt.threads, "OpenMP threads")->check(CLI::Range(1, 1024));
   cmd->add_flag("--unsafe-dt", opt.unsafe_dt, "allow a time step above the Rayleigh time");
-  cmd->add_option("--every", opt.every, "steps between output frames (default: 1/100 of the run)")
-      ->check(CLI::PositiveNumber);
   cmd->add_option("--vtu", opt.vtu_dir, "write a VTU/PVD series for ParaView into DIR");
   cmd->add_flag("--contacts-vtk", opt.contacts_vtk, "with --vtu: contacts as lines (.vtp)");
   cmd->add_flag("--grid-vtk", opt.grid_vtk, "with --vtu: search grid occupancy (.vti)");

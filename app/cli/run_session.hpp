@@ -42,7 +42,8 @@ class FrameObserver {
   virtual void on_finish(const Simulation& /*sim*/) {}
 };
 
-/// Adds the options of RunOptions (except the scene) to a subcommand.
+/// Adds the options of RunOptions (except the scene and the frame schedule --every/--frames, which
+/// each command adds itself) to a subcommand.
 void add_run_options(CLI::App* cmd, RunOptions& opt);
 
 /// Runs the scene as planned by `opt` and prints the summary of the turning phase. The output
