@@ -92,7 +92,7 @@ void add_run_options(CLI::App* cmd, RunOptions& opt) {
 namespace {
 
 /// The simulation to run: a fresh fill, or the state of a checkpoint (--restart).
-std::unique_ptr<Simulation> make_simulation(const RunOptions& opt, SceneConfig& scene) {
+std::unique_ptr<Simulation> make_simulation(const RunOptions& opt, const SceneConfig& scene) {
   if (opt.restart.empty()) {
     SimulationOptions sim_options;
     sim_options.allow_unsafe_dt = opt.unsafe_dt;

@@ -80,31 +80,19 @@ void read_contacts(hid_t file, SimulationState& s) {
 
 void write_checkpoint(const std::filesystem::path& file, const SimulationState& state,
                       const std::string& scene_name) {
-  const std::filesystem::path tmp = h5::temporary_name(file);
-  try {
-    h5::Handle f = h5::create_file(tmp);
-    h5::write_attribute(f.get(), "format", std::string(kFormat));
-    h5::write_attribute(f.get(), "version", kVersion);
-    h5::write_attribute(f.get(), "scene", scene_name);
-    h5::write_attribute(f.get(), "search_method", state.search_method);
-    h5::write_attribute(f.get(), "time", state.time);
-    h5::write_attribute(f.get(), "dt", state.dt);
-    h5::write_attribute(f.get(), "drum_omega", state.drum_omega);
-    h5::write_attribute(f.get(), "drum_angle", state.drum_angle);
-    h5::write_attribute(f.get(), "steps", state.steps);
-    write_particles(f.get(), state.particles);
-    write_contacts(f.get(), state);
-    h5::close_file(f, file);
-  } catch (const InputError& e) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    // Name the final file, not the temporary one.
-    std::string what = e.what();
-    const std::string t = tmp.string();
-    if (const auto at = what.find(t); at != std::string::npos) what.replace(at, t.size(), file);
-    throw InputError(what);
-  }
-  h5::rename_into_place(tmp, file);
+  h5::Handle f = h5::create_memory_file(file.string());
+  h5::write_attribute(f.get(), "format", std::string(kFormat));
+  h5::write_attribute(f.get(), "version", kVersion);
+  h5::write_attribute(f.get(), "scene", scene_name);
+  h5::write_attribute(f.get(), "search_method", state.search_method);
+  h5::write_attribute(f.get(), "time", state.time);
+  h5::write_attribute(f.get(), "dt", state.dt);
+  h5::write_attribute(f.get(), "drum_omega", state.drum_omega);
+  h5::write_attribute(f.get(), "drum_angle", state.drum_angle);
+  h5::write_attribute(f.get(), "steps", state.steps);
+  write_particles(f.get(), state.particles);
+  write_contacts(f.get(), state);
+  h5::save_memory_file(f, file);
 }
 
 Checkpoint read_checkpoint(const std::filesystem::path& file) {

@@ -15,8 +15,9 @@
 
 namespace drumlab {
 
-/// Writes the state to FILE.tmp-PID and renames it into place; throws InputError on failure (no
-/// file is left under the final name). `scene_name` is recorded for the restart's check.
+/// Builds the file in memory, writes it to FILE.tmp-PID and renames it into place; throws
+/// InputError on failure (no file is left under the final name). `scene_name` is recorded for the
+/// restart's check.
 void write_checkpoint(const std::filesystem::path& file, const SimulationState& state,
                       const std::string& scene_name);
 

@@ -2,9 +2,12 @@
 
 #include <unistd.h>
 
+#include <fstream>
 #include <system_error>
 
 #include <fmt/format.h>
+
+#include "engine/io/atomic_file.hpp"
 
 namespace drumlab::h5 {
 namespace {
@@ -108,15 +111,50 @@ bool Handle::reset() {
   return status >= 0;
 }
 
-Handle create_file(const std::filesystem::path& path) {
+Handle create_memory_file(const std::string& label) {
   quiet();
-  Handle f(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
-  if (f.get() < 0) {
-    throw InputError(
-        fmt::format("{}: cannot create HDF5 file (does the directory exist and is it writable?)",
-                    path.string()));
+  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+  constexpr std::size_t kIncrement = 16u << 20;  // grow the image 16 MiB at a time
+  if (fapl.get() < 0 || H5Pset_fapl_core(fapl.get(), kIncrement, false) < 0) {
+    throw InputError(fmt::format("{}: cannot set up an in-memory HDF5 file", label));
   }
+  Handle f(H5Fcreate(label.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose);
+  if (f.get() < 0) throw InputError(fmt::format("{}: cannot create an HDF5 file", label));
   return f;
+}
+
+std::size_t memory_file_size(hid_t file) {
+  const ssize_t n = H5Fget_file_image(file, nullptr, 0);
+  return n < 0 ? 0 : static_cast<std::size_t>(n);
+}
+
+void save_memory_file(Handle& file, const std::filesystem::path& path) {
+  std::vector<char> image;
+  if (H5Fflush(file.get(), H5F_SCOPE_LOCAL) >= 0) {
+    image.resize(memory_file_size(file.get()));
+    const ssize_t got = H5Fget_file_image(file.get(), image.data(), image.size());
+    if (got < 0 || static_cast<std::size_t>(got) != image.size()) image.clear();
+  }
+  const bool closed = file.reset();
+  if (image.empty() || !closed) {
+    throw InputError(fmt::format("{}: cannot assemble the HDF5 file", path.string()));
+  }
+  write_file_atomically(path, [&](std::ostream& out) {
+    out.write(image.data(), static_cast<std::streamsize>(image.size()));
+  });
+}
+
+void check_writable(const std::filesystem::path& path) {
+  const std::filesystem::path probe = path.string() + fmt::format(".tmp-{}", ::getpid());
+  std::ofstream out(probe, std::ios::binary | std::ios::trunc);
+  const bool ok = static_cast<bool>(out);
+  out.close();
+  std::error_code ignored;
+  std::filesystem::remove(probe, ignored);
+  if (!ok) {
+    throw InputError(fmt::format("{}: cannot write (does the directory exist and is it writable?)",
+                                 path.string()));
+  }
 }
 
 Handle open_file(const std::filesystem::path& path) {
@@ -127,14 +165,6 @@ Handle open_file(const std::filesystem::path& path) {
   Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   if (f.get() < 0) throw InputError(fmt::format("{}: not an HDF5 file", path.string()));
   return f;
-}
-
-void close_file(Handle& file, const std::filesystem::path& path) {
-  if (file.get() >= 0 && H5Fflush(file.get(), H5F_SCOPE_LOCAL) < 0) {
-    file.reset();
-    throw InputError(fmt::format("{}: write failed (disk full?)", path.string()));
-  }
-  if (!file.reset()) throw InputError(fmt::format("{}: write failed (disk full?)", path.string()));
 }
 
 Handle create_group(hid_t loc, const std::string& name) {
@@ -252,20 +282,6 @@ std::string read_string_attribute(hid_t loc, const std::string& name) {
   if (H5Aread(a.get(), type.get(), v.data()) < 0) fail(loc, name, "cannot read attribute");
   v.resize(v.find('\0') == std::string::npos ? v.size() : v.find('\0'));
   return v;
-}
-
-std::filesystem::path temporary_name(const std::filesystem::path& file) {
-  return file.string() + fmt::format(".tmp-{}", ::getpid());
-}
-
-void rename_into_place(const std::filesystem::path& tmp, const std::filesystem::path& file) {
-  std::error_code ec;
-  std::filesystem::rename(tmp, file, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw InputError(fmt::format("{}: cannot rename into place: {}", file.string(), ec.message()));
-  }
 }
 
 }  // namespace drumlab::h5

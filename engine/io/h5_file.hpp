@@ -33,11 +33,20 @@ class Handle {
   herr_t (*closer_)(hid_t) = nullptr;
 };
 
-/// Creates (truncating) or opens read-only a file. Throws InputError naming the path.
-Handle create_file(const std::filesystem::path& path);
+/// Creates an HDF5 file in memory (core driver, no backing store); `label` names it in messages.
+/// HDF5 itself never writes to disk: Debian's HDF5 1.10 crashes at exit after a failed disk write
+/// (disk full), so files are built in memory and saved with save_memory_file.
+Handle create_memory_file(const std::string& label);
+/// Writes the image of a memory file to `path` (temporary name, then rename) and closes it.
+/// Throws InputError naming the path if it cannot be written; nothing is left under that name.
+void save_memory_file(Handle& file, const std::filesystem::path& path);
+/// Bytes the memory file's image takes now.
+std::size_t memory_file_size(hid_t file);
+/// Opens a file read-only. Throws InputError naming the path.
 Handle open_file(const std::filesystem::path& path);
-/// Closes a file written by create_file; throws InputError if flushing fails.
-void close_file(Handle& file, const std::filesystem::path& path);
+/// Throws InputError unless a file can be created in the directory of `path` (checked by creating
+/// and removing a temporary file there).
+void check_writable(const std::filesystem::path& path);
 
 Handle create_group(hid_t loc, const std::string& name);
 Handle open_group(hid_t loc, const std::string& name);
@@ -54,7 +63,7 @@ void write(hid_t loc, const std::string& name, std::span<const std::uint8_t> dat
 void write_vec3(hid_t loc, const std::string& name, std::span<const Vec3> data);
 
 /// Reads a whole dataset; throws InputError if it is missing, of another element class or its
-/// total size differs from `expected` (when expected != npos).
+/// total size differs from `expected` (unless expected is kAnySize).
 inline constexpr std::size_t kAnySize = static_cast<std::size_t>(-1);
 std::vector<double> read_doubles(hid_t loc, const std::string& name, std::size_t expected);
 std::vector<std::uint64_t> read_u64(hid_t loc, const std::string& name, std::size_t expected);
@@ -68,10 +77,5 @@ void write_attribute(hid_t loc, const std::string& name, const std::string& valu
 double read_double_attribute(hid_t loc, const std::string& name);
 std::uint64_t read_u64_attribute(hid_t loc, const std::string& name);
 std::string read_string_attribute(hid_t loc, const std::string& name);
-
-/// Temporary name next to `file` for writing before the rename.
-std::filesystem::path temporary_name(const std::filesystem::path& file);
-/// Renames tmp to file; throws InputError (and removes tmp) on failure.
-void rename_into_place(const std::filesystem::path& tmp, const std::filesystem::path& file);
 
 }  // namespace drumlab::h5

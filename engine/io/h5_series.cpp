@@ -18,22 +18,12 @@ std::string h5_frame_group(std::size_t k) {
 }
 
 H5Series::H5Series(std::filesystem::path file)
-    : file_(std::move(file)), tmp_(h5::temporary_name(file_)), impl_(std::make_unique<Impl>()) {
-  try {
-    impl_->file = h5::create_file(tmp_);
-  } catch (const InputError&) {
-    throw InputError(
-        fmt::format("{}: cannot create HDF5 file (does the directory exist and is it writable?)",
-                    file_.string()));
-  }
+    : file_(std::move(file)), impl_(std::make_unique<Impl>()) {
+  h5::check_writable(file_);  // fail before the run, not at its end
+  impl_->file = h5::create_memory_file(file_.string());
 }
 
-H5Series::~H5Series() {
-  if (finished_) return;
-  impl_->file.reset();
-  std::error_code ignored;
-  std::filesystem::remove(tmp_, ignored);
-}
+H5Series::~H5Series() = default;
 
 std::filesystem::path H5Series::xdmf_file() const {
   std::filesystem::path x = file_;
@@ -43,24 +33,24 @@ std::filesystem::path H5Series::xdmf_file() const {
 
 void H5Series::write_frame(const Particles& p, double time, std::uint64_t step) {
   if (finished_) throw std::logic_error("H5Series: write after finish");
-  try {
-    const hid_t f = impl_->file.get();
-    h5::Handle g = h5::create_group(f, h5_frame_group(times_.size()));
-    h5::write_attribute(g.get(), "time", time);
-    h5::write_attribute(g.get(), "step", step);
-    h5::write_vec3(g.get(), "position", p.position);
-    h5::write_vec3(g.get(), "velocity", p.velocity);
-    h5::write_vec3(g.get(), "omega", p.omega);
-    h5::write(g.get(), "radius", p.radius, {p.size()});
-    h5::write(g.get(), "id", std::span<const std::uint32_t>(p.id));
-    h5::write(g.get(), "size_class", std::span<const std::uint8_t>(p.size_class));
-    if (H5Fflush(f, H5F_SCOPE_LOCAL) < 0) throw InputError("flush failed");
-  } catch (const InputError& e) {
-    throw InputError(fmt::format("{}: write failed (disk full?): {}", file_.string(), e.what()));
-  }
+  const hid_t f = impl_->file.get();
+  h5::Handle g = h5::create_group(f, h5_frame_group(times_.size()));
+  h5::write_attribute(g.get(), "time", time);
+  h5::write_attribute(g.get(), "step", step);
+  h5::write_vec3(g.get(), "position", p.position);
+  h5::write_vec3(g.get(), "velocity", p.velocity);
+  h5::write_vec3(g.get(), "omega", p.omega);
+  h5::write(g.get(), "radius", p.radius, {p.size()});
+  h5::write(g.get(), "id", std::span<const std::uint32_t>(p.id));
+  h5::write(g.get(), "size_class", std::span<const std::uint8_t>(p.size_class));
   times_.push_back(time);
   steps_.push_back(step);
   counts_.push_back(p.size());
+  if (h5::memory_file_size(f) > kMaxBytes) {
+    throw InputError(fmt::format(
+        "{}: the HDF5 series passed {} GiB in memory; write fewer frames (a larger --every)",
+        file_.string(), kMaxBytes >> 30));
+  }
 }
 
 void H5Series::finish() {
@@ -68,10 +58,9 @@ void H5Series::finish() {
   const hid_t f = impl_->file.get();
   h5::write(f, "time", times_, {times_.size()});
   h5::write(f, "step", std::span<const std::uint64_t>(steps_));
-  h5::close_file(impl_->file, file_);
+  h5::save_memory_file(impl_->file, file_);
   const std::string text = xdmf_for_series(file_.filename().string(), times_, counts_);
   write_file_atomically(xdmf_file(), [&](std::ostream& out) { out << text; });
-  h5::rename_into_place(tmp_, file_);
   finished_ = true;
 }
 

@@ -2,9 +2,10 @@
 // A compact HDF5 time series of the particles with an XDMF 3 sidecar that ParaView opens
 // (Xdmf3ReaderT): one group per frame, /frame_NNNNNN/{position, velocity, omega (N x 3), radius
 // (N), id (N, u32), size_class (N, u8)} with a scalar attribute `time`, plus /time (frames) and
-// /step (frames) at the end. The file is written under FILE.tmp-PID and renamed into place by
-// finish(), together with the sidecar FILE.xdmf (written the same way), so a failed run leaves no
-// truncated file under either final name.
+// /step (frames) at the end. The file is assembled in memory (at most kMaxBytes) and written by
+// finish() under FILE.tmp-PID, then renamed into place, followed by the sidecar FILE.xdmf (written
+// the same way), so a failed run leaves no truncated file under either final name. (Memory rather
+// than incremental disk writes: Debian's HDF5 1.10 crashes at exit after a failed disk write.)
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -17,13 +18,15 @@ namespace drumlab {
 
 class H5Series {
  public:
-  /// Creates the temporary file; throws InputError if it cannot be created.
+  static constexpr std::size_t kMaxBytes = std::size_t{8} << 30;
+
+  /// Checks that `file` can be written (throws InputError if not) and starts the series.
   explicit H5Series(std::filesystem::path file);
-  ~H5Series();  ///< removes the temporary file unless finish() succeeded
+  ~H5Series();
   H5Series(const H5Series&) = delete;
   H5Series& operator=(const H5Series&) = delete;
 
-  /// Appends one frame. Throws InputError if the write fails.
+  /// Appends one frame. Throws InputError if the series would exceed kMaxBytes.
   void write_frame(const Particles& p, double time, std::uint64_t step);
   /// Closes the file, writes the XDMF sidecar and renames both into place.
   void finish();
@@ -35,7 +38,6 @@ class H5Series {
  private:
   struct Impl;
   std::filesystem::path file_;
-  std::filesystem::path tmp_;
   std::unique_ptr<Impl> impl_;
   std::vector<double> times_;
   std::vector<std::uint64_t> steps_;

@@ -60,7 +60,7 @@ TEST(CliOutput, BadOutputPathsStopBeforeRunning) {
   TempDir dir("cli-output-bad");
   const std::string scene = dir.write("drum.toml", output_scene_text()).string();
   const std::string missing = (dir.path() / "missing").string();
-  for (const std::string args : {"--h5 " + missing + "/s.h5", "--checkpoint " + missing + "/c.h5",
+  for (const std::string& args : {"--h5 " + missing + "/s.h5", "--checkpoint " + missing + "/c.h5",
                                  "--restart " + missing + "/c.h5",
                                  std::string("--checkpoint-every 10"), "--restart " + scene}) {
     const auto r = run_cli("run " + scene + " --steps 20 " + args);
