@@ -61,14 +61,35 @@ TEST(CliOutput, BadOutputPathsStopBeforeRunning) {
   const std::string scene = dir.write("drum.toml", output_scene_text()).string();
   const std::string missing = (dir.path() / "missing").string();
   for (const std::string& args : {"--h5 " + missing + "/s.h5", "--checkpoint " + missing + "/c.h5",
-                                 "--restart " + missing + "/c.h5",
-                                 std::string("--checkpoint-every 10"), "--restart " + scene}) {
+                                  "--restart " + missing + "/c.h5",
+                                  std::string("--checkpoint-every 10"), "--restart " + scene}) {
     const auto r = run_cli("run " + scene + " --steps 20 " + args);
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
     EXPECT_NE(r.output.find("drumlab: error: "), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("particle-steps/s"), std::string::npos) << "ran anyway: " << r.output;
   }
   EXPECT_FALSE(std::filesystem::exists(missing));
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1);
+}
+
+TEST(CliOutput, FullDiskStopsWithExitCode2AndLeavesNoFile) {
+  TempDir dir("cli-full-disk");
+  const std::string scene = dir.write("drum.toml", output_scene_text()).string();
+  const std::string d = dir.path().string() + "/";
+  // ulimit -f (512-byte blocks in sh): writes past 32 kB fail as on a full disk.
+  for (const std::string& out : {"--h5 " + d + "s.h5 --every 1", "--checkpoint " + d + "c.h5"}) {
+    const std::string command = "sh -c 'ulimit -f 64; exec " + std::string(DRUMLAB_CLI) + " run " +
+                                scene + " --steps 40 " + out + "' 2>&1";
+    FILE* pipe = ::popen(command.c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    std::string output;
+    char buf[4096];
+    for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, pipe)) > 0;) output.append(buf, n);
+    const int status = ::pclose(pipe);
+    ASSERT_TRUE(WIFEXITED(status)) << output;
+    EXPECT_EQ(WEXITSTATUS(status), 2) << output;
+    EXPECT_NE(output.find("write failed (disk full?)"), std::string::npos) << output;
+  }
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1);
 }
 
