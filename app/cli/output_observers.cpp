@@ -95,6 +95,13 @@ std::vector<std::unique_ptr<FrameObserver>> make_output_observers(const RunOptio
   } else if (opt.contacts_vtk || opt.grid_vtk) {
     throw InputError("--contacts-vtk and --grid-vtk add to the VTU series: give --vtu DIR");
   }
+  const auto same_file = [](const std::string& a, const std::string& b) {
+    return std::filesystem::absolute(a).lexically_normal() ==
+           std::filesystem::absolute(b).lexically_normal();
+  };
+  if (!opt.h5_file.empty() && !opt.checkpoint.empty() && same_file(opt.h5_file, opt.checkpoint)) {
+    throw InputError(fmt::format("--h5 and --checkpoint both name {}", opt.h5_file));
+  }
   if (!opt.h5_file.empty()) out.push_back(std::make_unique<H5Observer>(opt.h5_file));
   if (!opt.checkpoint.empty()) {
     check_parent_directory(opt.checkpoint, "--checkpoint");

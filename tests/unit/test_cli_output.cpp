@@ -60,9 +60,11 @@ TEST(CliOutput, BadOutputPathsStopBeforeRunning) {
   TempDir dir("cli-output-bad");
   const std::string scene = dir.write("drum.toml", output_scene_text()).string();
   const std::string missing = (dir.path() / "missing").string();
-  for (const std::string& args : {"--h5 " + missing + "/s.h5", "--checkpoint " + missing + "/c.h5",
-                                  "--restart " + missing + "/c.h5",
-                                  std::string("--checkpoint-every 10"), "--restart " + scene}) {
+  for (const std::string& args :
+       {"--h5 " + missing + "/s.h5", "--checkpoint " + missing + "/c.h5",
+        "--restart " + missing + "/c.h5", std::string("--checkpoint-every 10"),
+        "--restart " + scene,
+        "--h5 " + dir.path().string() + "/x.h5 --checkpoint " + dir.path().string() + "/./x.h5"}) {
     const auto r = run_cli("run " + scene + " --steps 20 " + args);
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
     EXPECT_NE(r.output.find("drumlab: error: "), std::string::npos) << r.output;
