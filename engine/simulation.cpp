@@ -68,7 +68,83 @@ Simulation::Simulation(const SceneConfig& scene, Particles particles, Simulation
   compute_forces(0.0, false);
 }
 
+Simulation::Simulation(const SceneConfig& scene, SimulationState state)
+    : scene_(scene), particles_(std::move(state.particles)) {
+  if (!state.search_method.empty()) scene_.search_method = state.search_method;
+  impl_ = std::make_unique<Impl>(scene_);
+  search_ = make_search(scene_.search_method);
+  gravity_ = drum_frame_gravity(scene_.gravity, scene_.drum.tilt);
+  const std::size_t n = particles_.size();
+  if (particles_.radius.size() != n || particles_.size_class.size() != n ||
+      particles_.id.size() != n) {
+    throw InputError("restart state: particle arrays of different lengths");
+  }
+  validate_particles();
+  if (!(state.dt > 0.0) || !std::isfinite(state.dt) || !std::isfinite(state.time) ||
+      !std::isfinite(state.drum_angle) || !std::isfinite(state.drum_omega)) {
+    throw InputError("restart state: dt must be positive, time/angle/omega finite");
+  }
+  if (state.wall_history.size() != n) {
+    throw InputError("restart state: wall history does not match the particle count");
+  }
+  if (!state.contact_row_start.empty() && state.contact_row_start.size() != n + 1) {
+    throw InputError("restart state: contact list does not match the particle count");
+  }
+  impl_->contacts.assign(state.contact_row_start, state.contact_col, state.contact_history);
+  impl_->wall_history = std::move(state.wall_history);
+  rayleigh_time_ = drumlab::rayleigh_time(smallest_radius(scene_, particles_), scene_.material);
+  dt_ = state.dt;
+  time_ = state.time;
+  omega_ = state.drum_omega;
+  drum_angle_ = state.drum_angle;
+  steps_ = state.steps;
+  // Forces and torques come with the state: recomputing them would advance nothing but could
+  // differ in the last bit from those the uninterrupted run carries into its next half kick.
+}
+
 Simulation::~Simulation() = default;
+
+SimulationState Simulation::state() const {
+  SimulationState s;
+  s.particles = particles_;
+  s.time = time_;
+  s.dt = dt_;
+  s.drum_omega = omega_;
+  s.drum_angle = drum_angle_;
+  s.steps = steps_;
+  s.search_method = scene_.search_method;
+  const ContactList& c = impl_->contacts;
+  s.contact_row_start.assign(c.row_start().begin(), c.row_start().end());
+  s.contact_col.assign(c.col().begin(), c.col().end());
+  s.contact_history.assign(c.history().begin(), c.history().end());
+  s.wall_history = impl_->wall_history;
+  return s;
+}
+
+void Simulation::contact_forces(std::vector<ContactForce>& out) const {
+  const double period = impl_->drum.periodic() ? impl_->drum.depth() : 0.0;
+  impl_->model.pair_forces(particles_, impl_->contacts, period, dt_, out);
+}
+
+void Simulation::coordination_numbers(std::vector<std::uint32_t>& out) const {
+  out.assign(particles_.size(), 0);
+  const Particles& p = particles_;
+  const ContactList& contacts = impl_->contacts;
+  const auto row = contacts.row_start();
+  const auto col = contacts.col();
+  const double period = impl_->drum.periodic() ? impl_->drum.depth() : 0.0;
+  for (std::size_t i = 0; i < contacts.rows(); ++i) {
+    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
+      const Index j = col[k];
+      Vec3 dx = p.position[i] - p.position[j];
+      if (period > 0.0) dx.z() -= period * std::round(dx.z() / period);
+      const double sum_r = p.radius[i] + p.radius[j];
+      if (dx.squaredNorm() >= sum_r * sum_r) continue;
+      ++out[i];
+      ++out[j];
+    }
+  }
+}
 
 void Simulation::validate_particles() {
   Particles& p = particles_;

@@ -9,6 +9,7 @@
 #include "engine/particles.hpp"
 #include "engine/scene/scene_config.hpp"
 #include "engine/search/contact_search.hpp"
+#include "engine/simulation_state.hpp"
 
 namespace drumlab {
 
@@ -45,6 +46,11 @@ class Simulation {
   /// Throws InputError for an unusable configuration (dt above the Rayleigh time without
   /// allow_unsafe_dt, particles outside the drum, unknown search method).
   Simulation(const SceneConfig& scene, Particles particles, SimulationOptions options = {});
+  /// Continues from a saved state (restart): the physics comes from `scene`, everything that
+  /// evolves (particles incl. forces, clock, dt, drum angle and omega, search method, contact and
+  /// wall history) from `state`, so the next steps are bit-identical to those of the simulation
+  /// that exported it. Throws InputError if the state is inconsistent or does not fit the drum.
+  Simulation(const SceneConfig& scene, SimulationState state);
   ~Simulation();
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
@@ -74,6 +80,14 @@ class Simulation {
   std::uint64_t steps() const { return steps_; }
   /// Gravity in the drum frame (the lab gravity rotated by the tilt).
   const Vec3& gravity() const { return gravity_; }
+
+  /// Everything the next step depends on (for checkpoints); see SimulationState.
+  SimulationState state() const;
+  /// Force on i of every overlapping particle-particle contact at the current state (i < j),
+  /// evaluated read-only with the stored tangential history. Replaces `out`.
+  void contact_forces(std::vector<ContactForce>& out) const;
+  /// Particle-particle contacts (overlap > 0) of each particle; replaces `out` (size N).
+  void coordination_numbers(std::vector<std::uint32_t>& out) const;
 
   Diagnostics diagnostics() const;
   /// Throws UnstableError if diagnostics show non-finite values, particles outside the drum or

@@ -1,5 +1,7 @@
 // drumlab run SCENE [--method M] [--steps N | --revolutions R] [--dt-factor F] [--threads N]
-// drumlab demo      (the demo drum, scenes/drum_demo.toml)
+//              [--vtu DIR [--contacts-vtk] [--grid-vtk]] [--h5 FILE] [--every K]
+//              [--checkpoint FILE [--checkpoint-every K]] [--restart FILE]
+// drumlab demo      (the demo drum, scenes/drum_demo.toml; VTU series in out/demo/vtu/)
 #include "app/cli/commands.hpp"
 #include "app/cli/run_session.hpp"
 #include "app/cli/scene_setup.hpp"
@@ -12,11 +14,18 @@ void add_run_command(CLI::App& app) {
       app.add_subcommand("run", "Simulate a scene: fill, settle, turn the drum, report");
   run->add_option("scene", opt->scene, "scene file (TOML)")->required();
   add_run_options(run, *opt);
+  run->add_option("--every", opt->every, "steps between output frames (default: 1/100 of the run)")
+      ->check(CLI::PositiveNumber);
   run->callback([opt] { run_session(*opt); });
 
   auto demo_opt = std::make_shared<RunOptions>();
+#ifdef DRUMLAB_WITH_RENDER
+  demo_opt->vtu_dir = "out/demo/vtu";  // the demo's VTU series for ParaView (--vtu DIR moves it)
+#endif
   CLI::App* demo = app.add_subcommand("demo", "Run the demo drum (scenes/drum_demo.toml)");
   add_run_options(demo, *demo_opt);
+  demo->add_option("--every", demo_opt->every, "steps between output frames")
+      ->check(CLI::PositiveNumber);
   demo->callback([demo_opt] {
     demo_opt->scene = shipped_scene("drum_demo.toml");
     run_session(*demo_opt);

@@ -1,5 +1,6 @@
 // drumlab: the headless command line. Exit codes: 0 success, 1 unexpected failure, 2 bad input
 // (scene, CSV, option, output path), 3 the simulation became unstable.
+#include <csignal>
 #include <cstdio>
 #include <exception>
 
@@ -10,6 +11,8 @@
 #include "engine/types.hpp"
 
 int main(int argc, char** argv) {
+  // A file size limit (ulimit -f) then fails the write with a clear error instead of killing us.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"drumlab: DEM of granular flow in rotating drums, with switchable contact search"};
   app.require_subcommand(1);
   drumlab::cli::add_run_command(app);

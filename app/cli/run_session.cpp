@@ -9,9 +9,11 @@
 #include <omp.h>
 #endif
 
+#include "app/cli/output_observers.hpp"
 #include "app/cli/run_report.hpp"
 #include "app/cli/scene_setup.hpp"
 #include "engine/fill/random_fill.hpp"
+#include "engine/io/checkpoint.hpp"
 #include "engine/search/auto_select.hpp"
 
 namespace drumlab::cli {
@@ -76,9 +78,65 @@ void add_run_options(CLI::App* cmd, RunOptions& opt) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--threads", opt.threads, "OpenMP threads")->check(CLI::Range(1, 1024));
   cmd->add_flag("--unsafe-dt", opt.unsafe_dt, "allow a time step above the Rayleigh time");
+  cmd->add_option("--vtu", opt.vtu_dir, "write a VTU/PVD series for ParaView into DIR");
+  cmd->add_flag("--contacts-vtk", opt.contacts_vtk, "with --vtu: contacts as lines (.vtp)");
+  cmd->add_flag("--grid-vtk", opt.grid_vtk, "with --vtu: search grid occupancy (.vti)");
+  cmd->add_option("--h5", opt.h5_file, "write an HDF5 time series (+ XDMF sidecar) to FILE");
+  cmd->add_option("--checkpoint", opt.checkpoint, "write a restart checkpoint (HDF5) at the end");
+  cmd->add_option("--checkpoint-every", opt.checkpoint_every,
+                  "also rewrite the checkpoint every K steps")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--restart", opt.restart,
+                  "continue from a checkpoint (no fill, no settling) for the requested steps");
 }
 
-void run_session(const RunOptions& opt, std::span<FrameObserver* const> observers) {
+namespace {
+
+/// The simulation to run: a fresh fill, or the state of a checkpoint (--restart).
+/// Replaces search "auto" by the method chosen for these particles, and says why.
+void resolve_auto_search(SceneConfig& scene, const RunOptions& opt, const Particles& particles,
+                         double dt) {
+  if (scene.search_method != "auto") return;
+  if (dt <= 0.0) {
+    dt = scene.time.dt.value_or((opt.dt_factor > 0.0 ? opt.dt_factor : scene.time.dt_factor) *
+                                rayleigh_time(scene.min_radius(), scene.material));
+  }
+  const SearchChoice choice = choose_search_method(scene, dt, particles.position, particles.radius);
+  fmt::print("search auto       -> {}: {}\n", choice.method, choice.reason);
+  scene.search_method = choice.method;
+}
+
+std::unique_ptr<Simulation> make_simulation(const RunOptions& opt, SceneConfig scene) {
+  if (opt.restart.empty()) {
+    SimulationOptions sim_options;
+    sim_options.allow_unsafe_dt = opt.unsafe_dt;
+    sim_options.dt_factor_override = opt.dt_factor;
+    Particles particles = random_fill(scene);
+    resolve_auto_search(scene, opt, particles, 0.0);
+    return std::make_unique<Simulation>(scene, std::move(particles), sim_options);
+  }
+  Checkpoint c = read_checkpoint(opt.restart);
+  if (c.scene_name != scene.name) {
+    fmt::print("note: {} was written by scene '{}', continuing with scene '{}'\n", opt.restart,
+               c.scene_name, scene.name);
+  }
+  if (opt.dt_factor > 0.0)
+    fmt::print("note: --restart keeps the checkpoint's dt; --dt-factor ignored\n");
+  if (!opt.method.empty()) {
+    scene.search_method = opt.method;
+    resolve_auto_search(scene, opt, c.state.particles, c.state.dt);
+  }
+  const std::string method = scene.search_method;
+  auto sim = std::make_unique<Simulation>(scene, std::move(c.state));
+  if (!opt.method.empty()) sim->set_search_method(method);
+  fmt::print("restart           {} (step {}, t = {:.6g} s)\n", opt.restart, sim->steps(),
+             sim->time());
+  return sim;
+}
+
+}  // namespace
+
+void run_session(const RunOptions& opt, std::span<FrameObserver* const> extra_observers) {
   SceneConfig scene = load_dynamic_scene(opt.scene);
   if (!opt.method.empty()) scene.search_method = opt.method;
 #ifdef _OPENMP
@@ -88,22 +146,15 @@ void run_session(const RunOptions& opt, std::span<FrameObserver* const> observer
     fmt::print("note: --threads {}: this version's step loop is serial; threads are not used yet\n",
                opt.threads);
   }
-  Particles particles = random_fill(scene);
-  if (scene.search_method == "auto") {
-    const double dt =
-        scene.time.dt.value_or((opt.dt_factor > 0.0 ? opt.dt_factor : scene.time.dt_factor) *
-                               rayleigh_time(scene.min_radius(), scene.material));
-    const SearchChoice choice =
-        choose_search_method(scene, dt, particles.position, particles.radius);
-    fmt::print("search auto       -> {}: {}\n", choice.method, choice.reason);
-    scene.search_method = choice.method;
-  }
-  SimulationOptions sim_options;
-  sim_options.allow_unsafe_dt = opt.unsafe_dt;
-  sim_options.dt_factor_override = opt.dt_factor;
-  Simulation sim(scene, std::move(particles), sim_options);
+  const std::vector<std::unique_ptr<FrameObserver>> outputs = make_output_observers(opt);
+  std::vector<FrameObserver*> observers(extra_observers.begin(), extra_observers.end());
+  for (const auto& o : outputs) observers.push_back(o.get());
+  const std::unique_ptr<Simulation> sim_ptr = make_simulation(opt, scene);
+  Simulation& sim = *sim_ptr;
   const std::uint64_t turn_steps = turning_steps(opt, scene, sim.dt());
-  const double settle_time = opt.settle_time >= 0.0 ? opt.settle_time : scene.fill.settle_time;
+  const double settle_time = !opt.restart.empty()     ? 0.0
+                             : opt.settle_time >= 0.0 ? opt.settle_time
+                                                      : scene.fill.settle_time;
   const auto settle_steps = static_cast<std::uint64_t>(std::ceil(settle_time / sim.dt()));
   std::uint64_t every = opt.every;
   if (every == 0 && opt.frames > 0) every = std::max<std::uint64_t>(1, turn_steps / opt.frames);

@@ -2,12 +2,37 @@
 
 #include <algorithm>
 
+#include <fmt/format.h>
+
 namespace drumlab {
 
 void ContactList::clear() {
   row_start_.clear();
   col_.clear();
   history_.clear();
+}
+
+void ContactList::assign(std::span<const std::size_t> row_start, std::span<const Index> col,
+                         std::span<const Vec3> history) {
+  const auto bad = [](const char* why) { throw InputError(fmt::format("contact list: {}", why)); };
+  if (history.size() != col.size()) bad("history and partner arrays differ in length");
+  if (row_start.empty()) {
+    if (!col.empty()) bad("partners without rows");
+    clear();
+    return;
+  }
+  const std::size_t rows = row_start.size() - 1;
+  if (row_start.front() != 0 || row_start.back() != col.size()) bad("rows do not cover partners");
+  for (std::size_t i = 0; i < rows; ++i) {
+    if (row_start[i] > row_start[i + 1]) bad("row starts decrease");
+    for (std::size_t k = row_start[i]; k < row_start[i + 1]; ++k) {
+      if (col[k] <= i || col[k] >= rows) bad("partner out of range");
+      if (k > row_start[i] && col[k] <= col[k - 1]) bad("row not sorted");
+    }
+  }
+  row_start_.assign(row_start.begin(), row_start.end());
+  col_.assign(col.begin(), col.end());
+  history_.assign(history.begin(), history.end());
 }
 
 void ContactList::update(std::span<const IndexPair> pairs, std::size_t n_particles) {

@@ -21,6 +21,11 @@ class ContactList {
   void update(std::span<const IndexPair> pairs, std::size_t n_particles);
   /// Forgets every contact and its history.
   void clear();
+  /// Replaces the list with a saved one (restart). Throws InputError if the arrays do not form a
+  /// valid list: row_start non-decreasing from 0 to col.size(), every row sorted with partners
+  /// i < j < rows, history.size() == col.size().
+  void assign(std::span<const std::size_t> row_start, std::span<const Index> col,
+              std::span<const Vec3> history);
 
   std::size_t size() const { return col_.size(); }
   std::size_t rows() const { return row_start_.empty() ? 0 : row_start_.size() - 1; }

@@ -107,6 +107,46 @@ void pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& contact
   }
 }
 
+// The pair loop's force, read-only: history copied (and not advanced), torques discarded.
+template <class Normal, bool Tangential, bool Rolling>
+void pair_force_loop(const ContactLaw<Normal>& law, const Particles& p, const ContactList& contacts,
+                     double period, double dt, std::vector<ContactForce>& out) {
+  const ContactKernel<Normal, Tangential, Rolling> kernel{law};
+  const auto row = contacts.row_start();
+  const auto col = contacts.col();
+  const auto hist = contacts.history();
+  const double half_period = 0.5 * period;
+  out.clear();
+  for (std::size_t i = 0; i < contacts.rows(); ++i) {
+    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
+      const Index j = col[k];
+      Vec3 d = p.position[i] - p.position[j];
+      if (period > 0.0) {
+        if (d.z() > half_period) d.z() -= period;
+        if (d.z() < -half_period) d.z() += period;
+      }
+      const double sum_r = p.radius[i] + p.radius[j];
+      const double dist2 = d.squaredNorm();
+      if (dist2 >= sum_r * sum_r || dist2 == 0.0) continue;
+      const double dist = std::sqrt(dist2);
+      const double delta = sum_r - dist;
+      const ContactGeometry g{d / dist,
+                              delta,
+                              p.radius[i] * p.radius[j] / sum_r,
+                              1.0 / (p.inv_mass[i] + p.inv_mass[j]),
+                              p.radius[i] - 0.5 * delta,
+                              p.radius[j] - 0.5 * delta,
+                              dt * (p.inv_inertia[i] + p.inv_inertia[j])};
+      Vec3 xi = hist[k];
+      Vec3 t_i = Vec3::Zero();
+      Vec3 t_j = Vec3::Zero();
+      const Vec3 f =
+          kernel(g, p.velocity[i] - p.velocity[j], p.omega[i], p.omega[j], xi, 0.0, t_i, &t_j);
+      out.push_back(ContactForce{static_cast<Index>(i), j, f});
+    }
+  }
+}
+
 template <class Normal, bool Tangential, bool Rolling>
 void wall_loop(const ContactLaw<Normal>& law, Particles& p, const Drum& drum, double omega,
                WallHistory& history, double dt, double history_dt) {
@@ -207,6 +247,21 @@ void ContactModel::add_wall_forces(Particles& p, const Drum& drum, double omega,
         }
       },
       wall_.normal);
+}
+
+void ContactModel::pair_forces(const Particles& p, const ContactList& contacts, double period,
+                               double dt, std::vector<ContactForce>& out) const {
+  std::visit(
+      [&](const auto& normal) {
+        const auto law = make_law(normal, pair_.tangential, pair_.rolling);
+        using N = std::decay_t<decltype(normal)>;
+        if (pair_tangential_) {
+          pair_force_loop<N, true, false>(law, p, contacts, period, dt, out);
+        } else {
+          pair_force_loop<N, false, false>(law, p, contacts, period, dt, out);
+        }
+      },
+      pair_.normal);
 }
 
 double ContactModel::pair_elastic_energy(double delta, double r_eff) const {

@@ -31,6 +31,13 @@ struct ContactLaw {
 
 using NormalVariant = std::variant<HertzNormal, LinearSpringDashpot>;
 
+/// A particle-particle contact (i < j) with the force on i (N).
+struct ContactForce {
+  Index i;
+  Index j;
+  Vec3 force;
+};
+
 /// Tangential displacement of each particle against each wall part (cylinder, low cap, high cap).
 using WallHistory = std::vector<std::array<Vec3, kWallParts>>;
 
@@ -58,6 +65,12 @@ class ContactModel {
   /// Adds the wall forces of the drum turning at omega (rad/s). history.size() == p.size().
   void add_wall_forces(Particles& p, const Drum& drum, double omega, WallHistory& history,
                        double dt, double history_dt) const;
+
+  /// Force on i of every overlapping contact in `contacts` at the current state, without changing
+  /// anything: the tangential history is used as stored (not advanced). Replaces `out` (i, j,
+  /// force); contacts only touching within the search tolerance are left out.
+  void pair_forces(const Particles& p, const ContactList& contacts, double period, double dt,
+                   std::vector<ContactForce>& out) const;
 
   /// Elastic energy of a particle-particle / particle-wall normal overlap delta (J).
   double pair_elastic_energy(double delta, double r_eff) const;

@@ -1,0 +1,287 @@
+#include "engine/io/h5_file.hpp"
+
+#include <unistd.h>
+
+#include <fstream>
+#include <system_error>
+
+#include <fmt/format.h>
+
+#include "engine/io/atomic_file.hpp"
+
+namespace drumlab::h5 {
+namespace {
+
+/// Switches off HDF5's automatic error printing once; our messages say what failed.
+void quiet() {
+  static const bool done = [] {
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    return true;
+  }();
+  (void)done;
+}
+
+std::string file_of(hid_t loc) {
+  char buf[1024] = {0};
+  if (loc >= 0 && H5Fget_name(loc, buf, sizeof buf) > 0) return buf;
+  return "HDF5 file";
+}
+
+[[noreturn]] void fail(hid_t loc, const std::string& name, const char* what) {
+  throw InputError(fmt::format("{}: {} '{}'", file_of(loc), what, name));
+}
+
+hsize_t product(const std::vector<hsize_t>& dims) {
+  hsize_t n = 1;
+  for (hsize_t d : dims) n *= d;
+  return n;
+}
+
+void write_raw(hid_t loc, const std::string& name, hid_t file_type, hid_t mem_type,
+               const void* data, const std::vector<hsize_t>& dims) {
+  Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
+  if (space.get() < 0) fail(loc, name, "cannot create dataspace for");
+  Handle set(
+      H5Dcreate2(loc, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+      H5Dclose);
+  if (set.get() < 0) fail(loc, name, "cannot create dataset");
+  static const double dummy = 0.0;  // HDF5 wants a buffer even for zero elements
+  if (H5Dwrite(set.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data ? data : &dummy) < 0) {
+    fail(loc, name, "cannot write dataset (disk full?)");
+  }
+  if (!set.reset()) fail(loc, name, "cannot close dataset");
+}
+
+template <class T>
+std::vector<T> read_raw(hid_t loc, const std::string& name, hid_t mem_type, H5T_class_t cls,
+                        std::size_t expected) {
+  if (!exists(loc, name)) fail(loc, name, "missing dataset");
+  Handle set(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (set.get() < 0) fail(loc, name, "cannot open dataset");
+  Handle type(H5Dget_type(set.get()), H5Tclose);
+  if (H5Tget_class(type.get()) != cls) fail(loc, name, "unexpected element type in dataset");
+  Handle space(H5Dget_space(set.get()), H5Sclose);
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  if (n < 0) fail(loc, name, "cannot read the size of dataset");
+  if (expected != kAnySize && static_cast<std::size_t>(n) != expected) {
+    throw InputError(fmt::format("{}: dataset '{}' has {} values, expected {}", file_of(loc), name,
+                                 n, expected));
+  }
+  std::vector<T> out(static_cast<std::size_t>(n));
+  T dummy{};
+  if (H5Dread(set.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, n ? out.data() : &dummy) < 0) {
+    fail(loc, name, "cannot read dataset");
+  }
+  return out;
+}
+
+Handle open_attribute(hid_t loc, const std::string& name) {
+  if (H5Aexists(loc, name.c_str()) <= 0) fail(loc, name, "missing attribute");
+  Handle a(H5Aopen(loc, name.c_str(), H5P_DEFAULT), H5Aclose);
+  if (a.get() < 0) fail(loc, name, "cannot open attribute");
+  return a;
+}
+
+void write_scalar_attribute(hid_t loc, const std::string& name, hid_t file_type, hid_t mem_type,
+                            const void* value) {
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+  Handle a(H5Acreate2(loc, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+           H5Aclose);
+  if (a.get() < 0 || H5Awrite(a.get(), mem_type, value) < 0) {
+    fail(loc, name, "cannot write attribute");
+  }
+}
+
+}  // namespace
+
+Handle& Handle::operator=(Handle&& o) noexcept {
+  if (this != &o) {
+    reset();
+    id_ = o.id_;
+    closer_ = o.closer_;
+    o.id_ = H5I_INVALID_HID;
+  }
+  return *this;
+}
+
+bool Handle::reset() {
+  if (id_ < 0 || closer_ == nullptr) return true;
+  const herr_t status = closer_(id_);
+  id_ = H5I_INVALID_HID;
+  return status >= 0;
+}
+
+Handle create_memory_file(const std::string& label) {
+  quiet();
+  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+  constexpr std::size_t kIncrement = 16u << 20;  // grow the image 16 MiB at a time
+  if (fapl.get() < 0 || H5Pset_fapl_core(fapl.get(), kIncrement, false) < 0) {
+    throw InputError(fmt::format("{}: cannot set up an in-memory HDF5 file", label));
+  }
+  Handle f(H5Fcreate(label.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose);
+  if (f.get() < 0) throw InputError(fmt::format("{}: cannot create an HDF5 file", label));
+  return f;
+}
+
+std::size_t memory_file_size(hid_t file) {
+  const ssize_t n = H5Fget_file_image(file, nullptr, 0);
+  return n < 0 ? 0 : static_cast<std::size_t>(n);
+}
+
+void save_memory_file(Handle& file, const std::filesystem::path& path) {
+  std::vector<char> image;
+  if (H5Fflush(file.get(), H5F_SCOPE_LOCAL) >= 0) {
+    image.resize(memory_file_size(file.get()));
+    const ssize_t got = H5Fget_file_image(file.get(), image.data(), image.size());
+    if (got < 0 || static_cast<std::size_t>(got) != image.size()) image.clear();
+  }
+  const bool closed = file.reset();
+  if (image.empty() || !closed) {
+    throw InputError(fmt::format("{}: cannot assemble the HDF5 file", path.string()));
+  }
+  write_file_atomically(path, [&](std::ostream& out) {
+    out.write(image.data(), static_cast<std::streamsize>(image.size()));
+  });
+}
+
+void check_writable(const std::filesystem::path& path) {
+  const std::filesystem::path probe = path.string() + fmt::format(".tmp-{}", ::getpid());
+  std::ofstream out(probe, std::ios::binary | std::ios::trunc);
+  const bool ok = static_cast<bool>(out);
+  out.close();
+  std::error_code ignored;
+  std::filesystem::remove(probe, ignored);
+  if (!ok) {
+    throw InputError(fmt::format("{}: cannot write (does the directory exist and is it writable?)",
+                                 path.string()));
+  }
+}
+
+Handle open_file(const std::filesystem::path& path) {
+  quiet();
+  if (!std::filesystem::exists(path)) {
+    throw InputError(fmt::format("{}: no such file", path.string()));
+  }
+  Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  if (f.get() < 0) throw InputError(fmt::format("{}: not an HDF5 file", path.string()));
+  return f;
+}
+
+Handle create_group(hid_t loc, const std::string& name) {
+  Handle g(H5Gcreate2(loc, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+  if (g.get() < 0) fail(loc, name, "cannot create group");
+  return g;
+}
+
+Handle open_group(hid_t loc, const std::string& name) {
+  if (!exists(loc, name)) fail(loc, name, "missing group");
+  Handle g(H5Gopen2(loc, name.c_str(), H5P_DEFAULT), H5Gclose);
+  if (g.get() < 0) fail(loc, name, "cannot open group");
+  return g;
+}
+
+bool exists(hid_t loc, const std::string& name) {
+  return H5Lexists(loc, name.c_str(), H5P_DEFAULT) > 0;
+}
+
+std::size_t element_count(hid_t loc, const std::string& name) {
+  if (!exists(loc, name)) fail(loc, name, "missing dataset");
+  Handle set(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (set.get() < 0) fail(loc, name, "cannot open dataset");
+  Handle space(H5Dget_space(set.get()), H5Sclose);
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  if (n < 0) fail(loc, name, "cannot read the size of dataset");
+  return static_cast<std::size_t>(n);
+}
+
+void write(hid_t loc, const std::string& name, std::span<const double> data,
+           std::vector<hsize_t> dims) {
+  if (product(dims) != data.size()) fail(loc, name, "shape does not match data for");
+  write_raw(loc, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, data.data(), dims);
+}
+
+void write(hid_t loc, const std::string& name, std::span<const std::uint64_t> data) {
+  write_raw(loc, name, H5T_STD_U64LE, H5T_NATIVE_UINT64, data.data(), {data.size()});
+}
+
+void write(hid_t loc, const std::string& name, std::span<const std::uint32_t> data) {
+  write_raw(loc, name, H5T_STD_U32LE, H5T_NATIVE_UINT32, data.data(), {data.size()});
+}
+
+void write(hid_t loc, const std::string& name, std::span<const std::uint8_t> data) {
+  write_raw(loc, name, H5T_STD_U8LE, H5T_NATIVE_UINT8, data.data(), {data.size()});
+}
+
+void write_vec3(hid_t loc, const std::string& name, std::span<const Vec3> data) {
+  static_assert(sizeof(Vec3) == 3 * sizeof(double));
+  const double* raw = data.empty() ? nullptr : data.front().data();
+  write(loc, name, std::span<const double>(raw, 3 * data.size()), {data.size(), 3});
+}
+
+std::vector<double> read_doubles(hid_t loc, const std::string& name, std::size_t expected) {
+  return read_raw<double>(loc, name, H5T_NATIVE_DOUBLE, H5T_FLOAT, expected);
+}
+std::vector<std::uint64_t> read_u64(hid_t loc, const std::string& name, std::size_t expected) {
+  return read_raw<std::uint64_t>(loc, name, H5T_NATIVE_UINT64, H5T_INTEGER, expected);
+}
+std::vector<std::uint32_t> read_u32(hid_t loc, const std::string& name, std::size_t expected) {
+  return read_raw<std::uint32_t>(loc, name, H5T_NATIVE_UINT32, H5T_INTEGER, expected);
+}
+std::vector<std::uint8_t> read_u8(hid_t loc, const std::string& name, std::size_t expected) {
+  return read_raw<std::uint8_t>(loc, name, H5T_NATIVE_UINT8, H5T_INTEGER, expected);
+}
+
+std::vector<Vec3> read_vec3(hid_t loc, const std::string& name, std::size_t expected_rows) {
+  const std::size_t expected = expected_rows == kAnySize ? kAnySize : 3 * expected_rows;
+  const std::vector<double> flat = read_doubles(loc, name, expected);
+  if (flat.size() % 3 != 0) fail(loc, name, "not an N x 3 dataset:");
+  std::vector<Vec3> out(flat.size() / 3);
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    out[i] = Vec3(flat[3 * i], flat[3 * i + 1], flat[3 * i + 2]);
+  }
+  return out;
+}
+
+void write_attribute(hid_t loc, const std::string& name, double value) {
+  write_scalar_attribute(loc, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value);
+}
+
+void write_attribute(hid_t loc, const std::string& name, std::uint64_t value) {
+  write_scalar_attribute(loc, name, H5T_STD_U64LE, H5T_NATIVE_UINT64, &value);
+}
+
+void write_attribute(hid_t loc, const std::string& name, const std::string& value) {
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
+  H5Tset_size(type.get(), value.empty() ? 1 : value.size());
+  H5Tset_strpad(type.get(), H5T_STR_NULLPAD);
+  const std::string padded = value.empty() ? std::string(1, '\0') : value;
+  write_scalar_attribute(loc, name, type.get(), type.get(), padded.data());
+}
+
+double read_double_attribute(hid_t loc, const std::string& name) {
+  Handle a = open_attribute(loc, name);
+  double v = 0.0;
+  if (H5Aread(a.get(), H5T_NATIVE_DOUBLE, &v) < 0) fail(loc, name, "cannot read attribute");
+  return v;
+}
+
+std::uint64_t read_u64_attribute(hid_t loc, const std::string& name) {
+  Handle a = open_attribute(loc, name);
+  std::uint64_t v = 0;
+  if (H5Aread(a.get(), H5T_NATIVE_UINT64, &v) < 0) fail(loc, name, "cannot read attribute");
+  return v;
+}
+
+std::string read_string_attribute(hid_t loc, const std::string& name) {
+  Handle a = open_attribute(loc, name);
+  Handle type(H5Aget_type(a.get()), H5Tclose);
+  if (H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) > 0) {
+    fail(loc, name, "not a fixed-length string attribute");
+  }
+  std::string v(H5Tget_size(type.get()), '\0');
+  if (H5Aread(a.get(), type.get(), v.data()) < 0) fail(loc, name, "cannot read attribute");
+  v.resize(v.find('\0') == std::string::npos ? v.size() : v.find('\0'));
+  return v;
+}
+
+}  // namespace drumlab::h5

@@ -1,0 +1,81 @@
+#pragma once
+// Small RAII layer over the HDF5 C API (the serial library, see DESIGN.md) for checkpoints and
+// time series: typed 1D/2D datasets and scalar attributes. Every failure throws InputError naming
+// the file and the object; HDF5's own error stack printing is switched off.
+#include <hdf5.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "engine/types.hpp"
+
+namespace drumlab::h5 {
+
+/// An owned HDF5 identifier (file, group, dataset, ...), closed with `closer` at scope exit.
+class Handle {
+ public:
+  Handle() = default;
+  Handle(hid_t id, herr_t (*closer)(hid_t)) : id_(id), closer_(closer) {}
+  Handle(Handle&& o) noexcept : id_(o.id_), closer_(o.closer_) { o.id_ = H5I_INVALID_HID; }
+  Handle& operator=(Handle&& o) noexcept;
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  ~Handle() { reset(); }
+  hid_t get() const { return id_; }
+  /// Closes now; returns false if HDF5 reports an error (e.g. flushing a file failed).
+  bool reset();
+
+ private:
+  hid_t id_ = H5I_INVALID_HID;
+  herr_t (*closer_)(hid_t) = nullptr;
+};
+
+/// Creates an HDF5 file in memory (core driver, no backing store); `label` names it in messages.
+/// HDF5 itself never writes to disk: Debian's HDF5 1.10 crashes at exit after a failed disk write
+/// (disk full), so files are built in memory and saved with save_memory_file.
+Handle create_memory_file(const std::string& label);
+/// Writes the image of a memory file to `path` (temporary name, then rename) and closes it.
+/// Throws InputError naming the path if it cannot be written; nothing is left under that name.
+void save_memory_file(Handle& file, const std::filesystem::path& path);
+/// Bytes the memory file's image takes now.
+std::size_t memory_file_size(hid_t file);
+/// Opens a file read-only. Throws InputError naming the path.
+Handle open_file(const std::filesystem::path& path);
+/// Throws InputError unless a file can be created in the directory of `path` (checked by creating
+/// and removing a temporary file there).
+void check_writable(const std::filesystem::path& path);
+
+Handle create_group(hid_t loc, const std::string& name);
+Handle open_group(hid_t loc, const std::string& name);
+bool exists(hid_t loc, const std::string& name);
+/// Number of values in a dataset (product of its dimensions); throws InputError if missing.
+std::size_t element_count(hid_t loc, const std::string& name);
+
+/// Writes a dataset of shape dims (row-major). data.size() must equal the product of dims.
+void write(hid_t loc, const std::string& name, std::span<const double> data,
+           std::vector<hsize_t> dims);
+void write(hid_t loc, const std::string& name, std::span<const std::uint64_t> data);
+void write(hid_t loc, const std::string& name, std::span<const std::uint32_t> data);
+void write(hid_t loc, const std::string& name, std::span<const std::uint8_t> data);
+void write_vec3(hid_t loc, const std::string& name, std::span<const Vec3> data);
+
+/// Reads a whole dataset; throws InputError if it is missing, of another element class or its
+/// total size differs from `expected` (unless expected is kAnySize).
+inline constexpr std::size_t kAnySize = static_cast<std::size_t>(-1);
+std::vector<double> read_doubles(hid_t loc, const std::string& name, std::size_t expected);
+std::vector<std::uint64_t> read_u64(hid_t loc, const std::string& name, std::size_t expected);
+std::vector<std::uint32_t> read_u32(hid_t loc, const std::string& name, std::size_t expected);
+std::vector<std::uint8_t> read_u8(hid_t loc, const std::string& name, std::size_t expected);
+std::vector<Vec3> read_vec3(hid_t loc, const std::string& name, std::size_t expected_rows);
+
+void write_attribute(hid_t loc, const std::string& name, double value);
+void write_attribute(hid_t loc, const std::string& name, std::uint64_t value);
+void write_attribute(hid_t loc, const std::string& name, const std::string& value);
+double read_double_attribute(hid_t loc, const std::string& name);
+std::uint64_t read_u64_attribute(hid_t loc, const std::string& name);
+std::string read_string_attribute(hid_t loc, const std::string& name);
+
+}  // namespace drumlab::h5

@@ -1,0 +1,30 @@
+#pragma once
+// Everything a Simulation's next step depends on, as plain data: the particles (every array,
+// including the forces and torques of the current state, which the next half kick uses), the
+// clock, the drum, the contact list with its tangential history and the per-particle wall history.
+// Simulation::state() exports it; Simulation(scene, state) continues bit-identically from it.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "engine/contact/contact_model.hpp"
+#include "engine/particles.hpp"
+
+namespace drumlab {
+
+struct SimulationState {
+  Particles particles;
+  double time = 0.0;        ///< s
+  double dt = 0.0;          ///< s
+  double drum_omega = 0.0;  ///< rad/s
+  double drum_angle = 0.0;  ///< rad
+  std::uint64_t steps = 0;
+  std::string search_method;
+  /// Contact list in CSR form (see ContactList): rows = particles + 1 entries, or empty.
+  std::vector<std::size_t> contact_row_start;
+  std::vector<Index> contact_col;
+  std::vector<Vec3> contact_history;  ///< tangential displacement per contact, m
+  WallHistory wall_history;           ///< per particle, per wall part, m
+};
+
+}  // namespace drumlab

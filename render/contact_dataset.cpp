@@ -1,0 +1,62 @@
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDoubleArray.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkUnsignedIntArray.h>
+
+#include "render/vtk_datasets.hpp"
+
+namespace drumlab {
+
+vtkSmartPointer<vtkPolyData> contacts_dataset(const Simulation& sim) {
+  std::vector<ContactForce> contacts;
+  sim.contact_forces(contacts);
+  const Particles& p = sim.particles();
+  const DrumConfig& drum = sim.scene().drum;
+  const double period = drum.ends == DrumEnds::periodic ? drum.depth : 0.0;
+  const auto m = static_cast<vtkIdType>(contacts.size());
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(2 * m);
+  vtkNew<vtkCellArray> lines;
+  lines->AllocateExact(m, 2 * m);
+  vtkNew<vtkDoubleArray> magnitude;
+  magnitude->SetName("force_magnitude");
+  magnitude->SetNumberOfTuples(m);
+  vtkNew<vtkDoubleArray> force;
+  force->SetName("force");
+  force->SetNumberOfComponents(3);
+  force->SetNumberOfTuples(m);
+  vtkNew<vtkUnsignedIntArray> id_a;
+  id_a->SetName("id_a");
+  id_a->SetNumberOfTuples(m);
+  vtkNew<vtkUnsignedIntArray> id_b;
+  id_b->SetName("id_b");
+  id_b->SetNumberOfTuples(m);
+  for (vtkIdType k = 0; k < m; ++k) {
+    const ContactForce& c = contacts[static_cast<std::size_t>(k)];
+    Vec3 d = p.position[c.i] - p.position[c.j];
+    if (period > 0.0) d.z() -= period * std::round(d.z() / period);
+    const Vec3 other = p.position[c.i] - d;  // partner's image nearest to i
+    points->SetPoint(2 * k, p.position[c.i].data());
+    points->SetPoint(2 * k + 1, other.data());
+    const vtkIdType ends[2] = {2 * k, 2 * k + 1};
+    lines->InsertNextCell(2, ends);
+    magnitude->SetValue(k, c.force.norm());
+    force->SetTypedTuple(k, c.force.data());
+    id_a->SetValue(k, p.id[c.i]);
+    id_b->SetValue(k, p.id[c.j]);
+  }
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  pd->SetPoints(points);
+  pd->SetLines(lines);
+  pd->GetCellData()->AddArray(magnitude);
+  pd->GetCellData()->AddArray(force);
+  pd->GetCellData()->AddArray(id_a);
+  pd->GetCellData()->AddArray(id_b);
+  pd->GetCellData()->SetActiveScalars("force_magnitude");
+  return pd;
+}
+
+}  // namespace drumlab

@@ -1,0 +1,40 @@
+#pragma once
+// VTK datasets built from the simulation's public state (read only), for the VTU/PVD series.
+#include <vtkSmartPointer.h>
+
+#include "engine/simulation.hpp"
+
+class vtkImageData;
+class vtkPolyData;
+class vtkUnstructuredGrid;
+
+namespace drumlab {
+
+/// Point names of the particle dataset, in order.
+inline constexpr const char* kParticleArrays[] = {
+    "id", "radius", "size_class", "velocity", "speed", "angular_velocity", "force", "coordination"};
+
+/// One point (and one vertex cell) per particle, at its centre, with the arrays of
+/// kParticleArrays: id (UInt32), radius (m), size_class (UInt8), velocity (m/s), speed (m/s),
+/// angular_velocity (rad/s), force (N, the engine's contact force, pairs and walls, without
+/// gravity), coordination (UInt32, particle-particle contacts with overlap > 0).
+vtkSmartPointer<vtkUnstructuredGrid> particles_dataset(const Simulation& sim);
+
+/// The analytic drum wall as a surface: the cylinder (quads) and, unless the ends are periodic,
+/// the two end caps (polygons). Cell data: part (0 cylinder, 1 cap z = 0, 2 cap z = H) and
+/// marker (1 on a stripe of the cylinder that turns with the drum angle, so rotation is visible).
+/// Field data: drum_angle (rad), drum_omega (rad/s).
+vtkSmartPointer<vtkPolyData> drum_dataset(const Simulation& sim, int segments = 96);
+
+/// The particle-particle contacts of the current state as lines from centre to centre (minimum
+/// image across periodic ends). Cell data: force_magnitude (N), force (N, on the first particle),
+/// id_a, id_b (stable ids).
+vtkSmartPointer<vtkPolyData> contacts_dataset(const Simulation& sim);
+
+/// The contact-search grid of the last step with the particles per cell as cell data "particles"
+/// (UInt32). Returns null if the search method has no grid (brute force). Throws InputError if the
+/// grid has more than max_cells cells.
+vtkSmartPointer<vtkImageData> grid_dataset(const Simulation& sim,
+                                           std::size_t max_cells = 32u << 20);
+
+}  // namespace drumlab

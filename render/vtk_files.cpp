@@ -1,0 +1,93 @@
+#include "render/vtk_files.hpp"
+
+#include <unistd.h>
+
+#include <sstream>
+#include <system_error>
+
+#include <fmt/format.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkRectilinearGrid.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLImageDataWriter.h>
+#include <vtkXMLPolyDataWriter.h>
+#include <vtkXMLRectilinearGridWriter.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include "engine/types.hpp"
+
+namespace drumlab {
+namespace {
+
+/// VTK's own multi-line error output is replaced by our one-line InputError.
+class QuietVtk {
+ public:
+  QuietVtk() : was_(vtkObject::GetGlobalWarningDisplay()) { vtkObject::GlobalWarningDisplayOff(); }
+  ~QuietVtk() { vtkObject::SetGlobalWarningDisplay(was_); }
+  QuietVtk(const QuietVtk&) = delete;
+  QuietVtk& operator=(const QuietVtk&) = delete;
+
+ private:
+  vtkTypeBool was_;
+};
+
+template <class Writer>
+bool write_with(vtkDataObject* data, const std::filesystem::path& file) {
+  const QuietVtk quiet;
+  vtkNew<Writer> w;
+  w->SetInputData(data);
+  w->SetFileName(file.c_str());
+  w->SetDataModeToBinary();
+  w->SetCompressorTypeToZLib();
+  w->SetHeaderTypeToUInt64();
+  return w->Write() == 1 && w->GetErrorCode() == 0;
+}
+
+}  // namespace
+
+void write_vtk_xml(vtkDataObject* data, const std::filesystem::path& file) {
+  namespace fs = std::filesystem;
+  const fs::path tmp = file.string() + fmt::format(".tmp-{}", ::getpid());
+  bool ok = false;
+  if (vtkUnstructuredGrid::SafeDownCast(data)) {
+    ok = write_with<vtkXMLUnstructuredGridWriter>(data, tmp);
+  } else if (vtkPolyData::SafeDownCast(data)) {
+    ok = write_with<vtkXMLPolyDataWriter>(data, tmp);
+  } else if (vtkImageData::SafeDownCast(data)) {
+    ok = write_with<vtkXMLImageDataWriter>(data, tmp);
+  } else if (vtkRectilinearGrid::SafeDownCast(data)) {
+    ok = write_with<vtkXMLRectilinearGridWriter>(data, tmp);
+  } else {
+    throw std::logic_error("write_vtk_xml: unsupported data type");
+  }
+  std::error_code ec;
+  if (!ok) {
+    fs::remove(tmp, ec);
+    throw InputError(
+        fmt::format("{}: cannot write (does the directory exist and is it writable? disk full?)",
+                    file.string()));
+  }
+  fs::rename(tmp, file, ec);
+  if (ec) {
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    throw InputError(fmt::format("{}: cannot rename into place: {}", file.string(), ec.message()));
+  }
+}
+
+std::string pvd_text(const std::vector<PvdEntry>& entries) {
+  std::ostringstream out;
+  out << "<?xml version=\"1.0\"?>\n"
+         "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+         "  <Collection>\n";
+  for (const PvdEntry& e : entries) {
+    out << fmt::format("    <DataSet timestep=\"{:.17g}\" group=\"\" part=\"0\" file=\"{}\"/>\n",
+                       e.time, e.file);
+  }
+  out << "  </Collection>\n</VTKFile>\n";
+  return out.str();
+}
+
+}  // namespace drumlab

@@ -1,0 +1,45 @@
+#pragma once
+// The VTU/PVD time series for ParaView. Each frame writes, into one directory,
+//   particles_NNNNNN.vtu   particles with their arrays (see particles_dataset)
+//   drum_NNNNNN.vtp        the analytic drum wall, turned by the drum angle
+//   contacts_NNNNNN.vtp    contacts as lines with force magnitude (on request)
+//   grid_NNNNNN.vti        contact-search grid occupancy (on request; grid methods only)
+// and rewrites particles.pvd, drum.pvd (, contacts.pvd, grid.pvd) so each is always a valid series
+// of the frames written so far. Every file goes through a temporary name and a rename.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "engine/simulation.hpp"
+#include "render/vtk_files.hpp"
+
+namespace drumlab {
+
+struct VtuSeriesOptions {
+  bool contacts = false;  ///< contacts_NNNNNN.vtp + contacts.pvd
+  bool grid = false;      ///< grid_NNNNNN.vti + grid.pvd
+};
+
+class VtuSeriesWriter {
+ public:
+  /// Creates `directory` if needed; throws InputError if it cannot.
+  VtuSeriesWriter(std::filesystem::path directory, VtuSeriesOptions options);
+
+  /// Writes one frame (numbered from 0 in call order) at the simulation's current time.
+  void write_frame(const Simulation& sim);
+
+  const std::filesystem::path& directory() const { return dir_; }
+  std::size_t frames() const { return frames_; }
+  static std::string frame_name(const std::string& stem, std::size_t frame, const char* ext);
+
+ private:
+  void add(const std::string& series, const std::string& file, double time);
+
+  std::filesystem::path dir_;
+  VtuSeriesOptions options_;
+  std::size_t frames_ = 0;
+  std::vector<std::pair<std::string, std::vector<PvdEntry>>> series_;
+};
+
+}  // namespace drumlab
