@@ -206,6 +206,7 @@ struct DrumView::Impl {
   OffscreenContext context;  // first member: outlives every VTK object below
   vtkNew<vtkGenericOpenGLRenderWindow> window;
   vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkRenderer> top;  // layer 1: the focus particle's highlights, never hidden
   vtkNew<vtkPolyData> particles;
   vtkNew<vtkOpenGLSphereMapper> sphere_mapper;
   vtkNew<vtkActor> particle_actor;
@@ -229,6 +230,11 @@ void DrumView::Impl::build_scene() {
     throw std::runtime_error("render: VTK could not use the OSMesa context");
   }
   window->AddRenderer(renderer);
+  window->SetNumberOfLayers(2);  // layer 1: text, legend and the focus picture, always on top
+  top->SetLayer(1);
+  top->InteractiveOff();
+  top->SetActiveCamera(renderer->GetActiveCamera());
+  window->AddRenderer(top);
   renderer->SetBackground(kBackground[0], kBackground[1], kBackground[2]);
 
   particles->SetPoints(vtkNew<vtkPoints>());
@@ -254,7 +260,9 @@ void DrumView::Impl::build_scene() {
   legend->SetHeight(0.8);
   legend->GetTitleTextProperty()->SetFontSize(14);
   legend->GetLabelTextProperty()->SetFontSize(12);
-  text->GetTextProperty()->SetFontSize(options.height >= 600 ? 18 : 14);
+  text->GetTextProperty()->SetFontSize(!options.title.empty()  ? 13
+                                       : options.height >= 600 ? 18
+                                                               : 14);
   text->GetTextProperty()->SetFontFamilyToCourier();
   text->GetTextProperty()->SetColor(0.95, 0.95, 0.95);
   if (options.title.empty()) {
@@ -266,9 +274,9 @@ void DrumView::Impl::build_scene() {
     text->GetTextProperty()->SetBackgroundColor(0.0, 0.0, 0.0);
     text->GetTextProperty()->SetBackgroundOpacity(0.6);
   }
-  if (options.overlay || !options.title.empty()) renderer->AddActor2D(text);
-  if (options.overlay) renderer->AddActor2D(legend);
-  if (options.grid || options.focus_id) grid = std::make_unique<GridOverlay>(renderer);
+  if (options.overlay || !options.title.empty()) top->AddActor2D(text);
+  if (options.overlay) top->AddActor2D(legend);
+  if (options.grid || options.focus_id) grid = std::make_unique<GridOverlay>(renderer, top);
 }
 
 void DrumView::Impl::build_drum(const Simulation& sim) {
@@ -341,6 +349,10 @@ void DrumView::Impl::update_particles(const Simulation& sim) {
   particles->GetPointData()->AddArray(radius);
   particles->GetPointData()->AddArray(color);
   particles->Modified();
+  if (options.neutral_particles) {
+    sphere_mapper->ScalarVisibilityOff();
+    particle_actor->GetProperty()->SetColor(0.55, 0.57, 0.6);
+  }
   lut->SetTableRange(colors.lo, colors.hi);
   sphere_mapper->SetScalarRange(colors.lo, colors.hi);
   legend->SetTitle(colors.title.c_str());

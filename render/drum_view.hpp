@@ -27,11 +27,12 @@ struct ViewOptions {
   int height = 720;
   ColorBy color_by = ColorBy::size;
   CameraMode camera = CameraMode::axis;
-  bool grid = false;              ///< colour the active grid's cells by occupancy
-  std::optional<Index> focus_id;  ///< stable id of the particle whose search is shown
-  bool zoom_to_focus = false;     ///< frame the focus particle's stencil instead of the drum
-  bool overlay = true;            ///< text overlay and legend
-  std::string title;              ///< replaces the overlay text when not empty
+  bool grid = false;               ///< colour the active grid's cells by occupancy
+  std::optional<Index> focus_id;   ///< stable id of the particle whose search is shown
+  bool zoom_to_focus = false;      ///< frame the focus particle's stencil instead of the drum
+  bool neutral_particles = false;  ///< grey particles, so the focus picture's colours stand out
+  bool overlay = true;             ///< text overlay and legend
+  std::string title;               ///< replaces the overlay text when not empty
 };
 
 /// Background colour of every frame (RGB in [0, 1]).

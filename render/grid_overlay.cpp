@@ -61,6 +61,10 @@ vtkSmartPointer<vtkActor> direct_color_actor(vtkPolyData* poly) {
   return actor;
 }
 
+/// Highlighted particles are drawn as markers of this share of their radius, so the bed and the
+/// cells under them stay visible.
+constexpr double kMarkerScale = 0.6;
+
 /// Front plane of the drum, where the grid is drawn (slightly in front of every particle).
 double front_z(const Simulation& sim) {
   return sim.scene().drum.depth * 1.02 + 1e-4;
@@ -73,14 +77,43 @@ void append_sphere(vtkPoints* pts, vtkFloatArray* radius, vtkUnsignedCharArray* 
   colors->InsertNextTuple3(rgb[0] * 255.0, rgb[1] * 255.0, rgb[2] * 255.0);
 }
 
+/// The outline of one cell, drawn thick in the top layer.
+vtkSmartPointer<vtkActor> own_cell_outline(const GridGeometry& g, const CellCoord& c, double z) {
+  vtkNew<vtkPoints> pts;
+  const double x0 = g.origin.x() + static_cast<double>(c.x) * g.cell_xy;
+  const double y0 = g.origin.y() + static_cast<double>(c.y) * g.cell_xy;
+  pts->InsertNextPoint(x0, y0, z);
+  pts->InsertNextPoint(x0 + g.cell_xy, y0, z);
+  pts->InsertNextPoint(x0 + g.cell_xy, y0 + g.cell_xy, z);
+  pts->InsertNextPoint(x0, y0 + g.cell_xy, z);
+  vtkNew<vtkCellArray> loop;
+  const vtkIdType ids[5] = {0, 1, 2, 3, 0};
+  loop->InsertNextCell(5, ids);
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(pts);
+  poly->SetLines(loop);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(poly);
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(kOwnCellColor[0], kOwnCellColor[1], kOwnCellColor[2]);
+  actor->GetProperty()->SetLineWidth(3.0);
+  actor->GetProperty()->LightingOff();
+  return actor;
+}
+
 }  // namespace
 
-GridOverlay::GridOverlay(vtkRenderer* renderer) : renderer_(renderer) {}
+GridOverlay::GridOverlay(vtkRenderer* renderer, vtkRenderer* top)
+    : renderer_(renderer), top_(top) {}
 
 GridOverlay::~GridOverlay() {
-  for (vtkActor* a : {occupancy_.Get(), lines_.Get(), cells_.Get(), candidates_.Get(),
-                      contacts_.Get(), links_.Get()}) {
-    if (a != nullptr) renderer_->RemoveActor(a);
+  for (vtkActor* a : {occupancy_.Get(), lines_.Get(), cells_.Get(), candidates_.Get(), own_.Get(),
+                      links_.Get()}) {
+    if (a != nullptr) {
+      renderer_->RemoveActor(a);
+      top_->RemoveActor(a);
+    }
   }
 }
 
@@ -90,9 +123,12 @@ void GridOverlay::update(const Simulation& sim, bool occupancy, std::optional<In
     throw InputError(fmt::format("--grid/--focus: search '{}' has no cell grid (use m1..m5)",
                                  sim.search().name()));
   }
-  for (vtkActor* a : {occupancy_.Get(), lines_.Get(), cells_.Get(), candidates_.Get(),
-                      contacts_.Get(), links_.Get()}) {
-    if (a != nullptr) renderer_->RemoveActor(a);
+  for (vtkActor* a : {occupancy_.Get(), lines_.Get(), cells_.Get(), candidates_.Get(), own_.Get(),
+                      links_.Get()}) {
+    if (a != nullptr) {
+      renderer_->RemoveActor(a);
+      top_->RemoveActor(a);
+    }
   }
   summary_.clear();
   focus_box_.reset();
@@ -100,12 +136,12 @@ void GridOverlay::update(const Simulation& sim, bool occupancy, std::optional<In
   if (grid->geometry().nx == 0) return;  // no search yet
   std::int64_t layer = grid->geometry().nz / 2;
   if (focus) layer = grid->cell_of(*focus).z;
-  if (occupancy) draw_occupancy(sim, *grid, layer);
+  draw_grid(sim, *grid, layer, occupancy);
   if (focus) draw_focus(sim, *grid, *focus);
 }
 
-void GridOverlay::draw_occupancy(const Simulation& sim, const CellGridSearch& grid,
-                                 std::int64_t layer) {
+void GridOverlay::draw_grid(const Simulation& sim, const CellGridSearch& grid, std::int64_t layer,
+                            bool occupancy) {
   const GridGeometry& g = grid.geometry();
   std::map<std::pair<std::int64_t, std::int64_t>, int> count;
   int most = 1;
@@ -117,6 +153,7 @@ void GridOverlay::draw_occupancy(const Simulation& sim, const CellGridSearch& gr
   const double z = front_z(sim);
   QuadBuilder quads;
   for (const auto& [cell, n] : count) {
+    if (!occupancy) break;
     const double t = static_cast<double>(n) / most;
     const double rgb[3] = {0.95 - 0.85 * t, 0.95 - 0.6 * t, 0.6 + 0.35 * t};
     quads.add(g, cell.first, cell.second, z, rgb, 0.35 + 0.3 * t);
@@ -181,6 +218,8 @@ void GridOverlay::draw_focus(const Simulation& sim, const CellGridSearch& grid, 
   add_cell(t.own, kOwnCellColor, 0.7);
   cells_ = direct_color_actor(quads.poly());
   renderer_->AddActor(cells_);
+  own_ = own_cell_outline(g, t.own, z);
+  top_->AddActor(own_);
 
   const Particles& p = sim.particles();
   vtkNew<vtkPolyData> spheres;
@@ -190,12 +229,13 @@ void GridOverlay::draw_focus(const Simulation& sim, const CellGridSearch& grid, 
   vtkNew<vtkUnsignedCharArray> colors;
   colors->SetNumberOfComponents(3);
   const double white[3] = {1.0, 1.0, 1.0};
-  append_sphere(pts, radius, colors, p.position[focus], p.radius[focus] * 1.1, white);
+  append_sphere(pts, radius, colors, p.position[focus], p.radius[focus] * kMarkerScale, white);
   vtkNew<vtkPoints> link_pts;
   vtkNew<vtkCellArray> links;
   for (Index j : t.candidates) {
     const bool contact = std::find(t.contacts.begin(), t.contacts.end(), j) != t.contacts.end();
-    append_sphere(pts, radius, colors, p.position[j], p.radius[j] * 1.1,
+    append_sphere(pts, radius, colors, p.position[j],
+                  p.radius[j] * (contact ? kMarkerScale : 0.75 * kMarkerScale),
                   contact ? kContactColor : kCandidateColor);
     if (contact) {
       const Vec3& a = p.position[focus];
@@ -205,7 +245,10 @@ void GridOverlay::draw_focus(const Simulation& sim, const CellGridSearch& grid, 
       links->InsertNextCell(2, seg);
     }
   }
+  vtkNew<vtkCellArray> verts;  // the sphere mapper draws vertex cells
+  for (vtkIdType k = 0; k < pts->GetNumberOfPoints(); ++k) verts->InsertNextCell(1, &k);
   spheres->SetPoints(pts);
+  spheres->SetVerts(verts);
   spheres->GetPointData()->AddArray(radius);
   spheres->GetPointData()->SetScalars(colors);
   vtkNew<vtkOpenGLSphereMapper> mapper;
@@ -214,7 +257,7 @@ void GridOverlay::draw_focus(const Simulation& sim, const CellGridSearch& grid, 
   mapper->SetColorModeToDirectScalars();
   candidates_ = vtkSmartPointer<vtkActor>::New();
   candidates_->SetMapper(mapper);
-  renderer_->AddActor(candidates_);
+  top_->AddActor(candidates_);
 
   vtkNew<vtkPolyData> link_poly;
   link_poly->SetPoints(link_pts);
@@ -226,7 +269,7 @@ void GridOverlay::draw_focus(const Simulation& sim, const CellGridSearch& grid, 
   links_->GetProperty()->SetColor(kContactColor[0], kContactColor[1], kContactColor[2]);
   links_->GetProperty()->SetLineWidth(3.0);
   links_->GetProperty()->LightingOff();
-  renderer_->AddActor(links_);
+  top_->AddActor(links_);
 
   summary_ = fmt::format(
       "focus id {} (r = {:.0f} mm): cells visited {}, pairs tested {}, contacts {}{}", p.id[focus],

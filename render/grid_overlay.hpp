@@ -29,7 +29,9 @@ inline constexpr double kContactColor[3] = {1.0, 0.2, 0.9};
 
 class GridOverlay {
  public:
-  explicit GridOverlay(vtkRenderer* renderer);
+  /// Cells are drawn by `renderer` (over the bed); the focus particle, its candidates and contacts
+  /// by `top`, a layer above it, so particles nearer the camera never hide them.
+  GridOverlay(vtkRenderer* renderer, vtkRenderer* top);
   ~GridOverlay();
   GridOverlay(const GridOverlay&) = delete;
   GridOverlay& operator=(const GridOverlay&) = delete;
@@ -45,11 +47,14 @@ class GridOverlay {
   const std::optional<SearchTrace>& trace() const { return trace_; }
 
  private:
-  void draw_occupancy(const Simulation& sim, const CellGridSearch& grid, std::int64_t layer);
+  /// Grid lines of `layer`, and its cells coloured by occupancy if `occupancy`.
+  void draw_grid(const Simulation& sim, const CellGridSearch& grid, std::int64_t layer,
+                 bool occupancy);
   void draw_focus(const Simulation& sim, const CellGridSearch& grid, Index focus);
 
   vtkRenderer* renderer_;
-  vtkSmartPointer<vtkActor> occupancy_, lines_, cells_, candidates_, contacts_, links_;
+  vtkRenderer* top_;
+  vtkSmartPointer<vtkActor> occupancy_, lines_, cells_, candidates_, own_, links_;
   std::string summary_;
   std::optional<Box> focus_box_;
   std::optional<SearchTrace> trace_;

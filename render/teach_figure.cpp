@@ -23,11 +23,13 @@ void blit(const Image& panel, Image& figure, int x0) {
 }
 
 std::string panel_title(const Simulation& sim, const TeachPanel& p) {
+  std::string what(sim.search().description());
+  if (const auto colon = what.find(": "); colon != std::string::npos) what.erase(0, colon + 2);
   return fmt::format(
-      "{}\n{}\ncells visited {}   pairs tested {}   contacts {}\n"
-      "own cell: yellow  visited: green  skipped half: red\n"
-      "m2 backward ring: cyan  tested: orange  contact: magenta",
-      p.method, sim.search().description(), p.cells_visited, p.pairs_tested, p.contacts);
+      "{}  cells visited {}  pairs tested {}  contacts {}\n{}\n"
+      "yellow own cell | green visited | red skipped half\n"
+      "cyan m2 far ring | orange tested | magenta contact",
+      p.method, p.cells_visited, p.pairs_tested, p.contacts, what);
 }
 
 }  // namespace
@@ -64,6 +66,7 @@ TeachFigure make_teach_figure(const SceneConfig& scene, std::optional<Index> par
     opt.focus_id = fig.particle_id;
     opt.zoom_to_focus = true;
     opt.overlay = false;
+    opt.neutral_particles = true;
     opt.title = " ";  // replaced below once the trace is known
     DrumView view(opt);
     view.render(*sim);
