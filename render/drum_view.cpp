@@ -149,6 +149,27 @@ vtkSmartPointer<vtkActor> actor_for(vtkPolyData* poly) {
   return actor;
 }
 
+/// The overlay: a narrow column of short lines, to fit beside the drum.
+std::string overlay_text(const Simulation& sim, const std::string& focus) {
+  const ContactSearch& s = sim.search();
+  const SearchCounters& c = s.counters();
+  const double n = std::max<double>(1.0, static_cast<double>(sim.particles().size()));
+  std::string what(s.description());
+  if (const auto colon = what.find(": "); colon != std::string::npos) what.erase(0, colon + 2);
+  for (std::size_t k = what.find(", "); k != std::string::npos; k = what.find(", ", k)) {
+    what.replace(k, 2, "\n  ");
+  }
+  std::string text = fmt::format(
+      "t = {:.3f} s\nrevolutions {:.3f}\nstep {}\nN = {}\n\nsearch {}\n  {}\n\nlast step:\n"
+      "cells visited {}\n  {:.1f} / particle\npairs tested {}\n  {:.1f} / particle\n"
+      "pairs found {}",
+      sim.time(), sim.drum_angle() / (2.0 * std::numbers::pi), sim.steps(), sim.particles().size(),
+      s.name(), what, c.cells_visited, static_cast<double>(c.cells_visited) / n, c.pairs_tested,
+      static_cast<double>(c.pairs_tested) / n, c.pairs_found);
+  if (!focus.empty()) text += "\n\n" + focus;
+  return text;
+}
+
 }  // namespace
 
 ColorBy parse_color_by(std::string_view s) {
@@ -260,14 +281,13 @@ void DrumView::Impl::build_scene() {
   legend->SetHeight(0.8);
   legend->GetTitleTextProperty()->SetFontSize(14);
   legend->GetLabelTextProperty()->SetFontSize(12);
-  text->GetTextProperty()->SetFontSize(!options.title.empty()  ? 13
-                                       : options.height >= 600 ? 18
-                                                               : 14);
+  const int font = options.height >= 600 ? 16 : 11;
+  text->GetTextProperty()->SetFontSize(options.title.empty() ? font : 13);
   text->GetTextProperty()->SetFontFamilyToCourier();
   text->GetTextProperty()->SetColor(0.95, 0.95, 0.95);
   if (options.title.empty()) {
-    text->SetDisplayPosition(12, 12);
-    text->GetTextProperty()->SetVerticalJustificationToBottom();
+    text->SetDisplayPosition(12, options.height - 12);
+    text->GetTextProperty()->SetVerticalJustificationToTop();
   } else {
     text->SetDisplayPosition(10, options.height - 10);
     text->GetTextProperty()->SetVerticalJustificationToTop();
@@ -312,6 +332,7 @@ void DrumView::Impl::build_drum(const Simulation& sim) {
   front_cap = actor_for(cap_lines(radius, depth));
   front_cap->GetProperty()->SetColor(0.85, 0.85, 0.6);
   front_cap->GetProperty()->SetLineWidth(2.0);
+  front_cap->GetProperty()->SetOpacity(0.7);
   front_cap->GetProperty()->LightingOff();
   renderer->AddActor(front_cap);
   auto back_lines = actor_for(cap_lines(radius, 0.0));
@@ -365,19 +386,7 @@ void DrumView::Impl::update_overlay(const Simulation& sim) {
     text->SetInput(options.title.c_str());
     return;
   }
-  const ContactSearch& s = sim.search();
-  const SearchCounters& c = s.counters();
-  const double n = std::max<double>(1.0, static_cast<double>(sim.particles().size()));
-  std::string line = fmt::format(
-      "t = {:.3f} s   revolutions {:.3f}   step {}   N = {}\n"
-      "search {}: {}\n"
-      "last step: cells visited {} ({:.1f}/particle), pairs tested {} ({:.1f}/particle), "
-      "pairs found {}",
-      sim.time(), sim.drum_angle() / (2.0 * std::numbers::pi), sim.steps(), sim.particles().size(),
-      s.name(), s.description(), c.cells_visited, static_cast<double>(c.cells_visited) / n,
-      c.pairs_tested, static_cast<double>(c.pairs_tested) / n, c.pairs_found);
-  if (grid && focus_index) line += "\n" + grid->focus_summary();
-  text->SetInput(line.c_str());
+  text->SetInput(overlay_text(sim, grid && focus_index ? grid->focus_summary() : "").c_str());
 }
 
 void DrumView::Impl::place_camera(const Simulation& sim) {

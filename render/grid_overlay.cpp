@@ -272,9 +272,9 @@ void GridOverlay::draw_focus(const Simulation& sim, const CellGridSearch& grid, 
   top_->AddActor(links_);
 
   summary_ = fmt::format(
-      "focus id {} (r = {:.0f} mm): cells visited {}, pairs tested {}, contacts {}{}", p.id[focus],
-      1000.0 * p.radius[focus], t.cells_visited(), t.candidates.size(), t.contacts.size(),
-      g.nz > 1 ? fmt::format("  [3D grid: layer {} of {} shown]", t.own.z, g.nz) : "");
+      "focus id {} (r = {:.0f} mm)\n  cells visited {}\n  pairs tested {}\n  contacts {}{}",
+      p.id[focus], 1000.0 * p.radius[focus], t.cells_visited(), t.candidates.size(),
+      t.contacts.size(), g.nz > 1 ? fmt::format("\n  3D grid: layer {} of {}", t.own.z, g.nz) : "");
   focus_box_ = box;
   trace_ = t;
 }
