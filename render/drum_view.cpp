@@ -38,6 +38,8 @@ namespace drumlab::render {
 namespace {
 
 constexpr int kSpokes = 6;
+/// Frames at least this high get the full overlay column; smaller ones two short lines.
+constexpr int kFullOverlayHeight = 480;
 
 struct ColorArray {
   std::vector<double> values;
@@ -150,10 +152,16 @@ vtkSmartPointer<vtkActor> actor_for(vtkPolyData* poly) {
 }
 
 /// The overlay: a narrow column of short lines, to fit beside the drum.
-std::string overlay_text(const Simulation& sim, const std::string& focus) {
+std::string overlay_text(const Simulation& sim, const std::string& focus, bool compact) {
   const ContactSearch& s = sim.search();
   const SearchCounters& c = s.counters();
   const double n = std::max<double>(1.0, static_cast<double>(sim.particles().size()));
+  if (compact) {  // small frames: two lines in the bottom-left corner
+    return fmt::format("t = {:.3f} s  rev {:.3f}\n{}: {:.1f} cells, {:.1f} tests / particle",
+                       sim.time(), sim.drum_angle() / (2.0 * std::numbers::pi), s.name(),
+                       static_cast<double>(c.cells_visited) / n,
+                       static_cast<double>(c.pairs_tested) / n);
+  }
   std::string what(s.description());
   if (const auto colon = what.find(": "); colon != std::string::npos) what.erase(0, colon + 2);
   for (std::size_t k = what.find(", "); k != std::string::npos; k = what.find(", ", k)) {
@@ -222,6 +230,7 @@ struct DrumView::Impl {
   void update_particles(const Simulation& sim);
   void update_overlay(const Simulation& sim);
   void place_camera(const Simulation& sim);
+  bool compact_overlay() const { return options.height < kFullOverlayHeight; }
 
   ViewOptions options;
   OffscreenContext context;  // first member: outlives every VTK object below
@@ -234,7 +243,7 @@ struct DrumView::Impl {
   vtkNew<vtkLookupTable> lut;
   vtkNew<vtkScalarBarActor> legend;
   vtkNew<vtkTextActor> text;
-  vtkSmartPointer<vtkActor> front_cap, back_cap;
+  vtkSmartPointer<vtkActor> front_cap, back_cap, back_lines;  // the caps' lines turn with the drum
   std::unique_ptr<GridOverlay> grid;
   bool drum_built = false;
   bool camera_placed = false;
@@ -285,7 +294,10 @@ void DrumView::Impl::build_scene() {
   text->GetTextProperty()->SetFontSize(options.title.empty() ? font : 13);
   text->GetTextProperty()->SetFontFamilyToCourier();
   text->GetTextProperty()->SetColor(0.95, 0.95, 0.95);
-  if (options.title.empty()) {
+  if (options.title.empty() && compact_overlay()) {
+    text->SetDisplayPosition(6, 6);
+    text->GetTextProperty()->SetVerticalJustificationToBottom();
+  } else if (options.title.empty()) {
     text->SetDisplayPosition(12, options.height - 12);
     text->GetTextProperty()->SetVerticalJustificationToTop();
   } else {
@@ -335,7 +347,7 @@ void DrumView::Impl::build_drum(const Simulation& sim) {
   front_cap->GetProperty()->SetOpacity(0.7);
   front_cap->GetProperty()->LightingOff();
   renderer->AddActor(front_cap);
-  auto back_lines = actor_for(cap_lines(radius, 0.0));
+  back_lines = actor_for(cap_lines(radius, 0.0));
   back_lines->GetProperty()->SetColor(0.45, 0.45, 0.35);
   back_lines->GetProperty()->LightingOff();
   renderer->AddActor(back_lines);
@@ -382,11 +394,14 @@ void DrumView::Impl::update_particles(const Simulation& sim) {
 void DrumView::Impl::update_overlay(const Simulation& sim) {
   const double turn_deg = sim.drum_angle() * 180.0 / std::numbers::pi;
   front_cap->SetOrientation(0.0, 0.0, turn_deg);
+  back_lines->SetOrientation(0.0, 0.0, turn_deg);
   if (!options.title.empty()) {
     text->SetInput(options.title.c_str());
     return;
   }
-  text->SetInput(overlay_text(sim, grid && focus_index ? grid->focus_summary() : "").c_str());
+  text->SetInput(
+      overlay_text(sim, grid && focus_index ? grid->focus_summary() : "", compact_overlay())
+          .c_str());
 }
 
 void DrumView::Impl::place_camera(const Simulation& sim) {
