@@ -220,7 +220,19 @@ void GridOverlay::draw_focus(const Simulation& sim, const CellGridSearch& grid, 
   renderer_->AddActor(cells_);
   own_ = own_cell_outline(g, t.own, z);
   top_->AddActor(own_);
+  draw_highlights(sim, t, focus, z);
 
+  const Particles& p = sim.particles();
+  summary_ = fmt::format(
+      "focus id {} (r = {:.0f} mm)\n  cells visited {}\n  pairs tested {}\n  contacts {}{}",
+      p.id[focus], 1000.0 * p.radius[focus], t.cells_visited(), t.candidates.size(),
+      t.contacts.size(), g.nz > 1 ? fmt::format("\n  3D grid: layer {} of {}", t.own.z, g.nz) : "");
+  focus_box_ = box;
+  trace_ = t;
+}
+
+void GridOverlay::draw_highlights(const Simulation& sim, const SearchTrace& t, Index focus,
+                                  double z) {
   const Particles& p = sim.particles();
   vtkNew<vtkPolyData> spheres;
   vtkNew<vtkPoints> pts;
@@ -270,13 +282,6 @@ void GridOverlay::draw_focus(const Simulation& sim, const CellGridSearch& grid, 
   links_->GetProperty()->SetLineWidth(3.0);
   links_->GetProperty()->LightingOff();
   top_->AddActor(links_);
-
-  summary_ = fmt::format(
-      "focus id {} (r = {:.0f} mm)\n  cells visited {}\n  pairs tested {}\n  contacts {}{}",
-      p.id[focus], 1000.0 * p.radius[focus], t.cells_visited(), t.candidates.size(),
-      t.contacts.size(), g.nz > 1 ? fmt::format("\n  3D grid: layer {} of {}", t.own.z, g.nz) : "");
-  focus_box_ = box;
-  trace_ = t;
 }
 
 }  // namespace drumlab::render

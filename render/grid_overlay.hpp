@@ -51,6 +51,8 @@ class GridOverlay {
   void draw_grid(const Simulation& sim, const CellGridSearch& grid, std::int64_t layer,
                  bool occupancy);
   void draw_focus(const Simulation& sim, const CellGridSearch& grid, Index focus);
+  /// The focus particle, its candidates and contacts as markers, and lines to the contacts.
+  void draw_highlights(const Simulation& sim, const SearchTrace& t, Index focus, double z);
 
   vtkRenderer* renderer_;
   vtkRenderer* top_;
