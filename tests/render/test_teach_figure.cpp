@@ -40,7 +40,8 @@ TEST(TeachFigure, PanelCountersEqualTheEnginesPerParticleCounters) {
   for (std::size_t k = 0; k < fig.panels.size(); ++k) {
     const render::TeachPanel& panel = fig.panels[k];
     SCOPED_TRACE(panel.method);
-    EXPECT_EQ(panel.method, "m" + std::to_string(k + 1));
+    const char* const expected[] = {"m1", "m2", "m3", "m4", "m5"};
+    EXPECT_EQ(panel.method, expected[k]);
     const auto sim = render::teach_simulation(scene, panel.method);
     ASSERT_EQ(sim->search().name(), panel.method);
     const Index i = render::index_of_id(sim->particles(), fig.particle_id);
