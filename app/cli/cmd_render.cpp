@@ -8,6 +8,7 @@
 
 #include "app/cli/commands.hpp"
 #include "app/cli/render_observer.hpp"
+#include "app/cli/scene_setup.hpp"
 #include "render/frame_writer.hpp"
 #include "render/movie_writer.hpp"
 
@@ -141,6 +142,13 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--camera", args->camera, "axis (along the drum axis) or iso");
   cmd->callback([opt, args] {
     const RenderOutput out = make_output(*args);
+    if (args->grid || !args->focus.empty()) {  // fail now, not after settling
+      const std::string method =
+          opt->method.empty() ? load_dynamic_scene(opt->scene).search_method : opt->method;
+      if (method == "brute") {
+        throw InputError("--grid/--focus: the brute-force search has no cells; use m1..m5");
+      }
+    }
     auto observer = make_render_observer(out);
     FrameObserver* observers[] = {observer.get()};
     run_session(*opt, observers);

@@ -95,6 +95,16 @@ TEST(RenderCli, RenderWithAFileAsOutputDirectoryExitsWithCode2) {
   EXPECT_EQ(r.exit_code, 2) << r.output;
 }
 
+TEST(RenderCli, GridWithBruteForceIsRefusedBeforeSimulating) {
+  test::TempDir dir("render-brute");
+  const test::CliResult r =
+      test::run_cli("render " + std::string(DRUMLAB_SCENES_DIR) +
+                    "/teach_stencil.toml --method brute --grid --out " + dir.path().string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("no cells"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("plan"), std::string::npos) << "refused before the run starts";
+}
+
 TEST(RenderCli, RendersFramesAndAMovieAndTeachPrintsFivePanels) {
   test::TempDir dir("render-ok");
   const test::CliResult r = test::run_cli(
