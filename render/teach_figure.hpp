@@ -18,7 +18,7 @@ struct TeachPanel {
   std::string method;
   std::size_t cells_visited = 0;  ///< cells of the drawn trace (own cell included)
   std::size_t pairs_tested = 0;   ///< candidates of the drawn trace
-  std::size_t contacts = 0;
+  std::size_t contacts = 0;       ///< contacts this particle's search finds (its half of its pairs)
 };
 
 struct TeachFigure {

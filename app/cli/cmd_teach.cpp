@@ -28,7 +28,7 @@ void run_teach(const TeachArgs& a) {
   render::write_png(fig.image, out);
   fmt::print("teach             particle id {} of {} ({})\n", fig.particle_id, scene.name, a.scene);
   for (const render::TeachPanel& p : fig.panels) {
-    fmt::print("{:<4} cells visited {:>4}   pairs tested {:>4}   contacts {:>2}\n", p.method,
+    fmt::print("{:<4} cells visited {:>4}   pairs tested {:>4}   contacts found {:>2}\n", p.method,
                p.cells_visited, p.pairs_tested, p.contacts);
   }
   fmt::print("figure            {} ({}x{})\n", a.out, fig.image.width, fig.image.height);
