@@ -226,6 +226,7 @@ Index auto_focus_id(const Particles& p) {
 struct DrumView::Impl {
   explicit Impl(const ViewOptions& o) : options(o), context(o.width, o.height) {}
   void build_scene();
+  void build_annotations();  // legend and text overlay, in the top layer
   void build_drum(const Simulation& sim);
   void update_particles(const Simulation& sim);
   void update_overlay(const Simulation& sim);
@@ -283,6 +284,11 @@ void DrumView::Impl::build_scene() {
   particle_actor->GetProperty()->SetDiffuse(0.85);
   renderer->AddActor(particle_actor);
 
+  build_annotations();
+  if (options.grid || options.focus_id) grid = std::make_unique<GridOverlay>(renderer, top);
+}
+
+void DrumView::Impl::build_annotations() {
   legend->SetLookupTable(lut);
   legend->SetNumberOfLabels(5);
   legend->SetPosition(0.9, 0.1);
@@ -308,7 +314,6 @@ void DrumView::Impl::build_scene() {
   }
   if (options.overlay || !options.title.empty()) top->AddActor2D(text);
   if (options.overlay) top->AddActor2D(legend);
-  if (options.grid || options.focus_id) grid = std::make_unique<GridOverlay>(renderer, top);
 }
 
 void DrumView::Impl::build_drum(const Simulation& sim) {
