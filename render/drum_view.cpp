@@ -152,7 +152,7 @@ vtkSmartPointer<vtkActor> actor_for(vtkPolyData* poly) {
 }
 
 /// The overlay: a narrow column of short lines, to fit beside the drum.
-std::string overlay_text(const Simulation& sim, const std::string& focus, bool compact) {
+std::string overlay_text(const Simulation& sim, const std::string& extra, bool compact) {
   const ContactSearch& s = sim.search();
   const SearchCounters& c = s.counters();
   const double n = std::max<double>(1.0, static_cast<double>(sim.particles().size()));
@@ -174,7 +174,17 @@ std::string overlay_text(const Simulation& sim, const std::string& focus, bool c
       sim.time(), sim.drum_angle() / (2.0 * std::numbers::pi), sim.steps(), sim.particles().size(),
       s.name(), what, c.cells_visited, static_cast<double>(c.cells_visited) / n, c.pairs_tested,
       static_cast<double>(c.pairs_tested) / n, c.pairs_found);
-  if (!focus.empty()) text += "\n\n" + focus;
+  if (!extra.empty()) text += "\n\n" + extra;
+  return text;
+}
+
+/// The grid's and the focus particle's lines of the overlay.
+std::string grid_text(const GridOverlay& grid, bool focus) {
+  std::string text = grid.grid_summary();
+  if (focus && !grid.focus_summary().empty()) {
+    if (!text.empty()) text += "\n\n";
+    text += grid.focus_summary();
+  }
   return text;
 }
 
@@ -405,7 +415,7 @@ void DrumView::Impl::update_overlay(const Simulation& sim) {
     return;
   }
   text->SetInput(
-      overlay_text(sim, grid && focus_index ? grid->focus_summary() : "", compact_overlay())
+      overlay_text(sim, grid ? grid_text(*grid, focus_index.has_value()) : "", compact_overlay())
           .c_str());
 }
 

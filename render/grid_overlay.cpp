@@ -131,6 +131,7 @@ void GridOverlay::update(const Simulation& sim, bool occupancy, std::optional<In
     }
   }
   summary_.clear();
+  grid_summary_.clear();
   focus_box_.reset();
   trace_.reset();
   if (grid->geometry().nx == 0) return;  // no search yet
@@ -149,6 +150,11 @@ void GridOverlay::draw_grid(const Simulation& sim, const CellGridSearch& grid, s
     const CellCoord& c = grid.cell_of(static_cast<Index>(i));
     if (c.z != layer) continue;
     most = std::max(most, ++count[{c.x, c.y}]);
+  }
+  if (occupancy) {
+    grid_summary_ = fmt::format(
+        "grid {} x {} x {}, cell {:.1f} mm\n  occupancy 1 (pale) .. {} (blue){}", g.nx, g.ny, g.nz,
+        1000.0 * g.cell_xy, most, g.nz > 1 ? fmt::format("\n  layer {} shown", layer) : "");
   }
   const double z = front_z(sim);
   QuadBuilder quads;

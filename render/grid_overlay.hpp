@@ -41,6 +41,8 @@ class GridOverlay {
   void update(const Simulation& sim, bool occupancy, std::optional<Index> focus_index);
   /// "focus id 12 (r = 15 mm): cells visited 41, pairs tested 63, contacts 4" (empty without one).
   const std::string& focus_summary() const { return summary_; }
+  /// "grid 60 x 60 x 10, cell 15.0 mm\n  occupancy 1 (pale) .. 7 (blue)" (empty without --grid).
+  const std::string& grid_summary() const { return grid_summary_; }
   /// Cells visited or skipped by the focus particle (for framing the camera).
   std::optional<Box> focus_box() const { return focus_box_; }
   /// The focus particle's replayed search in the last update.
@@ -58,6 +60,7 @@ class GridOverlay {
   vtkRenderer* top_;
   vtkSmartPointer<vtkActor> occupancy_, lines_, cells_, candidates_, own_, links_;
   std::string summary_;
+  std::string grid_summary_;
   std::optional<Box> focus_box_;
   std::optional<SearchTrace> trace_;
 };
