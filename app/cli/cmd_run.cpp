@@ -5,6 +5,9 @@
 #include "app/cli/commands.hpp"
 #include "app/cli/run_session.hpp"
 #include "app/cli/scene_setup.hpp"
+#ifdef DRUMLAB_WITH_RENDER
+#include "app/cli/render_observer.hpp"
+#endif
 
 namespace drumlab::cli {
 
@@ -28,7 +31,15 @@ void add_run_command(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   demo->callback([demo_opt] {
     demo_opt->scene = shipped_scene("drum_demo.toml");
+#ifdef DRUMLAB_WITH_RENDER
+    // Renders out/demo/frames/*.png and out/demo/drum_demo.mp4 while it runs.
+    if (demo_opt->frames == 0 && demo_opt->every == 0) demo_opt->frames = 100;
+    auto renderer = make_demo_renderer("out/demo");
+    FrameObserver* observers[] = {renderer.get()};
+    run_session(*demo_opt, observers);
+#else
     run_session(*demo_opt);
+#endif
   });
 }
 

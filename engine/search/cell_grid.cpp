@@ -50,6 +50,8 @@ void CellGridSearch::find_pairs(const SearchInput& in, std::vector<IndexPair>& o
   reset_counters(n);
   out.clear();
   if (n == 0) return;
+  margin_ = in.margin;
+  period_ = in.period_z.value_or(0.0);
   lay_grid(in);
   sort_into_cells(in);
   if (geometry_.hashed) {
@@ -290,6 +292,53 @@ void CellGridSearch::visit_all(const Cells& cells, const SearchInput& in,
   }
   counters_.cells_visited = cells_visited;
   counters_.pairs_tested = pairs_tested;
+}
+
+bool CellGridSearch::find_cell(const CellCoord& c, CellRange& r) const {
+  return geometry_.hashed ? hashed_.find(c, r) : dense_.find(c, r);
+}
+
+SearchTrace CellGridSearch::trace(Index i) const {
+  const std::size_t n = order_.size();
+  if (i >= n) throw InputError(fmt::format("trace: particle {} of {}", i, n));
+  const std::size_t s =
+      static_cast<std::size_t>(std::find(order_.begin(), order_.end(), i) - order_.begin());
+  const Vec3 xi = sorted_position_[s];
+  const double ri = sorted_radius_[s];
+  const double margin = margin_ + kTouchTolerance;
+  SearchTrace t;
+  t.own = cell_[i];
+  auto scan = [&](std::uint32_t begin, std::uint32_t end) {
+    for (std::uint32_t u = begin; u < end; ++u) {
+      const Index pj = order_[u];
+      t.candidates.push_back(pj);
+      const double cut = ri + sorted_radius_[u] + margin;
+      if (distance_squared(xi, sorted_position_[u], period_) <= cut * cut) t.contacts.push_back(pj);
+    }
+  };
+  CellRange r;
+  find_cell(t.own, r);
+  scan(static_cast<std::uint32_t>(s) + 1, r.end);
+  const bool small = ri <= small_radius_;
+  const bool skip = config_.skip_far_for_smallest;
+  t.reach = (skip && small) ? std::min(k_small_, reach_[i]) : reach_[i];
+  const std::vector<CellOffset>& offsets = stencil_.offsets;
+  for (std::uint32_t o = 0; o < stencil_.prefix_end[t.reach]; ++o) {
+    CellCoord c{t.own.x + offsets[o].dx, t.own.y + offsets[o].dy, t.own.z + offsets[o].dz};
+    if (!wrap(c)) continue;
+    t.forward.push_back(c);
+    if (find_cell(c, r)) scan(r.begin, r.end);
+  }
+  if (skip && !small && reach_back_[i] > k_small_) {
+    for (std::uint32_t o = stencil_.prefix_end[k_small_]; o < stencil_.prefix_end[reach_back_[i]];
+         ++o) {
+      CellCoord c{t.own.x - offsets[o].dx, t.own.y - offsets[o].dy, t.own.z - offsets[o].dz};
+      if (!wrap(c)) continue;
+      t.backward.push_back(c);
+      if (find_cell(c, r)) scan(r.begin, r.small_end);
+    }
+  }
+  return t;
 }
 
 }  // namespace drumlab

@@ -42,6 +42,18 @@ struct CellGridConfig {
 /// Configuration of the paper's method 1..5. Throws InputError for another number.
 CellGridConfig paper_method(int method);
 
+/// One particle's search in the last call, cell by cell, as the hot loop did it (for pictures and
+/// teaching; O(N) per call). cells_visited() and candidates.size() equal the per-particle counters.
+struct SearchTrace {
+  CellCoord own{0, 0, 0};
+  std::vector<CellCoord> forward;   ///< forward half-shell cells visited, own cell excluded
+  std::vector<CellCoord> backward;  ///< method 2: far backward cells scanned for smallest partners
+  std::vector<Index> candidates;    ///< particles whose distance was computed (original indices)
+  std::vector<Index> contacts;      ///< candidates within the cut-off
+  int reach = 0;                    ///< forward reach in cells
+  std::size_t cells_visited() const { return 1 + forward.size() + backward.size(); }
+};
+
 /// The grid laid in the last call.
 struct GridGeometry {
   Vec3 origin = Vec3::Zero();
@@ -67,12 +79,16 @@ class CellGridSearch final : public ContactSearch {
   int reach_cells(Index i) const { return reach_[i]; }
   /// Cell of particle i (original index) in the last call.
   const CellCoord& cell_of(Index i) const { return cell_[i]; }
+  /// Replays particle i's search of the last call (original index). Throws InputError if i is out
+  /// of range.
+  SearchTrace trace(Index i) const;
 
  private:
   void lay_grid(const SearchInput& in);
   void sort_into_cells(const SearchInput& in);
   void build_hashed();
   bool wrap(CellCoord& c) const;
+  bool find_cell(const CellCoord& c, CellRange& r) const;
   template <class Cells>
   void visit_all(const Cells& cells, const SearchInput& in, std::vector<IndexPair>& out);
 
@@ -82,6 +98,8 @@ class CellGridSearch final : public ContactSearch {
   bool stencil_three_d_ = false;
   int k_small_ = 0;          ///< reach of smallest-size pairs (method 2)
   double small_radius_ = 0;  ///< radius at or below which a particle counts as smallest-size
+  double margin_ = 0.0;      ///< margin and z period of the last call (for trace())
+  double period_ = 0.0;
   // Per original index.
   std::vector<int> reach_;
   std::vector<int> reach_back_;  ///< method 2: backward reach towards smallest-size particles

@@ -1,0 +1,506 @@
+#include "render/drum_view.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <vtkActor.h>
+#include <vtkCamera.h>
+#include <vtkCellArray.h>
+#include <vtkCoordinate.h>
+#include <vtkCylinderSource.h>
+#include <vtkDoubleArray.h>
+#include <vtkFloatArray.h>
+#include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkLookupTable.h>
+#include <vtkNew.h>
+#include <vtkOpenGLSphereMapper.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRegularPolygonSource.h>
+#include <vtkRenderer.h>
+#include <vtkScalarBarActor.h>
+#include <vtkSmartPointer.h>
+#include <vtkTextActor.h>
+#include <vtkTextProperty.h>
+#include <vtkTransform.h>
+#include <vtkTransformPolyDataFilter.h>
+
+#include "render/grid_overlay.hpp"
+
+namespace drumlab::render {
+
+namespace {
+
+constexpr int kSpokes = 6;
+/// Frames at least this high get the full overlay column; smaller ones two short lines.
+constexpr int kFullOverlayHeight = 480;
+
+struct ColorArray {
+  std::vector<double> values;
+  double lo = 0.0, hi = 1.0;
+  std::string title;
+};
+
+/// Contacts per particle (surfaces touching), found with the engine's m5 search.
+std::vector<double> coordination(const Particles& p) {
+  std::vector<double> count(p.size(), 0.0);
+  if (p.empty()) return count;
+  auto search = make_search("m5");
+  SearchInput in;
+  in.position = p.position;
+  in.radius = p.radius;
+  std::vector<IndexPair> pairs;
+  search->find_pairs(in, pairs);
+  for (const IndexPair& q : pairs) {
+    count[q.i] += 1.0;
+    count[q.j] += 1.0;
+  }
+  return count;
+}
+
+ColorArray color_values(const Simulation& sim, ColorBy by) {
+  const Particles& p = sim.particles();
+  const double drum_r = 0.5 * sim.scene().drum.diameter;
+  const double v_ref = std::max(0.1, std::abs(sim.scene().drum.omega) * drum_r);
+  ColorArray c;
+  c.values.resize(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    switch (by) {
+      case ColorBy::size:
+        c.values[i] = 1000.0 * p.radius[i];
+        break;
+      case ColorBy::speed:
+        c.values[i] = p.velocity[i].norm();
+        break;
+      case ColorBy::omega:
+        c.values[i] = p.omega[i].norm();
+        break;
+      case ColorBy::id:
+        c.values[i] = static_cast<double>(p.id[i]);
+        break;
+      case ColorBy::coordination:
+        break;
+    }
+  }
+  switch (by) {
+    case ColorBy::size:
+      c.lo = p.empty() ? 0.0 : 1000.0 * p.min_radius();
+      c.hi = p.empty() ? 1.0 : 1000.0 * p.max_radius();
+      c.title = "radius (mm)";
+      break;
+    case ColorBy::speed:
+      c.hi = 1.5 * v_ref;
+      c.title = "speed (m/s)";
+      break;
+    case ColorBy::omega:
+      c.hi = p.empty() ? 1.0 : v_ref / p.min_radius();
+      c.title = "|omega| (rad/s)";
+      break;
+    case ColorBy::id:
+      c.hi = std::max(1.0, static_cast<double>(p.size()) - 1.0);
+      c.title = "particle id";
+      break;
+    case ColorBy::coordination:
+      c.values = coordination(p);
+      c.hi = 12.0;
+      c.title = "contacts";
+      break;
+  }
+  if (!(c.hi > c.lo)) c.hi = c.lo + 1.0;
+  return c;
+}
+
+/// Lines: the rim circle at z and `kSpokes` spokes from the axis, in the drum's body frame.
+vtkSmartPointer<vtkPolyData> cap_lines(double radius, double z) {
+  auto pts = vtkSmartPointer<vtkPoints>::New();
+  auto lines = vtkSmartPointer<vtkCellArray>::New();
+  constexpr int kRim = 120;
+  for (int k = 0; k < kRim; ++k) {
+    const double a = 2.0 * std::numbers::pi * k / kRim;
+    pts->InsertNextPoint(radius * std::cos(a), radius * std::sin(a), z);
+  }
+  for (int k = 0; k < kRim; ++k) {
+    const vtkIdType seg[2] = {k, (k + 1) % kRim};
+    lines->InsertNextCell(2, seg);
+  }
+  const vtkIdType centre = pts->InsertNextPoint(0.0, 0.0, z);
+  for (int k = 0; k < kSpokes; ++k) {
+    const double a = 2.0 * std::numbers::pi * k / kSpokes;
+    const vtkIdType end = pts->InsertNextPoint(radius * std::cos(a), radius * std::sin(a), z);
+    const vtkIdType seg[2] = {centre, end};
+    lines->InsertNextCell(2, seg);
+  }
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(pts);
+  poly->SetLines(lines);
+  return poly;
+}
+
+vtkSmartPointer<vtkActor> actor_for(vtkPolyData* poly) {
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(poly);
+  mapper->ScalarVisibilityOff();
+  auto actor = vtkSmartPointer<vtkActor>::New();
+  actor->SetMapper(mapper);
+  return actor;
+}
+
+/// The overlay: a narrow column of short lines, to fit beside the drum.
+std::string overlay_text(const Simulation& sim, const std::string& extra, bool compact) {
+  const ContactSearch& s = sim.search();
+  const SearchCounters& c = s.counters();
+  const double n = std::max<double>(1.0, static_cast<double>(sim.particles().size()));
+  if (compact) {  // small frames: two lines in the bottom-left corner
+    return fmt::format("t = {:.3f} s  rev {:.3f}\n{}: {:.1f} cells, {:.1f} tests / particle",
+                       sim.time(), sim.drum_angle() / (2.0 * std::numbers::pi), s.name(),
+                       static_cast<double>(c.cells_visited) / n,
+                       static_cast<double>(c.pairs_tested) / n);
+  }
+  std::string what(s.description());
+  if (const auto colon = what.find(": "); colon != std::string::npos) what.erase(0, colon + 2);
+  for (std::size_t k = what.find(", "); k != std::string::npos; k = what.find(", ", k)) {
+    what.replace(k, 2, "\n  ");
+  }
+  std::string text = fmt::format(
+      "t = {:.3f} s\nrevolutions {:.3f}\nstep {}\nN = {}\n\nsearch {}\n  {}\n\nlast step:\n"
+      "cells visited {}\n  {:.1f} / particle\npairs tested {}\n  {:.1f} / particle\n"
+      "pairs found {}",
+      sim.time(), sim.drum_angle() / (2.0 * std::numbers::pi), sim.steps(), sim.particles().size(),
+      s.name(), what, c.cells_visited, static_cast<double>(c.cells_visited) / n, c.pairs_tested,
+      static_cast<double>(c.pairs_tested) / n, c.pairs_found);
+  if (!extra.empty()) text += "\n\n" + extra;
+  return text;
+}
+
+/// The grid's and the focus particle's lines of the overlay.
+std::string grid_text(const GridOverlay& grid, bool focus) {
+  std::string text = grid.grid_summary();
+  if (focus && !grid.focus_summary().empty()) {
+    if (!text.empty()) text += "\n\n";
+    text += grid.focus_summary();
+  }
+  return text;
+}
+
+}  // namespace
+
+ColorBy parse_color_by(std::string_view s) {
+  if (s == "size") return ColorBy::size;
+  if (s == "speed") return ColorBy::speed;
+  if (s == "omega") return ColorBy::omega;
+  if (s == "id") return ColorBy::id;
+  if (s == "coordination") return ColorBy::coordination;
+  throw InputError(
+      fmt::format("--color-by: unknown '{}' (size, speed, omega, id, coordination)", s));
+}
+
+CameraMode parse_camera(std::string_view s) {
+  if (s == "axis") return CameraMode::axis;
+  if (s == "iso") return CameraMode::iso;
+  throw InputError(fmt::format("--camera: unknown '{}' (axis, iso)", s));
+}
+
+Index index_of_id(const Particles& p, Index id) {
+  const auto it = std::find(p.id.begin(), p.id.end(), id);
+  if (it == p.id.end()) {
+    throw InputError(fmt::format("--focus: no particle with id {} (ids 0..{})", id, p.size() - 1));
+  }
+  return static_cast<Index>(it - p.id.begin());
+}
+
+Index auto_focus_id(const Particles& p) {
+  if (p.empty()) throw InputError("--focus auto: the scene has no particles");
+  Vec3 centroid = Vec3::Zero();
+  for (const Vec3& x : p.position) centroid += x;
+  centroid /= static_cast<double>(p.size());
+  const double rmax = p.max_radius();
+  std::size_t best = p.size();
+  double best_d = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.radius[i] < rmax * (1.0 - 1e-9)) continue;
+    const double d = (p.position[i] - centroid).squaredNorm();
+    if (best == p.size() || d < best_d) {
+      best = i;
+      best_d = d;
+    }
+  }
+  return p.id[best];
+}
+
+struct DrumView::Impl {
+  explicit Impl(const ViewOptions& o) : options(o), context(o.width, o.height) {}
+  void build_scene();
+  void build_annotations();  // legend and text overlay, in the top layer
+  void build_drum(const Simulation& sim);
+  void update_particles(const Simulation& sim);
+  void update_overlay(const Simulation& sim);
+  void place_camera(const Simulation& sim);
+  bool compact_overlay() const { return options.height < kFullOverlayHeight; }
+
+  ViewOptions options;
+  OffscreenContext context;  // first member: outlives every VTK object below
+  vtkNew<vtkGenericOpenGLRenderWindow> window;
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkRenderer> top;  // layer 1: the focus particle's highlights, never hidden
+  vtkNew<vtkPolyData> particles;
+  vtkNew<vtkOpenGLSphereMapper> sphere_mapper;
+  vtkNew<vtkActor> particle_actor;
+  vtkNew<vtkLookupTable> lut;
+  vtkNew<vtkScalarBarActor> legend;
+  vtkNew<vtkTextActor> text;
+  vtkSmartPointer<vtkActor> front_cap, back_cap, back_lines;  // the caps' lines turn with the drum
+  std::unique_ptr<GridOverlay> grid;
+  bool drum_built = false;
+  bool camera_placed = false;
+  std::optional<Index> focus_index;
+};
+
+void DrumView::Impl::build_scene() {
+  window->SetOwnContext(false);
+  window->SetSize(options.width, options.height);
+  window->SetIsCurrent(true);
+  window->SetReadyForRendering(true);
+  window->SetMultiSamples(0);
+  if (!window->InitializeFromCurrentContext()) {
+    throw std::runtime_error("render: VTK could not use the OSMesa context");
+  }
+  window->AddRenderer(renderer);
+  window->SetNumberOfLayers(2);  // layer 1: text, legend and the focus picture, always on top
+  top->SetLayer(1);
+  top->InteractiveOff();
+  top->SetActiveCamera(renderer->GetActiveCamera());
+  window->AddRenderer(top);
+  renderer->SetBackground(kBackground[0], kBackground[1], kBackground[2]);
+
+  particles->SetPoints(vtkNew<vtkPoints>());
+  sphere_mapper->SetInputData(particles);
+  sphere_mapper->SetScaleArray("radius");
+  sphere_mapper->SetLookupTable(lut);
+  sphere_mapper->SetScalarModeToUsePointFieldData();
+  sphere_mapper->SelectColorArray("color");
+  sphere_mapper->ScalarVisibilityOn();
+  sphere_mapper->SetColorModeToMapScalars();
+  lut->SetHueRange(0.667, 0.0);
+  lut->SetNumberOfTableValues(256);
+  lut->Build();
+  particle_actor->SetMapper(sphere_mapper);
+  particle_actor->GetProperty()->SetAmbient(0.15);
+  particle_actor->GetProperty()->SetDiffuse(0.85);
+  renderer->AddActor(particle_actor);
+
+  build_annotations();
+  if (options.grid || options.focus_id) grid = std::make_unique<GridOverlay>(renderer, top);
+}
+
+void DrumView::Impl::build_annotations() {
+  legend->SetLookupTable(lut);
+  legend->SetNumberOfLabels(5);
+  legend->SetPosition(0.9, 0.1);
+  legend->SetWidth(0.07);
+  legend->SetHeight(0.8);
+  legend->GetTitleTextProperty()->SetFontSize(14);
+  legend->GetLabelTextProperty()->SetFontSize(12);
+  const int font = options.height >= 600 ? 16 : 11;
+  text->GetTextProperty()->SetFontSize(options.title.empty() ? font : 13);
+  text->GetTextProperty()->SetFontFamilyToCourier();
+  text->GetTextProperty()->SetColor(0.95, 0.95, 0.95);
+  if (options.title.empty() && compact_overlay()) {
+    text->SetDisplayPosition(6, 6);
+    text->GetTextProperty()->SetVerticalJustificationToBottom();
+  } else if (options.title.empty()) {
+    text->SetDisplayPosition(12, options.height - 12);
+    text->GetTextProperty()->SetVerticalJustificationToTop();
+  } else {
+    text->SetDisplayPosition(10, options.height - 10);
+    text->GetTextProperty()->SetVerticalJustificationToTop();
+    text->GetTextProperty()->SetBackgroundColor(0.0, 0.0, 0.0);
+    text->GetTextProperty()->SetBackgroundOpacity(0.6);
+  }
+  if (options.overlay || !options.title.empty()) top->AddActor2D(text);
+  if (options.overlay) top->AddActor2D(legend);
+}
+
+void DrumView::Impl::build_drum(const Simulation& sim) {
+  const double radius = 0.5 * sim.scene().drum.diameter;
+  const double depth = sim.scene().drum.depth;
+  vtkNew<vtkCylinderSource> cylinder;  // along y: turn it onto z
+  cylinder->SetRadius(radius);
+  cylinder->SetHeight(depth);
+  cylinder->SetResolution(96);
+  cylinder->CappingOff();
+  vtkNew<vtkTransform> to_z;
+  to_z->Translate(0.0, 0.0, 0.5 * depth);
+  to_z->RotateX(90.0);
+  vtkNew<vtkTransformPolyDataFilter> mantle_tf;
+  mantle_tf->SetInputConnection(cylinder->GetOutputPort());
+  mantle_tf->SetTransform(to_z);
+  mantle_tf->Update();
+  auto mantle = actor_for(mantle_tf->GetOutput());
+  mantle->GetProperty()->SetColor(0.7, 0.75, 0.85);
+  mantle->GetProperty()->SetOpacity(0.12);
+  renderer->AddActor(mantle);
+
+  vtkNew<vtkRegularPolygonSource> disk;  // back cap, a dark plate behind the bed
+  disk->SetNumberOfSides(120);
+  disk->SetRadius(radius);
+  disk->SetCenter(0.0, 0.0, -1e-4 * radius);
+  disk->Update();
+  back_cap = actor_for(disk->GetOutput());
+  back_cap->GetProperty()->SetColor(0.2, 0.21, 0.25);
+  back_cap->GetProperty()->LightingOff();
+  renderer->AddActor(back_cap);
+
+  front_cap = actor_for(cap_lines(radius, depth));
+  front_cap->GetProperty()->SetColor(0.85, 0.85, 0.6);
+  front_cap->GetProperty()->SetLineWidth(2.0);
+  front_cap->GetProperty()->SetOpacity(0.7);
+  front_cap->GetProperty()->LightingOff();
+  renderer->AddActor(front_cap);
+  back_lines = actor_for(cap_lines(radius, 0.0));
+  back_lines->GetProperty()->SetColor(0.45, 0.45, 0.35);
+  back_lines->GetProperty()->LightingOff();
+  renderer->AddActor(back_lines);
+  drum_built = true;
+}
+
+void DrumView::Impl::update_particles(const Simulation& sim) {
+  const Particles& p = sim.particles();
+  const ColorArray colors = color_values(sim, options.color_by);
+  const auto n = static_cast<vtkIdType>(p.size());
+  vtkPoints* pts = particles->GetPoints();
+  pts->SetNumberOfPoints(n);
+  vtkNew<vtkFloatArray> radius;
+  radius->SetName("radius");
+  radius->SetNumberOfTuples(n);
+  vtkNew<vtkDoubleArray> color;
+  color->SetName("color");
+  color->SetNumberOfTuples(n);
+  for (vtkIdType i = 0; i < n; ++i) {
+    const Vec3& x = p.position[static_cast<std::size_t>(i)];
+    pts->SetPoint(i, x.x(), x.y(), x.z());
+    radius->SetValue(i, static_cast<float>(p.radius[static_cast<std::size_t>(i)]));
+    color->SetValue(i, colors.values[static_cast<std::size_t>(i)]);
+  }
+  pts->Modified();
+  if (particles->GetNumberOfVerts() != n) {
+    vtkNew<vtkCellArray> verts;
+    verts->AllocateExact(n, n);
+    for (vtkIdType i = 0; i < n; ++i) verts->InsertNextCell(1, &i);
+    particles->SetVerts(verts);
+  }
+  particles->GetPointData()->AddArray(radius);
+  particles->GetPointData()->AddArray(color);
+  particles->Modified();
+  if (options.neutral_particles) {
+    sphere_mapper->ScalarVisibilityOff();
+    particle_actor->GetProperty()->SetColor(0.55, 0.57, 0.6);
+  }
+  lut->SetTableRange(colors.lo, colors.hi);
+  sphere_mapper->SetScalarRange(colors.lo, colors.hi);
+  legend->SetTitle(colors.title.c_str());
+}
+
+void DrumView::Impl::update_overlay(const Simulation& sim) {
+  const double turn_deg = sim.drum_angle() * 180.0 / std::numbers::pi;
+  front_cap->SetOrientation(0.0, 0.0, turn_deg);
+  back_lines->SetOrientation(0.0, 0.0, turn_deg);
+  if (!options.title.empty()) {
+    text->SetInput(options.title.c_str());
+    return;
+  }
+  text->SetInput(
+      overlay_text(sim, grid ? grid_text(*grid, focus_index.has_value()) : "", compact_overlay())
+          .c_str());
+}
+
+void DrumView::Impl::place_camera(const Simulation& sim) {
+  const double radius = 0.5 * sim.scene().drum.diameter;
+  const double depth = sim.scene().drum.depth;
+  vtkCamera* cam = renderer->GetActiveCamera();
+  const double far = 4.0 * (radius + depth);
+  cam->SetFocalPoint(0.0, 0.0, 0.5 * depth);
+  cam->SetViewUp(0.0, 1.0, 0.0);
+  if (options.camera == CameraMode::axis) {
+    cam->ParallelProjectionOn();
+    cam->SetPosition(0.0, 0.0, 0.5 * depth + far);
+    cam->SetParallelScale(1.08 * radius);
+  } else {
+    cam->ParallelProjectionOff();
+    cam->SetPosition(0.9 * far, 0.5 * far, 0.5 * depth + 1.4 * far);
+    cam->SetViewAngle(30.0);
+    renderer->ResetCamera(-radius, radius, -radius, radius, 0.0, depth);
+    cam->Zoom(1.25);
+  }
+  if (options.zoom_to_focus && grid) {
+    if (const auto box = grid->focus_box()) {
+      const Vec3 c = 0.5 * (box->lo + box->hi);
+      const double h = 0.5 * std::max(box->hi.y() - box->lo.y(),
+                                      (box->hi.x() - box->lo.x()) * options.height / options.width);
+      cam->SetFocalPoint(c.x(), c.y(), 0.5 * depth);
+      cam->SetPosition(c.x(), c.y(), 0.5 * depth + far);
+      cam->SetParallelScale(1.1 * h);
+    }
+  }
+  renderer->ResetCameraClippingRange(-radius, radius, -radius, radius, -0.1 * depth, 1.1 * depth);
+  camera_placed = true;
+}
+
+DrumView::DrumView(const ViewOptions& options) : impl_(std::make_unique<Impl>(options)) {
+  impl_->build_scene();
+}
+
+DrumView::~DrumView() {
+  if (impl_) {
+    impl_->context.make_current();
+    impl_->window->Finalize();
+  }
+}
+
+Image DrumView::render(const Simulation& sim) {
+  Impl& m = *impl_;
+  m.context.make_current();
+  if (!m.drum_built) m.build_drum(sim);
+  if (m.grid) {
+    // Storage indices may change between frames (re-sorting); ids do not.
+    if (m.options.focus_id) m.focus_index = index_of_id(sim.particles(), *m.options.focus_id);
+    m.grid->update(sim, m.options.grid, m.focus_index);
+  }
+  m.update_particles(sim);
+  m.update_overlay(sim);
+  if (!m.camera_placed) m.place_camera(sim);
+  m.window->Render();
+  return m.context.read_image();
+}
+
+std::array<double, 2> DrumView::project(const Vec3& x) {
+  vtkNew<vtkCoordinate> c;
+  c->SetCoordinateSystemToWorld();
+  c->SetValue(x.x(), x.y(), x.z());
+  const double* d = c->GetComputedDoubleDisplayValue(impl_->renderer);
+  return {d[0], static_cast<double>(impl_->options.height) - d[1]};
+}
+
+SearchTrace DrumView::focus_trace() const {
+  if (!impl_->grid || !impl_->grid->trace()) {
+    throw std::logic_error("DrumView::focus_trace: no focus particle drawn yet");
+  }
+  return *impl_->grid->trace();
+}
+
+void DrumView::set_title(std::string title) {
+  impl_->options.title = std::move(title);
+}
+
+std::array<double, 3> DrumView::legend_color(double value) const {
+  std::array<double, 3> rgb{};
+  impl_->lut->GetColor(value, rgb.data());
+  return rgb;
+}
+
+}  // namespace drumlab::render

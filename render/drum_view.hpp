@@ -1,0 +1,70 @@
+#pragma once
+// The drum as a picture: particles as shaded sphere impostors coloured by one quantity with a
+// legend, the drum mantle and end caps (with spokes that turn with the drum), a text overlay, and
+// optionally the active search grid and one particle's search. Reads a const Simulation; owns its
+// offscreen OpenGL context. No VTK type appears in this interface.
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "engine/search/cell_grid.hpp"
+#include "engine/simulation.hpp"
+#include "render/offscreen_context.hpp"
+
+namespace drumlab::render {
+
+enum class ColorBy { size, speed, omega, id, coordination };
+enum class CameraMode { axis, iso };
+
+/// Parses "size", "speed", "omega", "id", "coordination"; throws InputError otherwise.
+ColorBy parse_color_by(std::string_view s);
+/// Parses "axis" or "iso"; throws InputError otherwise.
+CameraMode parse_camera(std::string_view s);
+
+struct ViewOptions {
+  int width = 1280;
+  int height = 720;
+  ColorBy color_by = ColorBy::size;
+  CameraMode camera = CameraMode::axis;
+  bool grid = false;               ///< colour the active grid's cells by occupancy
+  std::optional<Index> focus_id;   ///< stable id of the particle whose search is shown
+  bool zoom_to_focus = false;      ///< frame the focus particle's stencil instead of the drum
+  bool neutral_particles = false;  ///< grey particles, so the focus picture's colours stand out
+  bool overlay = true;             ///< text overlay and legend
+  std::string title;               ///< replaces the overlay text when not empty
+};
+
+/// Background colour of every frame (RGB in [0, 1]).
+inline constexpr double kBackground[3] = {0.11, 0.12, 0.15};
+
+class DrumView {
+ public:
+  explicit DrumView(const ViewOptions& options);
+  ~DrumView();
+  DrumView(const DrumView&) = delete;
+  DrumView& operator=(const DrumView&) = delete;
+
+  /// Updates the scene from `sim` and renders one frame.
+  Image render(const Simulation& sim);
+  /// Pixel (column, row from the top) where a drum-frame point appears in the last frame.
+  std::array<double, 2> project(const Vec3& x);
+  /// The focus particle's search as drawn in the last frame. Throws std::logic_error without a
+  /// focus particle or before the first frame.
+  SearchTrace focus_trace() const;
+  /// Replaces the title text (ViewOptions::title) for the next frame.
+  void set_title(std::string title);
+  /// The colour the legend assigns to `value` (RGB in [0, 1]), for tests.
+  std::array<double, 3> legend_color(double value) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Storage index of the particle with stable id `id`; throws InputError if there is none.
+Index index_of_id(const Particles& p, Index id);
+/// A particle worth showing: the largest particle nearest to the centroid of the bed (stable id).
+Index auto_focus_id(const Particles& p);
+
+}  // namespace drumlab::render

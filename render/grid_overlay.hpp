@@ -1,0 +1,68 @@
+#pragma once
+// The active cell grid drawn over the drum (viewed along its axis): cells coloured by occupancy,
+// and one particle's search: its own cell, the forward half-shell cells it visits, the backward
+// half it skips (its partners there find it), method 2's extra backward ring, the candidates it
+// tests and the contacts it finds. A 3D grid is shown as the layer of cells through the focus
+// particle.
+#include <optional>
+#include <string>
+
+#include <vtkNew.h>
+#include <vtkSmartPointer.h>
+
+#include "engine/search/cell_grid.hpp"
+#include "engine/simulation.hpp"
+
+class vtkActor;
+class vtkRenderer;
+class vtkPolyData;
+
+namespace drumlab::render {
+
+/// Cell colours of the focus picture (RGB in [0, 1]).
+inline constexpr double kOwnCellColor[3] = {1.0, 0.85, 0.1};
+inline constexpr double kForwardCellColor[3] = {0.2, 0.8, 0.3};
+inline constexpr double kSkippedCellColor[3] = {0.85, 0.25, 0.25};
+inline constexpr double kBackwardRingColor[3] = {0.2, 0.7, 0.95};
+inline constexpr double kCandidateColor[3] = {1.0, 0.6, 0.1};
+inline constexpr double kContactColor[3] = {1.0, 0.2, 0.9};
+
+class GridOverlay {
+ public:
+  /// Cells are drawn by `renderer` (over the bed); the focus particle, its candidates and contacts
+  /// by `top`, a layer above it, so particles nearer the camera never hide them.
+  GridOverlay(vtkRenderer* renderer, vtkRenderer* top);
+  ~GridOverlay();
+  GridOverlay(const GridOverlay&) = delete;
+  GridOverlay& operator=(const GridOverlay&) = delete;
+
+  /// Redraws from the simulation's search of the last step. Throws InputError if the active
+  /// search is not a cell grid (brute force has no cells).
+  void update(const Simulation& sim, bool occupancy, std::optional<Index> focus_index);
+  /// "focus id 12 (r = 15 mm): cells visited 41, pairs tested 63, contacts 4" (empty without one).
+  const std::string& focus_summary() const { return summary_; }
+  /// "grid 60 x 60 x 10, cell 15.0 mm\n  occupancy 1 (pale) .. 7 (blue)" (empty without --grid).
+  const std::string& grid_summary() const { return grid_summary_; }
+  /// Cells visited or skipped by the focus particle (for framing the camera).
+  std::optional<Box> focus_box() const { return focus_box_; }
+  /// The focus particle's replayed search in the last update.
+  const std::optional<SearchTrace>& trace() const { return trace_; }
+
+ private:
+  /// Grid lines of `layer`, and its cells coloured by occupancy if `occupancy`.
+  void draw_grid(const Simulation& sim, const CellGridSearch& grid, std::int64_t layer,
+                 bool occupancy);
+  void draw_focus(const Simulation& sim, const CellGridSearch& grid, Index focus);
+  /// The focus particle, its candidates and contacts as markers, and lines to the contacts.
+  void draw_highlights(const Simulation& sim, const SearchTrace& t, Index focus, double z);
+
+  vtkRenderer* renderer_;
+  vtkRenderer* top_;
+  vtkSmartPointer<vtkActor> occupancy_, lines_, cells_, candidates_, own_, links_;
+  std::string summary_;
+  std::string grid_summary_;
+  std::optional<Box> focus_box_;
+  std::optional<SearchTrace> trace_;
+};
+
+}  // namespace drumlab::render

@@ -1,0 +1,86 @@
+#include "render/teach_figure.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "engine/fill/random_fill.hpp"
+#include "render/drum_view.hpp"
+
+namespace drumlab::render {
+
+namespace {
+
+/// Copies `panel` into columns [x0, x0 + panel.width) of `figure`.
+void blit(const Image& panel, Image& figure, int x0) {
+  const std::size_t row = 3 * static_cast<std::size_t>(panel.width);
+  for (int y = 0; y < panel.height; ++y) {
+    std::copy_n(panel.rgb.data() + row * static_cast<std::size_t>(y), row,
+                figure.rgb.data() +
+                    3 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(figure.width) +
+                         static_cast<std::size_t>(x0)));
+  }
+}
+
+std::string panel_title(const Simulation& sim, const TeachPanel& p) {
+  std::string what(sim.search().description());
+  if (const auto colon = what.find(": "); colon != std::string::npos) what.erase(0, colon + 2);
+  return fmt::format(
+      "{}  cells visited {}  pairs tested {}  found {}\n{}\n"
+      "yellow own cell | green visited | red skipped half\n"
+      "cyan m2 far ring | orange tested | magenta contact",
+      p.method, p.cells_visited, p.pairs_tested, p.contacts, what);
+}
+
+}  // namespace
+
+std::vector<std::string> teach_methods() {
+  return {"m1", "m2", "m3", "m4", "m5"};
+}
+
+std::unique_ptr<Simulation> teach_simulation(SceneConfig scene, std::string_view method) {
+  scene.search_method = std::string(method);
+  auto sim = std::make_unique<Simulation>(scene, random_fill(scene));
+  const auto settle = static_cast<std::uint64_t>(std::ceil(scene.fill.settle_time / sim->dt()));
+  sim->set_drum_omega(0.0);
+  sim->advance(settle);
+  return sim;
+}
+
+TeachFigure make_teach_figure(const SceneConfig& scene, std::optional<Index> particle_id,
+                              int panel_width, int panel_height) {
+  TeachFigure fig;
+  const auto methods = teach_methods();
+  fig.image.width = panel_width * static_cast<int>(methods.size());
+  fig.image.height = panel_height;
+  fig.image.rgb.assign(3 * static_cast<std::size_t>(fig.image.width) * panel_height, 0);
+  for (std::size_t k = 0; k < methods.size(); ++k) {
+    const auto sim = teach_simulation(scene, methods[k]);
+    if (k == 0) {
+      fig.particle_id = particle_id ? *particle_id : auto_focus_id(sim->particles());
+      index_of_id(sim->particles(), fig.particle_id);  // throws for an unknown id
+    }
+    ViewOptions opt;
+    opt.width = panel_width;
+    opt.height = panel_height;
+    opt.focus_id = fig.particle_id;
+    opt.zoom_to_focus = true;
+    opt.overlay = false;
+    opt.neutral_particles = true;
+    opt.title = " ";  // replaced below once the trace is known
+    DrumView view(opt);
+    view.render(*sim);
+    const auto trace = view.focus_trace();
+    TeachPanel panel;
+    panel.method = methods[k];
+    panel.cells_visited = trace.cells_visited();
+    panel.pairs_tested = trace.candidates.size();
+    panel.contacts = trace.contacts.size();
+    view.set_title(panel_title(*sim, panel));
+    blit(view.render(*sim), fig.image, panel_width * static_cast<int>(k));
+    fig.panels.push_back(panel);
+  }
+  return fig;
+}
+
+}  // namespace drumlab::render

@@ -1,0 +1,79 @@
+// Rendering with DISPLAY unset (OSMesa): a single particle appears in the colour the legend gives
+// it, at its projected centre, and the background shows elsewhere.
+#include <cstdlib>
+
+#include <gtest/gtest.h>
+
+#include "render/drum_view.hpp"
+#include "render/frame_writer.hpp"
+#include "tests/render/render_test_helpers.hpp"
+
+namespace drumlab {
+namespace {
+
+class DrumViewTest : public ::testing::Test {
+ protected:
+  void SetUp() override { ::unsetenv("DISPLAY"); }
+};
+
+TEST_F(DrumViewTest, OneParticleHasItsLegendColourAtItsProjectedCentre) {
+  const double r = 0.02;
+  Particles p;
+  p.add(Vec3(0.06, -0.04, 0.025), r, 2500.0);
+  Simulation sim(test::small_drum_scene(r), std::move(p));
+  render::ViewOptions opt;
+  opt.width = 320;
+  opt.height = 240;
+  opt.color_by = render::ColorBy::speed;  // at rest: speed 0, the low end of the legend (blue)
+  render::DrumView view(opt);
+  const render::Image img = view.render(sim);
+  if (std::getenv("DRUMLAB_TEST_SAVE") != nullptr) render::write_png(img, "/tmp/one_particle.png");
+  ASSERT_EQ(img.width, 320);
+  ASSERT_EQ(img.height, 240);
+
+  const auto centre = view.project(sim.particles().position[0]);
+  const auto edge = view.project(sim.particles().position[0] + Vec3(r, 0.0, 0.0));
+  const double radius_px = edge[0] - centre[0];
+  ASSERT_GT(radius_px, 5.0);  // the drum fills the frame: r = 20 mm is ~15 px here
+  const int cx = static_cast<int>(centre[0]);
+  const int cy = static_cast<int>(centre[1]);
+  ASSERT_GT(cx, 0);
+  ASSERT_LT(cx, img.width);
+  const auto expected = view.legend_color(0.0);
+  const double rgb[3] = {expected[0], expected[1], expected[2]};
+  EXPECT_EQ(rgb[2] > 0.9 && rgb[0] < 0.1, true) << "the low end of the legend is blue";
+  // Head-on light: the sphere's centre shows its full diffuse colour (plus a little ambient).
+  EXPECT_LE(test::color_distance(img, cx, cy, rgb), 40)
+      << "pixel " << int(img.pixel(cx, cy)[0]) << "," << int(img.pixel(cx, cy)[1]) << ","
+      << int(img.pixel(cx, cy)[2]);
+  // Just outside the sphere (towards the frame's left edge, beyond the drum): not particle colour.
+  const int outside = cx + static_cast<int>(1.6 * radius_px);
+  EXPECT_GT(test::color_distance(img, outside, cy, rgb), 60);
+  // Corners lie outside the drum: background.
+  EXPECT_LE(test::color_distance(img, 2, 2, render::kBackground), 2);
+  EXPECT_LE(test::color_distance(img, img.width - 3, img.height - 3, render::kBackground), 2);
+}
+
+TEST_F(DrumViewTest, ColourFollowsTheChosenQuantity) {
+  const double r = 0.02;
+  Particles p;
+  p.add(Vec3(0.05, 0.02, 0.025), r, 2500.0);  // between the cap's spokes (every 60 degrees)
+  p.add(Vec3(-0.07, -0.07, 0.025), r, 2500.0);
+  Simulation sim(test::small_drum_scene(r), std::move(p));
+  render::ViewOptions opt;
+  opt.width = 320;
+  opt.height = 240;
+  opt.color_by = render::ColorBy::id;  // id 0 blue, id 1 red
+  render::DrumView view(opt);
+  const render::Image img = view.render(sim);
+  for (Index i = 0; i < 2; ++i) {
+    const auto c = view.project(sim.particles().position[i]);
+    const auto expected = view.legend_color(static_cast<double>(sim.particles().id[i]));
+    const double rgb[3] = {expected[0], expected[1], expected[2]};
+    EXPECT_LE(test::color_distance(img, static_cast<int>(c[0]), static_cast<int>(c[1]), rgb), 40)
+        << "particle " << i;
+  }
+}
+
+}  // namespace
+}  // namespace drumlab
