@@ -88,7 +88,7 @@ TEST(CliVtu, BadPathOrMissingVtuStopsWithExitCode2) {
   const std::string scene = dir.write("drum.toml", output_scene_text()).string();
   const auto blocker = dir.write("plain", "x");
   for (const std::string& args : {"--vtu " + (blocker / "vtu").string(), std::string("--grid-vtk"),
-                                 std::string("--contacts-vtk")}) {
+                                  std::string("--contacts-vtk")}) {
     const auto r = run_cli("run " + scene + " --steps 20 " + args);
     EXPECT_EQ(r.exit_code, 2) << args << ": " << r.output;
     EXPECT_NE(r.output.find("drumlab: error: "), std::string::npos) << r.output;
