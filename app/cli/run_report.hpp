@@ -27,6 +27,7 @@ class ProgressBar {
 struct PhaseStats {
   std::uint64_t steps = 0;
   double wall_seconds = 0.0;
+  double output_seconds = 0.0;  ///< spent in observers (rendering, writers), not stepping
   StepTimers timers;
   SearchCounters search;
 };

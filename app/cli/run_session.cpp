@@ -1,6 +1,7 @@
 #include "app/cli/run_session.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <numbers>
 
@@ -41,15 +42,19 @@ std::uint64_t turning_steps(const RunOptions& opt, const SceneConfig& scene, dou
   return static_cast<std::uint64_t>(std::ceil(seconds / dt));
 }
 
-/// Advances `steps` in chunks no longer than the diagnostics interval and `until_frame`.
-void advance_phase(Simulation& sim, std::uint64_t steps, const std::string& label,
-                   std::uint64_t every, std::span<FrameObserver* const> observers) {
+/// Advances `steps` in chunks no longer than the diagnostics interval and the frame interval;
+/// returns the seconds spent in the observers.
+double advance_phase(Simulation& sim, std::uint64_t steps, const std::string& label,
+                     std::uint64_t every, std::span<FrameObserver* const> observers) {
   ProgressBar bar(label, steps);
   const std::uint64_t chunk = std::max<std::uint64_t>(1, sim.scene().output.diagnostics_every);
   std::uint64_t frame = 0;
+  double output_seconds = 0.0;
   auto emit = [&] {
+    const auto t0 = std::chrono::steady_clock::now();
     for (FrameObserver* o : observers) o->on_frame(sim, frame);
     ++frame;
+    output_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
   if (every > 0) emit();
   for (std::uint64_t done = 0; done < steps;) {
@@ -61,6 +66,7 @@ void advance_phase(Simulation& sim, std::uint64_t steps, const std::string& labe
     bar.update(done);
   }
   bar.finish();
+  return output_seconds;
 }
 
 }  // namespace
@@ -173,8 +179,10 @@ void run_session(const RunOptions& opt, std::span<FrameObserver* const> extra_ob
     sim.set_drum_omega(scene.drum.omega);
   }
   PhaseMeter meter(sim);
-  advance_phase(sim, turn_steps, "turn", observers.empty() ? 0 : every, observers);
-  const PhaseStats stats = meter.finish();
+  const double output_seconds =
+      advance_phase(sim, turn_steps, "turn", observers.empty() ? 0 : every, observers);
+  PhaseStats stats = meter.finish();
+  stats.output_seconds = output_seconds;
   for (FrameObserver* o : observers) o->on_finish(sim);
   fmt::print("-- turning phase --\n");
   print_summary(sim, stats);

@@ -44,10 +44,15 @@ void ContactList::update(std::span<const IndexPair> pairs, std::size_t n_particl
 }
 
 void ContactList::build_rows(std::span<const IndexPair> pairs, std::size_t n) {
-  // Counting sort by i.
   row_start_.assign(n + 1, 0);
   for (const IndexPair& p : pairs) ++row_start_[p.i + 1];
   for (std::size_t i = 0; i < n; ++i) row_start_[i + 1] += row_start_[i];
+  if (std::is_sorted(pairs.begin(), pairs.end())) {  // e.g. from a Verlet list: copy
+    col_.resize(pairs.size());
+    for (std::size_t k = 0; k < pairs.size(); ++k) col_[k] = pairs[k].j;
+    return;
+  }
+  // Counting sort by i.
   fill_.assign(row_start_.begin(), row_start_.end() - 1);
   col_.resize(pairs.size());
   for (const IndexPair& p : pairs) col_[fill_[p.i]++] = p.j;

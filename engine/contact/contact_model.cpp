@@ -44,15 +44,23 @@ template <class Normal, bool Tangential, bool Rolling>
 struct ContactKernel {
   const ContactLaw<Normal>& law;
 
-  Vec3 operator()(const ContactGeometry& g, Vec3 v, const Vec3& w_i, const Vec3& w_j, Vec3& xi,
-                  double history_dt, Vec3& t_i, Vec3* t_j) const {
+  [[gnu::always_inline]] inline Vec3 operator()(const ContactGeometry& g, Vec3 v, const Vec3& w_i,
+                                                const Vec3& w_j, Vec3& xi, double history_dt,
+                                                Vec3& t_i, Vec3* t_j) const {
     if constexpr (Tangential) v -= (g.a_i * w_i + g.a_j * w_j).cross(g.n);
     const double vn = v.dot(g.n);
-    const double fn = law.normal.force(g.delta, vn, g.r_eff, g.m_eff);
+    double fn = 0.0;
+    TangentialCoefficients c;
+    if constexpr (Tangential) {
+      const ContactResponse r = law.normal.respond(g.delta, vn, g.r_eff, g.m_eff);
+      fn = r.normal_force;
+      c = r.tangential;
+    } else {
+      fn = law.normal.force(g.delta, vn, g.r_eff, g.m_eff);
+    }
     Vec3 f = fn * g.n;
     if constexpr (Tangential) {
       const Vec3 vt = v - vn * g.n;
-      const TangentialCoefficients c = law.normal.tangential(g.delta, g.r_eff, g.m_eff);
       const Vec3 ft = law.tangential.force(xi, g.n, vt, c, std::abs(fn), history_dt);
       f += ft;
       const Vec3 nxft = g.n.cross(ft);

@@ -62,14 +62,25 @@ struct TangentialCoefficients {
   double damping = 0.0;
 };
 
+/// Normal force and the tangential spring of the same contact, from one evaluation.
+struct ContactResponse {
+  double normal_force = 0.0;
+  TangentialCoefficients tangential;
+};
+
 struct HertzNormal {
   double e_star = 0.0;  ///< E*, Pa
   double g_star = 0.0;  ///< G*, Pa
   double beta = 0.0;    ///< from the restitution, see damping_beta
 
   HertzNormal() = default;
+  double tangential_ratio = 0.0;  ///< sqrt(S_t / S_n) = sqrt(4 G* / E*)
+
   HertzNormal(double e_star_, double g_star_, double restitution)
-      : e_star(e_star_), g_star(g_star_), beta(damping_beta(restitution)) {}
+      : e_star(e_star_),
+        g_star(g_star_),
+        beta(damping_beta(restitution)),
+        tangential_ratio(std::sqrt(4.0 * g_star_ / e_star_)) {}
 
   /// Normal force along n (N), positive repulsive. delta > 0 overlap (m), vn normal relative
   /// velocity (m/s, negative approaching), r_eff = R* (m), m_eff = m* (kg).
@@ -82,6 +93,16 @@ struct HertzNormal {
   TangentialCoefficients tangential(double delta, double r_eff, double m_eff) const {
     const double s_t = 8.0 * g_star * std::sqrt(r_eff * delta);
     return {s_t, -2.0 * kSqrt56 * beta * std::sqrt(s_t * m_eff)};
+  }
+
+  /// force() and tangential() together with two square roots instead of four:
+  /// sqrt(S_t m*) = sqrt(S_t / S_n) sqrt(S_n m*) and S_t / S_n = 4 G* / E*.
+  ContactResponse respond(double delta, double vn, double r_eff, double m_eff) const {
+    const double a = std::sqrt(r_eff * delta);
+    const double s_n = 2.0 * e_star * a;
+    const double damping_n = -2.0 * kSqrt56 * beta * std::sqrt(s_n * m_eff);
+    return {(2.0 / 3.0) * s_n * delta - damping_n * vn,
+            {8.0 * g_star * a, damping_n * tangential_ratio}};
   }
 
   /// Energy stored in the Hertz spring (J): 8/15 E* sqrt(R*) delta^{5/2}.

@@ -38,6 +38,10 @@ struct LinearSpringDashpot {
     return {k_t, 2.0 * std::sqrt(m_eff * k_t) * damping_ratio};
   }
 
+  ContactResponse respond(double delta, double vn, double r_eff, double m_eff) const {
+    return {force(delta, vn, r_eff, m_eff), tangential(delta, r_eff, m_eff)};
+  }
+
   double elastic_energy(double delta, double /*r_eff*/) const {
     return 0.5 * stiffness * delta * delta;
   }

@@ -44,4 +44,26 @@ void validate_search_input(const SearchInput& in) {
   }
 }
 
+void sort_pairs(std::vector<IndexPair>& pairs, std::size_t n, std::vector<IndexPair>& scratch,
+                std::vector<std::uint32_t>& counts) {
+  counts.assign(n + 1, 0);
+  for (const IndexPair& p : pairs) ++counts[p.i + 1];
+  for (std::size_t i = 0; i < n; ++i) counts[i + 1] += counts[i];
+  scratch.resize(pairs.size());
+  for (const IndexPair& p : pairs) scratch[counts[p.i]++] = p;
+  // counts[i] is now the end of row i; rows are short: insertion sort by j.
+  std::size_t begin = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t end = counts[i];
+    for (std::size_t a = begin + 1; a < end; ++a) {
+      const IndexPair v = scratch[a];
+      std::size_t b = a;
+      for (; b > begin && scratch[b - 1].j > v.j; --b) scratch[b] = scratch[b - 1];
+      scratch[b] = v;
+    }
+    begin = end;
+  }
+  pairs.swap(scratch);
+}
+
 }  // namespace drumlab

@@ -10,6 +10,11 @@ namespace drumlab {
 /// radius, non-finite position, negative margin, position outside the domain or period).
 void validate_search_input(const SearchInput& in);
 
+/// Sorts pairs by (i, j) in O(pairs + n): counting sort by i, insertion sort of the short rows.
+/// `scratch` is reused between calls.
+void sort_pairs(std::vector<IndexPair>& pairs, std::size_t n, std::vector<IndexPair>& scratch,
+                std::vector<std::uint32_t>& counts);
+
 /// Squared distance between a and b, using the minimum image along z when period > 0.
 inline double distance_squared(const Vec3& a, const Vec3& b, double period) {
   double dx = a.x() - b.x();

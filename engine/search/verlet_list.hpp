@@ -38,7 +38,9 @@ class VerletListSearch final : public ContactSearch {
   double skin_factor_;
   double skin_ = 0.0;
   std::string name_, description_;
-  std::vector<IndexPair> list_;  ///< pairs within margin + skin at the last build
+  std::vector<IndexPair> list_;  ///< pairs within margin + skin at the last build, sorted
+  std::vector<IndexPair> scratch_pairs_;
+  std::vector<std::uint32_t> scratch_counts_;
   std::vector<Vec3> reference_;  ///< positions at the last build
   std::vector<double> radius_;   ///< radii at the last build
   double margin_ = -1.0;
