@@ -53,6 +53,7 @@ struct Simulation::Impl {
   ContactList contacts;
   std::vector<IndexPair> pairs;
   WallHistory wall_history;
+  PairForceBuffers pair_buffers;
 };
 
 Simulation::Simulation(const SceneConfig& scene, Particles particles, SimulationOptions options)
@@ -234,7 +235,8 @@ void Simulation::compute_forces(double history_dt, bool count) {
   impl_->contacts.update(impl_->pairs, particles_.size());
   particles_.clear_forces();
   const double period = impl_->drum.periodic() ? impl_->drum.depth() : 0.0;
-  impl_->model.add_pair_forces(particles_, impl_->contacts, period, dt_, history_dt);
+  impl_->model.add_pair_forces(particles_, impl_->contacts, impl_->pair_buffers, period, dt_,
+                               history_dt);
   const auto t2 = Clock::now();
   impl_->model.add_wall_forces(particles_, impl_->drum, omega_, impl_->wall_history, dt_,
                                history_dt);
@@ -248,19 +250,23 @@ void Simulation::compute_forces(double history_dt, bool count) {
 
 void Simulation::kick(double h) {
   Particles& p = particles_;
-  const std::size_t n = p.size();
-  for (std::size_t i = 0; i < n; ++i) p.velocity[i] += h * (p.inv_mass[i] * p.force[i] + gravity_);
-  if (impl_->model.uses_rotation()) {
-    for (std::size_t i = 0; i < n; ++i) p.omega[i] += (h * p.inv_inertia[i]) * p.torque[i];
+  const auto n = static_cast<std::int64_t>(p.size());
+  const bool rotation = impl_->model.uses_rotation();
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    p.velocity[i] += h * (p.inv_mass[i] * p.force[i] + gravity_);
+    if (rotation) p.omega[i] += (h * p.inv_inertia[i]) * p.torque[i];
   }
 }
 
 void Simulation::drift() {
   Particles& p = particles_;
-  const std::size_t n = p.size();
-  for (std::size_t i = 0; i < n; ++i) p.position[i] += dt_ * p.velocity[i];
-  if (impl_->drum.periodic()) {
-    for (std::size_t i = 0; i < n; ++i) p.position[i].z() = impl_->drum.wrap_z(p.position[i].z());
+  const auto n = static_cast<std::int64_t>(p.size());
+  const bool periodic = impl_->drum.periodic();
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    p.position[i] += dt_ * p.velocity[i];
+    if (periodic) p.position[i].z() = impl_->drum.wrap_z(p.position[i].z());
   }
 }
 

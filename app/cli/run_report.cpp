@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include <fmt/format.h>
 
@@ -68,6 +71,10 @@ void print_summary(const Simulation& sim, const PhaseStats& phase) {
       phase.steps, sim.dt(), sim.dt() / sim.rayleigh_time(),
       static_cast<double>(phase.steps) * sim.dt(), sim.time());
   fmt::print("search method     {} ({})\n", sim.search().name(), sim.search().description());
+#ifdef _OPENMP
+  fmt::print("threads           {} (OpenMP: pair forces, walls, integration)\n",
+             omp_get_max_threads());
+#endif
   const double stepping = phase.wall_seconds - phase.output_seconds;
   fmt::print("wall time         {:.3f} s (stepping {:.3f} s, output {:.3f} s)\n",
              phase.wall_seconds, stepping, phase.output_seconds);

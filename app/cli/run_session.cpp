@@ -148,10 +148,6 @@ void run_session(const RunOptions& opt, std::span<FrameObserver* const> extra_ob
 #ifdef _OPENMP
   omp_set_num_threads(opt.threads);
 #endif
-  if (opt.threads > 1) {
-    fmt::print("note: --threads {}: this version's step loop is serial; threads are not used yet\n",
-               opt.threads);
-  }
   const std::vector<std::unique_ptr<FrameObserver>> outputs = make_output_observers(opt);
   std::vector<FrameObserver*> observers(extra_observers.begin(), extra_observers.end());
   for (const auto& o : outputs) observers.push_back(o.get());

@@ -10,6 +10,8 @@ void ContactList::clear() {
   row_start_.clear();
   col_.clear();
   history_.clear();
+  partner_start_.clear();
+  partner_k_.clear();
 }
 
 void ContactList::assign(std::span<const std::size_t> row_start, std::span<const Index> col,
@@ -33,6 +35,7 @@ void ContactList::assign(std::span<const std::size_t> row_start, std::span<const
   row_start_.assign(row_start.begin(), row_start.end());
   col_.assign(col.begin(), col.end());
   history_.assign(history.begin(), history.end());
+  build_partners();
 }
 
 void ContactList::update(std::span<const IndexPair> pairs, std::size_t n_particles) {
@@ -41,6 +44,17 @@ void ContactList::update(std::span<const IndexPair> pairs, std::size_t n_particl
   history_.swap(old_history_);
   build_rows(pairs, n_particles);
   transfer_history();
+  build_partners();
+}
+
+void ContactList::build_partners() {
+  const std::size_t n = rows();
+  partner_start_.assign(n + 1, 0);
+  for (const Index j : col_) ++partner_start_[j + 1];
+  for (std::size_t j = 0; j < n; ++j) partner_start_[j + 1] += partner_start_[j];
+  fill_.assign(partner_start_.begin(), partner_start_.end() - 1);
+  partner_k_.resize(col_.size());
+  for (std::size_t k = 0; k < col_.size(); ++k) partner_k_[fill_[col_[k]]++] = k;
 }
 
 void ContactList::build_rows(std::span<const IndexPair> pairs, std::size_t n) {

@@ -32,6 +32,10 @@ class ContactList {
   /// Contacts of particle i are k in [row_start()[i], row_start()[i + 1]), partner col()[k] > i.
   std::span<const std::size_t> row_start() const { return row_start_; }
   std::span<const Index> col() const { return col_; }
+  /// Contacts in which particle j is the partner: k = partner_contacts()[q] for q in
+  /// [partner_start()[j], partner_start()[j + 1]), increasing k.
+  std::span<const std::size_t> partner_start() const { return partner_start_; }
+  std::span<const std::size_t> partner_contacts() const { return partner_k_; }
   std::span<Vec3> history() { return history_; }
   std::span<const Vec3> history() const { return history_; }
   /// History of pair (i, j), i < j, or nullptr if it is not a contact (tests, diagnostics).
@@ -40,6 +44,7 @@ class ContactList {
  private:
   void build_rows(std::span<const IndexPair> pairs, std::size_t n);
   void transfer_history();
+  void build_partners();
 
   std::vector<std::size_t> row_start_;
   std::vector<Index> col_;
@@ -48,6 +53,8 @@ class ContactList {
   std::vector<Index> old_col_;
   std::vector<Vec3> old_history_;
   std::vector<std::size_t> fill_;  // scratch: next free slot per row
+  std::vector<std::size_t> partner_start_;
+  std::vector<std::size_t> partner_k_;
 };
 
 }  // namespace drumlab

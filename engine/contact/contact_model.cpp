@@ -76,15 +76,28 @@ struct ContactKernel {
   }
 };
 
+// Two passes, so the result does not depend on the number of threads: (1) each contact's force
+// and torques into per-contact buffers (contacts are independent; each owns its history), (2) each
+// particle sums its contacts in a fixed order: its own row by k, then the rows where it is the
+// partner, by k.
 template <class Normal, bool Tangential, bool Rolling>
-void pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts, double period,
-               double dt, double history_dt) {
+void pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts,
+               PairForceBuffers& buf, double period, double dt, double history_dt) {
+  constexpr bool kTorque = Tangential || Rolling;
   const ContactKernel<Normal, Tangential, Rolling> kernel{law};
   const auto row = contacts.row_start();
   const auto col = contacts.col();
   const auto hist = contacts.history();
   const double half_period = 0.5 * period;
-  for (std::size_t i = 0; i < contacts.rows(); ++i) {
+  buf.force.resize(contacts.size());
+  if constexpr (kTorque) {
+    buf.torque_i.resize(contacts.size());
+    buf.torque_j.resize(contacts.size());
+  }
+  const auto rows = static_cast<std::int64_t>(contacts.rows());
+#pragma omp parallel for schedule(dynamic, 512)
+  for (std::int64_t ii = 0; ii < rows; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
     for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
       const Index j = col[k];
       Vec3 d = p.position[i] - p.position[j];
@@ -94,24 +107,46 @@ void pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& contact
       }
       const double sum_r = p.radius[i] + p.radius[j];
       const double dist2 = d.squaredNorm();
+      Vec3 t_i = Vec3::Zero(), t_j = Vec3::Zero();
       if (dist2 >= sum_r * sum_r || dist2 == 0.0) {
         hist[k].setZero();  // touching within the search tolerance only: no contact yet
-        continue;
+        buf.force[k].setZero();
+      } else {
+        const double dist = std::sqrt(dist2);
+        const double delta = sum_r - dist;
+        const ContactGeometry g{d / dist,
+                                delta,
+                                p.radius[i] * p.radius[j] / sum_r,
+                                1.0 / (p.inv_mass[i] + p.inv_mass[j]),
+                                p.radius[i] - 0.5 * delta,
+                                p.radius[j] - 0.5 * delta,
+                                dt * (p.inv_inertia[i] + p.inv_inertia[j])};
+        buf.force[k] = kernel(g, p.velocity[i] - p.velocity[j], p.omega[i], p.omega[j], hist[k],
+                              history_dt, t_i, &t_j);
       }
-      const double dist = std::sqrt(dist2);
-      const double delta = sum_r - dist;
-      const ContactGeometry g{d / dist,
-                              delta,
-                              p.radius[i] * p.radius[j] / sum_r,
-                              1.0 / (p.inv_mass[i] + p.inv_mass[j]),
-                              p.radius[i] - 0.5 * delta,
-                              p.radius[j] - 0.5 * delta,
-                              dt * (p.inv_inertia[i] + p.inv_inertia[j])};
-      const Vec3 f = kernel(g, p.velocity[i] - p.velocity[j], p.omega[i], p.omega[j], hist[k],
-                            history_dt, p.torque[i], &p.torque[j]);
-      p.force[i] += f;
-      p.force[j] -= f;
+      if constexpr (kTorque) {
+        buf.torque_i[k] = t_i;
+        buf.torque_j[k] = t_j;
+      }
     }
+  }
+  const auto partner_start = contacts.partner_start();
+  const auto partner_k = contacts.partner_contacts();
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ii = 0; ii < rows; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    Vec3 f = Vec3::Zero(), t = Vec3::Zero();
+    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
+      f += buf.force[k];
+      if constexpr (kTorque) t += buf.torque_i[k];
+    }
+    for (std::size_t q = partner_start[i]; q < partner_start[i + 1]; ++q) {
+      const std::size_t k = partner_k[q];
+      f -= buf.force[k];
+      if constexpr (kTorque) t += buf.torque_j[k];
+    }
+    p.force[i] += f;
+    if constexpr (kTorque) p.torque[i] += t;
   }
 }
 
@@ -161,7 +196,10 @@ void wall_loop(const ContactLaw<Normal>& law, Particles& p, const Drum& drum, do
   const ContactKernel<Normal, Tangential, Rolling> kernel{law};
   const Vec3 wall_spin(0.0, 0.0, omega);
   const std::size_t parts = drum.periodic() ? 1 : kWallParts;
-  for (std::size_t i = 0; i < p.size(); ++i) {
+  const auto n = static_cast<std::int64_t>(p.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
     const Vec3& x = p.position[i];
     const double r = p.radius[i];
     for (std::size_t part = 0; part < parts; ++part) {
@@ -219,20 +257,20 @@ ContactModel::ContactModel(const SceneConfig& scene) {
   wall_rolling_ = scene.wall.rolling_friction > 0.0;
 }
 
-void ContactModel::add_pair_forces(Particles& p, ContactList& contacts, double period, double dt,
-                                   double history_dt) const {
+void ContactModel::add_pair_forces(Particles& p, ContactList& contacts, PairForceBuffers& buffers,
+                                   double period, double dt, double history_dt) const {
   std::visit(
       [&](const auto& normal) {
         const auto law = make_law(normal, pair_.tangential, pair_.rolling);
         using N = std::decay_t<decltype(normal)>;
         if (pair_tangential_ && pair_rolling_) {
-          pair_loop<N, true, true>(law, p, contacts, period, dt, history_dt);
+          pair_loop<N, true, true>(law, p, contacts, buffers, period, dt, history_dt);
         } else if (pair_tangential_) {
-          pair_loop<N, true, false>(law, p, contacts, period, dt, history_dt);
+          pair_loop<N, true, false>(law, p, contacts, buffers, period, dt, history_dt);
         } else if (pair_rolling_) {
-          pair_loop<N, false, true>(law, p, contacts, period, dt, history_dt);
+          pair_loop<N, false, true>(law, p, contacts, buffers, period, dt, history_dt);
         } else {
-          pair_loop<N, false, false>(law, p, contacts, period, dt, history_dt);
+          pair_loop<N, false, false>(law, p, contacts, buffers, period, dt, history_dt);
         }
       },
       pair_.normal);

@@ -41,6 +41,13 @@ struct ContactForce {
 /// Tangential displacement of each particle against each wall part (cylinder, low cap, high cap).
 using WallHistory = std::vector<std::array<Vec3, kWallParts>>;
 
+/// Per-contact scratch of the pair loop (force on i, torques on i and j), reused every step.
+struct PairForceBuffers {
+  std::vector<Vec3> force;
+  std::vector<Vec3> torque_i;
+  std::vector<Vec3> torque_j;
+};
+
 class ContactModel {
  public:
   /// Particle-particle: scene.material with itself. Particle-wall: E*, G* from scene.material
@@ -60,8 +67,10 @@ class ContactModel {
   /// Adds the forces (and torques) of every contact in `contacts` to p.force / p.torque and
   /// updates the contacts' history. period > 0: minimum image along z. dt: the time step;
   /// history_dt: time since the previous evaluation (dt, or 0 for the very first one).
-  void add_pair_forces(Particles& p, ContactList& contacts, double period, double dt,
-                       double history_dt) const;
+  /// Parallel (OpenMP) and independent of the thread count: every particle sums its contacts
+  /// in the same order whatever the number of threads.
+  void add_pair_forces(Particles& p, ContactList& contacts, PairForceBuffers& buffers,
+                       double period, double dt, double history_dt) const;
   /// Adds the wall forces of the drum turning at omega (rad/s). history.size() == p.size().
   void add_wall_forces(Particles& p, const Drum& drum, double omega, WallHistory& history,
                        double dt, double history_dt) const;

@@ -81,3 +81,33 @@ TEST(SearchMethodsInADrum, SwitchingMethodMidRunChangesNothing) {
 
 }  // namespace
 }  // namespace drumlab
+
+#ifdef _OPENMP
+#include <omp.h>
+
+namespace drumlab {
+namespace {
+
+TEST(Threads, ResultsAreIdenticalForOneAndTwoThreads) {
+  // Pair forces are summed per particle in a fixed order, so the thread count changes nothing.
+  SceneConfig scene = load_scene(std::string(DRUMLAB_SCENES_DIR) + "/teach_stencil.toml");
+  scene.search_method = "verlet:m2";
+  const Particles start = random_fill(scene);
+  std::vector<Vec3> reference;
+  const int saved = omp_get_max_threads();
+  for (int threads : {1, 2, 3}) {
+    omp_set_num_threads(threads);
+    Simulation sim(scene, start);
+    sim.advance(1500);
+    if (reference.empty()) {
+      reference = sim.particles().position;
+    } else {
+      EXPECT_EQ(sim.particles().position, reference) << threads << " threads";
+    }
+  }
+  omp_set_num_threads(saved);
+}
+
+}  // namespace
+}  // namespace drumlab
+#endif
