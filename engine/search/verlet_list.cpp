@@ -6,7 +6,31 @@
 
 #include "engine/search/search_input.hpp"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace drumlab {
+
+namespace {
+
+int omp_threads() {
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+int omp_thread() {
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
+}  // namespace
 
 VerletListSearch::VerletListSearch(std::unique_ptr<ContactSearch> builder, double skin_factor)
     : builder_(std::move(builder)), skin_factor_(skin_factor) {
@@ -20,6 +44,32 @@ VerletListSearch::VerletListSearch(std::unique_ptr<ContactSearch> builder, doubl
                   skin_factor_, builder_->name());
 }
 
+void VerletListSearch::filter(const SearchInput& in, std::vector<IndexPair>& out) {
+  // Contiguous slices of the sorted list per thread, joined in order: the output stays sorted
+  // and does not depend on the thread count.
+  const std::size_t m = list_.size();
+  const double margin = in.margin + kTouchTolerance;
+  const int threads = omp_threads();
+  slices_.resize(static_cast<std::size_t>(threads));
+#pragma omp parallel num_threads(threads)
+  {
+    const auto t = static_cast<std::size_t>(omp_thread());
+    std::vector<IndexPair>& slice = slices_[t];
+    slice.clear();
+    const std::size_t begin = m * t / static_cast<std::size_t>(threads);
+    const std::size_t end = m * (t + 1) / static_cast<std::size_t>(threads);
+    for (std::size_t k = begin; k < end; ++k) {
+      const IndexPair p = list_[k];
+      const double cut = in.radius[p.i] + in.radius[p.j] + margin;
+      if (distance_squared(in.position[p.i], in.position[p.j], period_) <= cut * cut) {
+        slice.push_back(p);
+      }
+    }
+  }
+  out.clear();
+  for (const auto& slice : slices_) out.insert(out.end(), slice.begin(), slice.end());
+}
+
 bool VerletListSearch::needs_rebuild(const SearchInput& in) const {
   const std::size_t n = in.position.size();
   if (n != reference_.size() || in.margin != margin_ || in.period_z.value_or(0.0) != period_ ||
@@ -27,10 +77,13 @@ bool VerletListSearch::needs_rebuild(const SearchInput& in) const {
     return true;
   }
   const double limit = 0.25 * skin_ * skin_;  // (skin / 2)^2
-  for (std::size_t i = 0; i < n; ++i) {
-    if (distance_squared(in.position[i], reference_[i], period_) > limit) return true;
+  double largest = 0.0;
+  const auto count = static_cast<std::int64_t>(n);
+#pragma omp parallel for reduction(max : largest) schedule(static)
+  for (std::int64_t i = 0; i < count; ++i) {
+    largest = std::max(largest, distance_squared(in.position[i], reference_[i], period_));
   }
-  return false;
+  return largest > limit;
 }
 
 void VerletListSearch::rebuild(const SearchInput& in) {
@@ -63,14 +116,8 @@ void VerletListSearch::find_pairs(const SearchInput& in, std::vector<IndexPair>&
     std::copy(builder_->pairs_tested_per_particle().begin(),
               builder_->pairs_tested_per_particle().end(), tests_per_particle_.begin());
   }
-  out.clear();
-  const double margin = in.margin + kTouchTolerance;
-  for (const IndexPair& p : list_) {
-    const double cut = in.radius[p.i] + in.radius[p.j] + margin;
-    if (distance_squared(in.position[p.i], in.position[p.j], period_) <= cut * cut)
-      out.push_back(p);
-    ++tests_per_particle_[p.i];
-  }
+  for (const IndexPair& p : list_) ++tests_per_particle_[p.i];
+  filter(in, out);
   counters_.pairs_tested += list_.size();
   counters_.pairs_found = out.size();
 }

@@ -33,12 +33,14 @@ class VerletListSearch final : public ContactSearch {
  private:
   bool needs_rebuild(const SearchInput& in) const;
   void rebuild(const SearchInput& in);
+  void filter(const SearchInput& in, std::vector<IndexPair>& out);
 
   std::unique_ptr<ContactSearch> builder_;
   double skin_factor_;
   double skin_ = 0.0;
   std::string name_, description_;
   std::vector<IndexPair> list_;  ///< pairs within margin + skin at the last build, sorted
+  std::vector<std::vector<IndexPair>> slices_;  ///< per-thread output of filter()
   std::vector<IndexPair> scratch_pairs_;
   std::vector<std::uint32_t> scratch_counts_;
   std::vector<Vec3> reference_;  ///< positions at the last build
