@@ -6,6 +6,10 @@
 #include <numeric>
 #include <type_traits>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include <fmt/format.h>
 
 #include "engine/search/grid_axes.hpp"
@@ -14,6 +18,22 @@
 namespace drumlab {
 
 namespace {
+
+int max_threads() {
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+int thread_number() {
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
 
 /// A dense array is used while it costs at most this many cells per particle (plus a floor).
 constexpr double kDenseCellsPerParticle = 64.0;
@@ -227,69 +247,81 @@ void CellGridSearch::visit_all(const Cells& cells, const SearchInput& in,
   const double margin = in.margin + kTouchTolerance;
   const std::vector<CellOffset>& offsets = stencil_.offsets;
   std::uint64_t cells_visited = 0, pairs_tested = 0;
+  // Each thread takes a contiguous block of slots and collects its pairs; the blocks are joined
+  // in order. Counters per particle are written by the one thread that owns the particle.
+  slices_.resize(static_cast<std::size_t>(max_threads()));
+  const auto slots = static_cast<std::int64_t>(n);
+#pragma omp parallel num_threads(static_cast<int>(slices_.size())) \
+    reduction(+ : cells_visited, pairs_tested)
+  {
+    std::vector<IndexPair>& mine = slices_[static_cast<std::size_t>(thread_number())];
+    mine.clear();
+#pragma omp for schedule(static)
+    for (std::int64_t ss = 0; ss < slots; ++ss) {
+      const auto s = static_cast<std::size_t>(ss);
+      const Vec3 xi = sorted_position_[s];
+      const double ri = sorted_radius_[s];
+      const Index pi = order_[s];
+      const CellCoord ci = cell_[pi];
+      std::uint32_t my_cells = 1, my_tests = 0;
 
-  for (std::size_t s = 0; s < n; ++s) {
-    const Vec3 xi = sorted_position_[s];
-    const double ri = sorted_radius_[s];
-    const Index pi = order_[s];
-    const CellCoord ci = cell_[pi];
-    std::uint32_t my_cells = 1, my_tests = 0;
+      auto scan = [&](std::uint32_t begin, std::uint32_t end) {
+        my_tests += end - begin;
+        for (std::uint32_t t = begin; t < end; ++t) {
+          const double cut = ri + sorted_radius_[t] + margin;
+          if (distance_squared(xi, sorted_position_[t], period) <= cut * cut) {
+            const Index pj = order_[t];
+            mine.push_back(pi < pj ? IndexPair{pi, pj} : IndexPair{pj, pi});
+          }
+        }
+      };
 
-    auto scan = [&](std::uint32_t begin, std::uint32_t end) {
-      my_tests += end - begin;
-      for (std::uint32_t t = begin; t < end; ++t) {
-        const double cut = ri + sorted_radius_[t] + margin;
-        if (distance_squared(xi, sorted_position_[t], period) <= cut * cut) {
-          const Index pj = order_[t];
-          out.push_back(pi < pj ? IndexPair{pi, pj} : IndexPair{pj, pi});
+      CellRange r;
+      cells.find(ci, r);
+      scan(static_cast<std::uint32_t>(s) + 1, r.end);  // own cell: partners later in the order
+
+      const bool small = ri <= small_radius_;
+      const bool skip = config_.skip_far_for_smallest;
+      const int k_forward = (skip && small) ? std::min(k_small_, reach_[pi]) : reach_[pi];
+      if constexpr (std::is_same_v<Cells, DenseCellIndex>) {
+        // Rows of cells are contiguous in the sorted order: two lookups per row.
+        for (const StencilRow& row : stencil_.rows[k_forward]) {
+          CellCoord c{0, ci.y + row.dy, ci.z + row.dz};
+          if (!wrap(c)) continue;
+          const std::int64_t x0 = std::max<std::int64_t>(ci.x + row.dx_lo, 0);
+          const std::int64_t x1 = std::min<std::int64_t>(ci.x + row.dx_hi, geometry_.nx - 1);
+          if (x0 > x1) continue;
+          my_cells += static_cast<std::uint32_t>(x1 - x0 + 1);
+          c.x = x0;
+          const std::uint32_t begin = cells.cell(c).begin;
+          c.x = x1;
+          scan(begin, cells.cell(c).end);
+        }
+      } else {
+        for (std::uint32_t o = 0; o < stencil_.prefix_end[k_forward]; ++o) {
+          CellCoord c{ci.x + offsets[o].dx, ci.y + offsets[o].dy, ci.z + offsets[o].dz};
+          if (!wrap(c)) continue;
+          ++my_cells;
+          if (cells.find(c, r)) scan(r.begin, r.end);
         }
       }
-    };
-
-    CellRange r;
-    cells.find(ci, r);
-    scan(static_cast<std::uint32_t>(s) + 1, r.end);  // own cell: partners later in the order
-
-    const bool small = ri <= small_radius_;
-    const bool skip = config_.skip_far_for_smallest;
-    const int k_forward = (skip && small) ? std::min(k_small_, reach_[pi]) : reach_[pi];
-    if constexpr (std::is_same_v<Cells, DenseCellIndex>) {
-      // Rows of cells are contiguous in the sorted order: two lookups per row.
-      for (const StencilRow& row : stencil_.rows[k_forward]) {
-        CellCoord c{0, ci.y + row.dy, ci.z + row.dz};
-        if (!wrap(c)) continue;
-        const std::int64_t x0 = std::max<std::int64_t>(ci.x + row.dx_lo, 0);
-        const std::int64_t x1 = std::min<std::int64_t>(ci.x + row.dx_hi, geometry_.nx - 1);
-        if (x0 > x1) continue;
-        my_cells += static_cast<std::uint32_t>(x1 - x0 + 1);
-        c.x = x0;
-        const std::uint32_t begin = cells.cell(c).begin;
-        c.x = x1;
-        scan(begin, cells.cell(c).end);
+      if (skip && !small && reach_back_[pi] > k_small_) {
+        // Far ring of the backward half, smallest-size partners only (they skipped it).
+        for (std::uint32_t o = stencil_.prefix_end[k_small_];
+             o < stencil_.prefix_end[reach_back_[pi]]; ++o) {
+          CellCoord c{ci.x - offsets[o].dx, ci.y - offsets[o].dy, ci.z - offsets[o].dz};
+          if (!wrap(c)) continue;
+          ++my_cells;
+          if (cells.find(c, r)) scan(r.begin, r.small_end);
+        }
       }
-    } else {
-      for (std::uint32_t o = 0; o < stencil_.prefix_end[k_forward]; ++o) {
-        CellCoord c{ci.x + offsets[o].dx, ci.y + offsets[o].dy, ci.z + offsets[o].dz};
-        if (!wrap(c)) continue;
-        ++my_cells;
-        if (cells.find(c, r)) scan(r.begin, r.end);
-      }
+      cells_per_particle_[pi] = my_cells;
+      tests_per_particle_[pi] = my_tests;
+      cells_visited += my_cells;
+      pairs_tested += my_tests;
     }
-    if (skip && !small && reach_back_[pi] > k_small_) {
-      // Far ring of the backward half, smallest-size partners only (they skipped it).
-      for (std::uint32_t o = stencil_.prefix_end[k_small_];
-           o < stencil_.prefix_end[reach_back_[pi]]; ++o) {
-        CellCoord c{ci.x - offsets[o].dx, ci.y - offsets[o].dy, ci.z - offsets[o].dz};
-        if (!wrap(c)) continue;
-        ++my_cells;
-        if (cells.find(c, r)) scan(r.begin, r.small_end);
-      }
-    }
-    cells_per_particle_[pi] = my_cells;
-    tests_per_particle_[pi] = my_tests;
-    cells_visited += my_cells;
-    pairs_tested += my_tests;
   }
+  for (const auto& slice : slices_) out.insert(out.end(), slice.begin(), slice.end());
   counters_.cells_visited = cells_visited;
   counters_.pairs_tested = pairs_tested;
 }

@@ -109,6 +109,7 @@ class CellGridSearch final : public ContactSearch {
   std::vector<Vec3> sorted_position_;
   std::vector<double> sorted_radius_;
   std::vector<std::uint32_t> scratch_;
+  std::vector<std::vector<IndexPair>> slices_;  ///< per-thread pairs of visit_all
   DenseCellIndex dense_;
   HashedCellIndex hashed_;
 };
