@@ -125,7 +125,7 @@ std::string cell(double v, const char* format = "{:.3g}") {
 
 void print_row(const SearchRow& r) {
   const double n = static_cast<double>(r.particles);
-  fmt::print("{:<14} {:<14} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9} {:>9} {:>9} {:>7} {:>9}\n",
+  fmt::print("{:<20} {:<14} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9} {:>9} {:>9} {:>7} {:>9}\n",
              r.dataset, r.method, cell(r.cells_pp), cell(r.tested_pp), cell(r.tested_per_contact),
              cell(1e9 * r.call_s / n, "{:.1f}"), cell(1e9 * r.build_s / n, "{:.1f}"),
              cell(1e9 * r.visit_s / n, "{:.1f}"), cell(1e9 * r.step_s / n, "{:.1f}"),
@@ -204,7 +204,7 @@ void run_bench_search(const SearchBenchOptions& opt) {
   fmt::print(
       "times per particle and call (ns); a grid builds and visits in one call (not separable "
       "from outside the engine): build/visit only for Verlet lists (build = first call)\n");
-  fmt::print("{:<14} {:<14} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9} {:>9} {:>9} {:>7} {:>9}\n",
+  fmt::print("{:<20} {:<14} {:>8} {:>8} {:>8} {:>9} {:>9} {:>9} {:>9} {:>9} {:>7} {:>9}\n",
              "dataset", "method", "cells/p", "tested/p", "tst/cont", "call ns", "build ns",
              "visit ns", "step ns", "ops/p", "search%", "paper ops");
   std::vector<SearchRow> rows;

@@ -12,9 +12,9 @@
 namespace drumlab::cli {
 
 struct RollingPlan {
-  double settle_time = -1.0;       ///< s with the drum at rest; < 0: the scene's fill.settle_time
-  double turn_revolutions = 0.05;  ///< drum turns after settling
-  bool fresh = false;              ///< ignore a cached state
+  double settle_time = -1.0;      ///< s with the drum at rest; < 0: the scene's fill.settle_time
+  double turn_revolutions = 0.1;  ///< drum turns after settling (the demo's 0.1: surface flowing)
+  bool fresh = false;             ///< ignore a cached state
   std::filesystem::path cache_dir = "out/bench";
 };
 
