@@ -30,10 +30,23 @@ namespace {
 constexpr double kSeriesColours[][3] = {
     {31, 119, 180}, {255, 127, 14}, {44, 160, 44}, {214, 39, 40}, {148, 103, 189}};
 
-double shown(double v, bool log_y) {
+/// Lowest decade of a log axis: below the smallest positive value, so that a value of exactly
+/// 1, 10, ... still gets a visible bar (bars start at the axis origin).
+int lowest_decade(const BarPanel& panel) {
+  double low = std::numeric_limits<double>::infinity();
+  for (const BarSeries& s : panel.series) {
+    for (const double v : s.values) {
+      if (std::isfinite(v) && v > 0.0) low = std::min(low, v);
+    }
+  }
+  return std::isfinite(low) ? static_cast<int>(std::floor(std::log10(low) - 0.25)) : 0;
+}
+
+/// Bar height: the value, or on a log axis its decades above the lowest decade (0: no bar).
+double shown(double v, const BarPanel& panel, int lo) {
   if (!std::isfinite(v)) return 0.0;
-  if (!log_y) return v;
-  return v > 0.0 ? std::log10(v) : 0.0;
+  if (!panel.log_y) return v;
+  return v > 0.0 ? std::log10(v) - lo : 0.0;
 }
 
 /// Fills one chart: a table with an x column (1..n) and a column per series, one bar plot each.
@@ -49,16 +62,16 @@ void fill_chart(vtkChartXY* chart, const BarPanel& panel) {
   }
   const auto n = static_cast<vtkIdType>(panel.categories.size());
   table->SetNumberOfRows(n);
-  double top = 0.0, bottom = 0.0;
+  const int lo = panel.log_y ? lowest_decade(panel) : 0;
+  double top = 0.0;
   for (vtkIdType r = 0; r < n; ++r) {
     table->SetValue(r, 0, static_cast<double>(r + 1));
     for (std::size_t c = 0; c < panel.series.size(); ++c) {
       const auto& values = panel.series[c].values;
       const double v =
-          static_cast<std::size_t>(r) < values.size() ? shown(values[r], panel.log_y) : 0.0;
+          static_cast<std::size_t>(r) < values.size() ? shown(values[r], panel, lo) : 0.0;
       table->SetValue(r, static_cast<vtkIdType>(c + 1), v);
       top = std::max(top, v);
-      bottom = std::min(bottom, v);
     }
   }
   for (std::size_t c = 0; c < panel.series.size(); ++c) {
@@ -91,17 +104,15 @@ void fill_chart(vtkChartXY* chart, const BarPanel& panel) {
   ya->SetTitle(panel.y_label);
   ya->SetBehavior(vtkAxis::FIXED);
   if (panel.log_y) {
-    const int lo = static_cast<int>(std::floor(bottom));
-    const int hi = static_cast<int>(std::ceil(top + 1e-9));
+    const int decades = std::max(1, static_cast<int>(std::ceil(top - 1e-9)));
     vtkNew<vtkDoubleArray> ypos;
     vtkNew<vtkStringArray> ylabels;
-    for (int d = lo; d <= std::max(hi, lo + 1); ++d) {
+    for (int d = 0; d <= decades; ++d) {
       ypos->InsertNextValue(d);
-      ylabels->InsertNextValue(d >= 0 && d <= 6 ? fmt::format("{}", std::pow(10, d))
-                                                : fmt::format("1e{}", d));
+      ylabels->InsertNextValue(fmt::format("{:g}", std::pow(10.0, lo + d)));
     }
     ya->SetCustomTickPositions(ypos, ylabels);
-    ya->SetRange(lo, std::max(hi, lo + 1));
+    ya->SetRange(0.0, decades);
   } else {
     ya->SetRange(0.0, top > 0.0 ? 1.08 * top : 1.0);
   }
