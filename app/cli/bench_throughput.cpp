@@ -1,6 +1,8 @@
 #include "app/cli/bench_throughput.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <memory>
 
 #include <fmt/format.h>
@@ -43,9 +45,10 @@ struct ThroughputRow {
     return n > 0.0 ? static_cast<double>(v) / n : 0.0;
   }
   double tested_per_contact() const {
+    // No contacts (a loose fill): no ratio.
     return phase.search.pairs_found > 0 ? static_cast<double>(phase.search.pairs_tested) /
                                               static_cast<double>(phase.search.pairs_found)
-                                        : 0.0;
+                                        : std::numeric_limits<double>::quiet_NaN();
   }
 };
 
@@ -89,15 +92,20 @@ ThroughputRow measure(const RollingState& rolling, const std::string& method, in
   return row;
 }
 
+std::string optional_number(double v) {
+  return std::isfinite(v) ? fmt::format("{:.4g}", v) : std::string();
+}
+
 void print_row(const ThroughputRow& r) {
   fmt::print(
-      "{:<14} {:>3} {:>6} {:>12.4g} {:>7.2f} {:>7.1f} {:>7.1f} {:>7.1f} {:>7.1f} {:>8.2f} {:>8.2f} "
+      "{:<14} {:>3} {:>6} {:>12.4g} {:>7.2f} {:>7.1f} {:>7.1f} {:>7.1f} {:>7.1f} {:>8.2f} {:>8} "
       "{:>8} {:>8.0f}\n",
       r.method, r.threads, r.phase.steps, r.rate(), r.speedup,
       100.0 * r.share(r.phase.timers.search), 100.0 * r.share(r.phase.timers.forces),
       100.0 * r.share(r.phase.timers.walls), 100.0 * r.share(r.phase.timers.integration),
-      r.per_particle_step(r.phase.search.pairs_tested), r.tested_per_contact(), r.rebuilds,
-      r.heap_bytes_per_particle);
+      r.per_particle_step(r.phase.search.pairs_tested),
+      std::isfinite(r.tested_per_contact()) ? fmt::format("{:.2f}", r.tested_per_contact()) : "-",
+      r.rebuilds, r.heap_bytes_per_particle);
 }
 
 void write_csv(const std::filesystem::path& file, const std::string& scene,
@@ -111,13 +119,13 @@ void write_csv(const std::filesystem::path& file, const std::string& scene,
       const auto& t = r.phase.timers;
       os << fmt::format(
           "{},{},{},{},{},{:.6g},{:.6g},{:.4g},{:.4f},{:.4f},{:.4f},{:.4f},{:.4g},"
-          "{:.4g},{:.4g},{:.4g},{},{:.1f}\n",
+          "{:.4g},{:.4g},{},{},{:.1f}\n",
           scene, r.method, r.threads, r.particles, r.phase.steps, r.stepping(), r.rate(), r.speedup,
           r.share(t.search), r.share(t.forces), r.share(t.walls), r.share(t.integration),
           r.per_particle_step(r.phase.search.cells_visited),
           r.per_particle_step(r.phase.search.pairs_tested),
-          2.0 * r.per_particle_step(r.phase.search.pairs_found), r.tested_per_contact(), r.rebuilds,
-          r.heap_bytes_per_particle);
+          2.0 * r.per_particle_step(r.phase.search.pairs_found),
+          optional_number(r.tested_per_contact()), r.rebuilds, r.heap_bytes_per_particle);
     }
   });
 }
