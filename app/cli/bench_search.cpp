@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
 
@@ -216,6 +217,7 @@ void run_bench_search(const SearchBenchOptions& opt) {
       SearchRow row = measure_search(d, m, opt.repeats);
       if (&d == &datasets.front()) measure_steps(rolling, row, opt.steps);
       print_row(row);
+      std::fflush(stdout);  // rows as they come, also into a pipe or file
       rows.push_back(std::move(row));
     }
   }

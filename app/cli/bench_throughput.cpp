@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
 
@@ -196,6 +197,7 @@ void run_bench_throughput(const ThroughputOptions& opt) {
       if (t == 1) base_rate = row.rate();
       row.speedup = base_rate > 0.0 ? row.rate() / base_rate : 0.0;
       print_row(row);
+      std::fflush(stdout);  // rows as they come, also into a pipe or file
       rows.push_back(std::move(row));
     }
   }
