@@ -1,0 +1,73 @@
+// drumlab bench throughput [--scene S] [--threads N] [--methods LIST] [--steps N] [--out DIR]
+// drumlab bench search [--scene S] [--methods LIST] [--table2] [--out DIR]
+// Benchmarks that print figures (speed targets live here, not in timed tests): see
+// bench_throughput.hpp and bench_search.hpp.
+#include <memory>
+
+#include "app/cli/bench_search.hpp"
+#include "app/cli/bench_throughput.hpp"
+#include "app/cli/commands.hpp"
+#include "app/cli/scene_setup.hpp"
+
+namespace drumlab::cli {
+
+namespace {
+
+/// Options both benchmarks share: the scene and how its rolling state is prepared.
+void add_state_options(CLI::App* cmd, std::string& scene, RollingPlan& plan, std::string& out) {
+  cmd->add_option("--scene", scene, "scene file (default: scenes/drum_demo.toml)");
+  cmd->add_option("--settle-time", plan.settle_time,
+                  "s of settling before the drum turns (default: the scene's fill.settle_time)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--turn", plan.turn_revolutions, "drum revolutions after settling")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_flag("--fresh", plan.fresh, "prepare the rolling state again, ignoring the cache");
+  cmd->add_option("--cache", plan.cache_dir, "folder of the cached rolling states")
+      ->capture_default_str();
+  cmd->add_option("--out", out, "folder for the CSV and PNG")->capture_default_str();
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app) {
+  CLI::App* bench = app.add_subcommand("bench", "Benchmarks: throughput, contact search");
+  bench->require_subcommand(1);
+
+  auto t = std::make_shared<ThroughputOptions>();
+  CLI::App* throughput = bench->add_subcommand(
+      "throughput", "Particle-steps/s of a scene's rolling state for each search method");
+  add_state_options(throughput, t->scene, t->plan, t->out);
+  throughput->add_option("--threads", t->threads, "also run with N OpenMP threads")
+      ->check(CLI::Range(1, 1024));
+  throughput->add_option("--methods", t->methods, "search methods (default: all but brute)")
+      ->delimiter(',');
+  throughput->add_option("--steps", t->steps, "timed steps per method")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  throughput->add_option("--warmup", t->warmup, "untimed steps before timing")
+      ->capture_default_str();
+  throughput->callback([t] {
+    if (t->scene.empty()) t->scene = shipped_scene("drum_demo.toml");
+    run_bench_throughput(*t);
+  });
+
+  auto s = std::make_shared<SearchBenchOptions>();
+  CLI::App* search = bench->add_subcommand(
+      "search", "Every search method on the flowing demo drum and the paper's packings");
+  add_state_options(search, s->scene, s->plan, s->out);
+  search->add_option("--methods", s->methods, "search methods (default: all)")->delimiter(',');
+  search->add_flag("!--no-table1", s->table1, "leave out the paper's Table 1 packing (192k)");
+  search->add_flag("--table2", s->table2, "add the paper's Table 2 packing (2.6M particles)");
+  search->add_option("--repeats", s->repeats, "timed calls per method (median kept)")
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
+  search->add_option("--steps", s->steps, "dynamic steps per method on the flowing state")
+      ->capture_default_str();
+  search->callback([s] {
+    if (s->scene.empty()) s->scene = shipped_scene("drum_demo.toml");
+    run_bench_search(*s);
+  });
+}
+
+}  // namespace drumlab::cli

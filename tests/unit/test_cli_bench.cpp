@@ -1,0 +1,162 @@
+// `drumlab bench throughput` and `drumlab bench search` end to end on a tiny drum with few steps:
+// exit 0, the CSV has the expected header and one row per method, the chart is a valid PNG (when
+// the CLI is built with rendering), the rolling state is cached and reused; bad output folders,
+// unknown methods and bad scenes give exit code 2 and leave no file. No speeds are asserted.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include "tests/unit/cli_runner.hpp"
+
+namespace drumlab::test {
+namespace {
+
+std::string tiny_scene() {
+  return R"(name = "tiny_bench"
+search = "m5"
+[drum]
+diameter = 0.2
+depth = 0.05
+omega = 2.0
+[[particles]]
+radius = 0.004
+volume_fraction = 0.5
+[[particles]]
+radius = 0.008
+volume_fraction = 0.5
+[material]
+density = 2500.0
+youngs_modulus = 5e6
+poisson_ratio = 0.3
+restitution = 0.5
+friction = 0.5
+[fill]
+count = 300
+settle_time = 0.005
+[time]
+dt_factor = 0.2
+duration = 0.01
+[output]
+diagnostics_every = 20
+)";
+}
+
+std::vector<std::string> lines_of(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+/// PNG signature and an IHDR chunk with a non-zero size.
+bool is_png(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::string head(24, '\0');
+  if (!in.read(head.data(), 24)) return false;
+  const std::string signature = "\x89PNG\r\n\x1a\n";
+  auto be32 = [&](int at) {
+    return (static_cast<unsigned>(static_cast<unsigned char>(head[at])) << 24) |
+           (static_cast<unsigned>(static_cast<unsigned char>(head[at + 1])) << 16) |
+           (static_cast<unsigned>(static_cast<unsigned char>(head[at + 2])) << 8) |
+           static_cast<unsigned>(static_cast<unsigned char>(head[at + 3]));
+  };
+  return head.substr(0, 8) == signature && head.substr(12, 4) == "IHDR" && be32(16) > 0 &&
+         be32(20) > 0;
+}
+
+bool built_without_render(const std::string& output) {
+  return output.find("built without rendering") != std::string::npos;
+}
+
+TEST(CliBench, ThroughputWritesOneRowPerMethodAndAChart) {
+  TempDir dir("bench-throughput");
+  const auto scene = dir.write("tiny.toml", tiny_scene());
+  const auto out = dir.path() / "out";
+  const std::string common = "bench throughput --scene " + scene.string() + " --cache " +
+                             (dir.path() / "cache").string() + " --out " + out.string() +
+                             " --steps 5 --warmup 1";
+  const auto r = run_cli(common + " --methods m5,verlet,mlgrid,brute");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("cached as"), std::string::npos) << r.output;
+  const auto lines = lines_of(out / "throughput_tiny_bench.csv");
+  ASSERT_EQ(lines.size(), 5u) << r.output;
+  EXPECT_EQ(lines[0],
+            "scene,method,threads,particles,steps,stepping_s,particle_steps_per_s,speedup,"
+            "search_share,forces_share,walls_share,integration_share,cells_per_particle,"
+            "tested_per_particle,contacts_per_particle,tested_per_contact,verlet_rebuilds,"
+            "heap_bytes_per_particle");
+  const std::vector<std::string> methods = {"m5", "verlet", "mlgrid", "brute"};
+  for (std::size_t k = 0; k < methods.size(); ++k) {
+    EXPECT_EQ(lines[k + 1].rfind("tiny_bench," + methods[k] + ",1,300,5,", 0), 0u) << lines[k + 1];
+  }
+  if (!built_without_render(r.output)) {
+    EXPECT_TRUE(is_png(out / "throughput_tiny_bench.png"));
+  }
+
+  // The second run reuses the cached rolling state; two thread counts give two rows per method.
+  const auto again = run_cli(common + " --methods m2 --threads 2");
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("cached "), std::string::npos) << again.output;
+  EXPECT_EQ(again.output.find("cached as"), std::string::npos) << again.output;
+  EXPECT_EQ(lines_of(out / "throughput_tiny_bench.csv").size(), 3u);
+}
+
+TEST(CliBench, SearchWritesOneRowPerMethodAndAChart) {
+  TempDir dir("bench-search");
+  const auto scene = dir.write("tiny.toml", tiny_scene());
+  const auto out = dir.path() / "out";
+  const auto r = run_cli("bench search --no-table1 --scene " + scene.string() + " --cache " +
+                         (dir.path() / "cache").string() + " --out " + out.string() +
+                         " --steps 3 --repeats 1");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto lines = lines_of(out / "search_tiny_bench.csv");
+  ASSERT_FALSE(lines.empty()) << r.output;
+  EXPECT_EQ(lines[0],
+            "dataset,method,particles,contacts_per_particle,cells_per_particle,tested_per_particle,"
+            "tested_per_contact,first_call_s,call_s,build_s,visit_s,step_s,search_share,"
+            "paper_operations_per_particle");
+  const std::vector<std::string> methods = {
+      "brute", "m1", "m2", "m3", "m4", "m5", "mlgrid", "verlet", "verlet:m2", "verlet:mlgrid"};
+  ASSERT_EQ(lines.size(), methods.size() + 1) << r.output;
+  for (std::size_t k = 0; k < methods.size(); ++k) {
+    EXPECT_EQ(lines[k + 1].rfind("tiny_bench_flowing," + methods[k] + ",300,", 0), 0u)
+        << lines[k + 1];
+  }
+  if (!built_without_render(r.output)) {
+    EXPECT_TRUE(is_png(out / "search_tiny_bench.png"));
+  }
+}
+
+TEST(CliBench, BadInputGivesExitCode2AndNoFile) {
+  TempDir dir("bench-bad");
+  const auto scene = dir.write("tiny.toml", tiny_scene());
+  const auto blocker = dir.write("file", "not a folder");
+  const std::string cache = " --cache " + (dir.path() / "cache").string();
+  const std::vector<std::string> cases = {
+      "bench throughput --steps 2 --scene " + scene.string() + cache + " --out " +
+          (blocker / "out").string(),
+      "bench search --no-table1 --scene " + scene.string() + cache + " --out " +
+          (blocker / "out").string(),
+      "bench throughput --methods m9 --scene " + scene.string() + cache + " --out " +
+          (dir.path() / "out").string(),
+      "bench throughput --scene " + (dir.path() / "missing.toml").string() + cache + " --out " +
+          (dir.path() / "out").string(),
+  };
+  for (const std::string& args : cases) {
+    const auto r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find("drumlab: error: "), std::string::npos) << r.output;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "out" / "throughput_tiny_bench.csv"));
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "cache"));
+  std::size_t files = 0;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir.path())) {
+    files += e.is_regular_file() ? 1 : 0;
+  }
+  EXPECT_EQ(files, 2u);  // tiny.toml and the blocking file only
+}
+
+}  // namespace
+}  // namespace drumlab::test
