@@ -3,6 +3,9 @@
 #include <cmath>
 
 #include <fmt/format.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace drumlab {
 namespace {
@@ -76,19 +79,79 @@ struct ContactKernel {
   }
 };
 
-// Two passes, so the result does not depend on the number of threads: (1) each contact's force
-// and torques into per-contact buffers (contacts are independent; each owns its history), (2) each
-// particle sums its contacts in a fixed order: its own row by k, then the rows where it is the
-// partner, by k.
+// Geometry of contact k = (i, j); false if the pair only touches within the search tolerance.
+inline bool pair_geometry(const Particles& p, std::size_t i, Index j, double period, double dt,
+                          ContactGeometry& g) {
+  Vec3 d = p.position[i] - p.position[j];
+  if (period > 0.0) {
+    if (d.z() > 0.5 * period) d.z() -= period;
+    if (d.z() < -0.5 * period) d.z() += period;
+  }
+  const double sum_r = p.radius[i] + p.radius[j];
+  const double dist2 = d.squaredNorm();
+  if (dist2 >= sum_r * sum_r || dist2 == 0.0) return false;
+  const double dist = std::sqrt(dist2);
+  const double delta = sum_r - dist;
+  g = ContactGeometry{d / dist,
+                      delta,
+                      p.radius[i] * p.radius[j] / sum_r,
+                      1.0 / (p.inv_mass[i] + p.inv_mass[j]),
+                      p.radius[i] - 0.5 * delta,
+                      p.radius[j] - 0.5 * delta,
+                      dt * (p.inv_inertia[i] + p.inv_inertia[j])};
+  return true;
+}
+
+// One thread: accumulate directly. Every particle receives its contributions in the order the
+// two-pass loop below sums them (rows where it is the partner by k, then its own row by k), each
+// contact's torques first summed from zero, so both give bit-identical results.
+template <class Normal, bool Tangential, bool Rolling>
+void pair_loop_serial(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts,
+                      double period, double dt, double history_dt) {
+  const ContactKernel<Normal, Tangential, Rolling> kernel{law};
+  const auto row = contacts.row_start();
+  const auto col = contacts.col();
+  const auto hist = contacts.history();
+  for (std::size_t i = 0; i < contacts.rows(); ++i) {
+    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
+      const Index j = col[k];
+      ContactGeometry g;
+      if (!pair_geometry(p, i, j, period, dt, g)) {
+        hist[k].setZero();  // touching within the search tolerance only: no contact yet
+        continue;
+      }
+      Vec3 t_i = Vec3::Zero(), t_j = Vec3::Zero();
+      const Vec3 f = kernel(g, p.velocity[i] - p.velocity[j], p.omega[i], p.omega[j], hist[k],
+                            history_dt, t_i, &t_j);
+      p.force[i] += f;
+      p.force[j] -= f;
+      if constexpr (Tangential || Rolling) {
+        p.torque[i] += t_i;
+        p.torque[j] += t_j;
+      }
+    }
+  }
+}
+
+// Several threads: two passes, so the result does not depend on the number of threads: (1) each
+// contact's force and torques into per-contact buffers (contacts are independent; each owns its
+// history), (2) each particle sums its contacts in a fixed order: the rows where it is the
+// partner, by k, then its own row, by k.
 template <class Normal, bool Tangential, bool Rolling>
 void pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts,
                PairForceBuffers& buf, double period, double dt, double history_dt) {
+#ifdef _OPENMP
+  if (omp_get_max_threads() == 1)
+#endif
+  {
+    pair_loop_serial<Normal, Tangential, Rolling>(law, p, contacts, period, dt, history_dt);
+    return;
+  }
   constexpr bool kTorque = Tangential || Rolling;
   const ContactKernel<Normal, Tangential, Rolling> kernel{law};
   const auto row = contacts.row_start();
   const auto col = contacts.col();
   const auto hist = contacts.history();
-  const double half_period = 0.5 * period;
   buf.force.resize(contacts.size());
   if constexpr (kTorque) {
     buf.torque_i.resize(contacts.size());
@@ -99,28 +162,13 @@ void pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& contact
   for (std::int64_t ii = 0; ii < rows; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
-      const Index j = col[k];
-      Vec3 d = p.position[i] - p.position[j];
-      if (period > 0.0) {
-        if (d.z() > half_period) d.z() -= period;
-        if (d.z() < -half_period) d.z() += period;
-      }
-      const double sum_r = p.radius[i] + p.radius[j];
-      const double dist2 = d.squaredNorm();
+      ContactGeometry g;
       Vec3 t_i = Vec3::Zero(), t_j = Vec3::Zero();
-      if (dist2 >= sum_r * sum_r || dist2 == 0.0) {
+      if (!pair_geometry(p, i, col[k], period, dt, g)) {
         hist[k].setZero();  // touching within the search tolerance only: no contact yet
         buf.force[k].setZero();
       } else {
-        const double dist = std::sqrt(dist2);
-        const double delta = sum_r - dist;
-        const ContactGeometry g{d / dist,
-                                delta,
-                                p.radius[i] * p.radius[j] / sum_r,
-                                1.0 / (p.inv_mass[i] + p.inv_mass[j]),
-                                p.radius[i] - 0.5 * delta,
-                                p.radius[j] - 0.5 * delta,
-                                dt * (p.inv_inertia[i] + p.inv_inertia[j])};
+        const Index j = col[k];
         buf.force[k] = kernel(g, p.velocity[i] - p.velocity[j], p.omega[i], p.omega[j], hist[k],
                               history_dt, t_i, &t_j);
       }
@@ -136,14 +184,14 @@ void pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& contact
   for (std::int64_t ii = 0; ii < rows; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     Vec3 f = Vec3::Zero(), t = Vec3::Zero();
-    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
-      f += buf.force[k];
-      if constexpr (kTorque) t += buf.torque_i[k];
-    }
     for (std::size_t q = partner_start[i]; q < partner_start[i + 1]; ++q) {
       const std::size_t k = partner_k[q];
       f -= buf.force[k];
       if constexpr (kTorque) t += buf.torque_j[k];
+    }
+    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
+      f += buf.force[k];
+      if constexpr (kTorque) t += buf.torque_i[k];
     }
     p.force[i] += f;
     if constexpr (kTorque) p.torque[i] += t;
