@@ -63,7 +63,9 @@ void ContactList::build_rows(std::span<const IndexPair> pairs, std::size_t n) {
   for (std::size_t i = 0; i < n; ++i) row_start_[i + 1] += row_start_[i];
   if (std::is_sorted(pairs.begin(), pairs.end())) {  // e.g. from a Verlet list: copy
     col_.resize(pairs.size());
-    for (std::size_t k = 0; k < pairs.size(); ++k) col_[k] = pairs[k].j;
+    const auto m = static_cast<std::int64_t>(pairs.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t k = 0; k < m; ++k) col_[k] = pairs[k].j;
     return;
   }
   // Counting sort by i.
@@ -86,7 +88,11 @@ void ContactList::build_rows(std::span<const IndexPair> pairs, std::size_t n) {
 void ContactList::transfer_history() {
   history_.resize(col_.size());
   const std::size_t old_rows = old_row_start_.empty() ? 0 : old_row_start_.size() - 1;
-  for (std::size_t i = 0; i + 1 < row_start_.size(); ++i) {
+  const auto rows = static_cast<std::int64_t>(row_start_.empty() ? 0 : row_start_.size() - 1);
+  // Rows are independent: each merges its own old and new partners.
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ii = 0; ii < rows; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
     std::size_t ko = i < old_rows ? old_row_start_[i] : 0;
     const std::size_t ko_end = i < old_rows ? old_row_start_[i + 1] : 0;
     for (std::size_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {

@@ -95,6 +95,8 @@ void VerletListSearch::rebuild(const SearchInput& in) {
   builder_->find_pairs(wide, list_);
   // Sorted by (i, j), the filtered output is sorted too, which the contact list builds fastest.
   sort_pairs(list_, n, scratch_pairs_, scratch_counts_);
+  listed_per_particle_.assign(n, 0);
+  for (const IndexPair& p : list_) ++listed_per_particle_[p.i];
   reference_.assign(in.position.begin(), in.position.end());
   radius_.assign(in.radius.begin(), in.radius.end());
   margin_ = in.margin;
@@ -116,7 +118,7 @@ void VerletListSearch::find_pairs(const SearchInput& in, std::vector<IndexPair>&
     std::copy(builder_->pairs_tested_per_particle().begin(),
               builder_->pairs_tested_per_particle().end(), tests_per_particle_.begin());
   }
-  for (const IndexPair& p : list_) ++tests_per_particle_[p.i];
+  for (std::size_t i = 0; i < n; ++i) tests_per_particle_[i] += listed_per_particle_[i];
   filter(in, out);
   counters_.pairs_tested += list_.size();
   counters_.pairs_found = out.size();

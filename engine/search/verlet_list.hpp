@@ -40,7 +40,8 @@ class VerletListSearch final : public ContactSearch {
   double skin_ = 0.0;
   std::string name_, description_;
   std::vector<IndexPair> list_;  ///< pairs within margin + skin at the last build, sorted
-  std::vector<std::vector<IndexPair>> slices_;  ///< per-thread output of filter()
+  std::vector<std::vector<IndexPair>> slices_;      ///< per-thread output of filter()
+  std::vector<std::uint32_t> listed_per_particle_;  ///< list entries with first index i
   std::vector<IndexPair> scratch_pairs_;
   std::vector<std::uint32_t> scratch_counts_;
   std::vector<Vec3> reference_;  ///< positions at the last build
