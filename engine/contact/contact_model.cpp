@@ -289,6 +289,27 @@ NormalVariant make_normal(const SceneConfig& s, const Material& other, double re
                      effective_shear_modulus(s.material, other), restitution);
 }
 
+// Calls loop.template operator()<Normal, Tangential, Rolling>(law) with the scene's runtime
+// choices turned into template arguments, so the chosen law inlines into the loop.
+template <class Parts, class Loop>
+void with_law(const Parts& parts, bool tangential, bool rolling, Loop&& loop) {
+  std::visit(
+      [&](const auto& normal) {
+        const auto law = make_law(normal, parts.tangential, parts.rolling);
+        using N = std::decay_t<decltype(normal)>;
+        if (tangential && rolling) {
+          loop.template operator()<N, true, true>(law);
+        } else if (tangential) {
+          loop.template operator()<N, true, false>(law);
+        } else if (rolling) {
+          loop.template operator()<N, false, true>(law);
+        } else {
+          loop.template operator()<N, false, false>(law);
+        }
+      },
+      parts.normal);
+}
+
 }  // namespace
 
 ContactModel::ContactModel(const SceneConfig& scene) {
@@ -307,40 +328,18 @@ ContactModel::ContactModel(const SceneConfig& scene) {
 
 void ContactModel::add_pair_forces(Particles& p, ContactList& contacts, PairForceBuffers& buffers,
                                    double period, double dt, double history_dt) const {
-  std::visit(
-      [&](const auto& normal) {
-        const auto law = make_law(normal, pair_.tangential, pair_.rolling);
-        using N = std::decay_t<decltype(normal)>;
-        if (pair_tangential_ && pair_rolling_) {
-          pair_loop<N, true, true>(law, p, contacts, buffers, period, dt, history_dt);
-        } else if (pair_tangential_) {
-          pair_loop<N, true, false>(law, p, contacts, buffers, period, dt, history_dt);
-        } else if (pair_rolling_) {
-          pair_loop<N, false, true>(law, p, contacts, buffers, period, dt, history_dt);
-        } else {
-          pair_loop<N, false, false>(law, p, contacts, buffers, period, dt, history_dt);
-        }
-      },
-      pair_.normal);
+  with_law(pair_, pair_tangential_, pair_rolling_,
+           [&]<class N, bool Tangential, bool Rolling>(const ContactLaw<N>& law) {
+             pair_loop<N, Tangential, Rolling>(law, p, contacts, buffers, period, dt, history_dt);
+           });
 }
 
 void ContactModel::add_wall_forces(Particles& p, const Drum& drum, double omega,
                                    WallHistory& history, double dt, double history_dt) const {
-  std::visit(
-      [&](const auto& normal) {
-        const auto law = make_law(normal, wall_.tangential, wall_.rolling);
-        using N = std::decay_t<decltype(normal)>;
-        if (wall_tangential_ && wall_rolling_) {
-          wall_loop<N, true, true>(law, p, drum, omega, history, dt, history_dt);
-        } else if (wall_tangential_) {
-          wall_loop<N, true, false>(law, p, drum, omega, history, dt, history_dt);
-        } else if (wall_rolling_) {
-          wall_loop<N, false, true>(law, p, drum, omega, history, dt, history_dt);
-        } else {
-          wall_loop<N, false, false>(law, p, drum, omega, history, dt, history_dt);
-        }
-      },
-      wall_.normal);
+  with_law(wall_, wall_tangential_, wall_rolling_,
+           [&]<class N, bool Tangential, bool Rolling>(const ContactLaw<N>& law) {
+             wall_loop<N, Tangential, Rolling>(law, p, drum, omega, history, dt, history_dt);
+           });
 }
 
 void ContactModel::pair_forces(const Particles& p, const ContactList& contacts, double period,

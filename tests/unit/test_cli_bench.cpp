@@ -14,33 +14,7 @@ namespace drumlab::test {
 namespace {
 
 std::string tiny_scene() {
-  return R"(name = "tiny_bench"
-search = "m5"
-[drum]
-diameter = 0.2
-depth = 0.05
-omega = 2.0
-[[particles]]
-radius = 0.004
-volume_fraction = 0.5
-[[particles]]
-radius = 0.008
-volume_fraction = 0.5
-[material]
-density = 2500.0
-youngs_modulus = 5e6
-poisson_ratio = 0.3
-restitution = 0.5
-friction = 0.5
-[fill]
-count = 300
-settle_time = 0.005
-[time]
-dt_factor = 0.2
-duration = 0.01
-[output]
-diagnostics_every = 20
-)";
+  return small_drum_scene("dt_factor = 0.2\nduration = 0.01", "name = \"tiny_bench\"\n");
 }
 
 std::vector<std::string> lines_of(const std::filesystem::path& file) {

@@ -8,36 +8,9 @@
 namespace drumlab::test {
 namespace {
 
-/// A small drum: 300 particles of two sizes, short run.
-std::string small_scene(const std::string& time_table = "dt_factor = 0.2\nduration = 0.01") {
-  return R"(search = "m5"
-[drum]
-diameter = 0.2
-depth = 0.05
-omega = 2.0
-[[particles]]
-radius = 0.004
-volume_fraction = 0.5
-[[particles]]
-radius = 0.008
-volume_fraction = 0.5
-[material]
-density = 2500.0
-youngs_modulus = 5e6
-poisson_ratio = 0.3
-restitution = 0.5
-friction = 0.5
-[fill]
-count = 300
-settle_time = 0.01
-[time]
-)" + time_table +
-         "\n[output]\ndiagnostics_every = 20\n";
-}
-
 TEST(CliRun, SmallDrumRunsAndReportsThroughput) {
   TempDir dir("run");
-  const auto scene = dir.write("small.toml", small_scene());
+  const auto scene = dir.write("small.toml", small_drum_scene());
   for (const char* method : {"m1", "m2", "m3", "m4", "m5", "brute", "mlgrid", "verlet", "auto"}) {
     const auto r = run_cli("run " + scene.string() + " --method " + method);
     EXPECT_EQ(r.exit_code, 0) << r.output;
@@ -51,15 +24,15 @@ TEST(CliRun, BadScenesGiveOneLineErrors) {
   struct Case {
     std::string name, text, args, expected;
   };
-  std::string negative = small_scene();
+  std::string negative = small_drum_scene();
   negative.replace(negative.find("radius = 0.004"), 14, "radius = -0.004");
-  std::string unknown_key = small_scene();
+  std::string unknown_key = small_drum_scene();
   unknown_key.replace(unknown_key.find("omega = 2.0"), 11, "omgea = 2.0");
   const std::vector<Case> cases = {
       {"negative.toml", negative, "", "radius"},
       {"typo.toml", unknown_key, "", "omgea"},
-      {"method.toml", small_scene(), "--method m6", "unknown search method 'm6'"},
-      {"bigdt.toml", small_scene("dt = 0.01\nduration = 0.01"), "", "above the Rayleigh time"},
+      {"method.toml", small_drum_scene(), "--method m6", "unknown search method 'm6'"},
+      {"bigdt.toml", small_drum_scene("dt = 0.01\nduration = 0.01"), "", "above the Rayleigh time"},
       {"paper.toml", "", "", "cannot read scene file"},
   };
   for (const Case& c : cases) {
@@ -78,7 +51,8 @@ TEST(CliRun, BadScenesGiveOneLineErrors) {
 TEST(CliRun, TimeStepFarAboveTheLimitStopsAsUnstable) {
   TempDir dir("run-unstable");
   // dt = 20 Rayleigh times, forced with --unsafe-dt: the run must stop with a reason, exit 3.
-  const auto scene = dir.write("unstable.toml", small_scene("dt_factor = 1.0\nduration = 0.5"));
+  const auto scene =
+      dir.write("unstable.toml", small_drum_scene("dt_factor = 1.0\nduration = 0.5"));
   const auto r = run_cli("run " + scene.string() + " --unsafe-dt --dt-factor 20");
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("drumlab: unstable: "), std::string::npos) << r.output;
