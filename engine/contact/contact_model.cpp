@@ -206,28 +206,12 @@ void pair_force_loop(const ContactLaw<Normal>& law, const Particles& p, const Co
   const auto row = contacts.row_start();
   const auto col = contacts.col();
   const auto hist = contacts.history();
-  const double half_period = 0.5 * period;
   out.clear();
   for (std::size_t i = 0; i < contacts.rows(); ++i) {
     for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
       const Index j = col[k];
-      Vec3 d = p.position[i] - p.position[j];
-      if (period > 0.0) {
-        if (d.z() > half_period) d.z() -= period;
-        if (d.z() < -half_period) d.z() += period;
-      }
-      const double sum_r = p.radius[i] + p.radius[j];
-      const double dist2 = d.squaredNorm();
-      if (dist2 >= sum_r * sum_r || dist2 == 0.0) continue;
-      const double dist = std::sqrt(dist2);
-      const double delta = sum_r - dist;
-      const ContactGeometry g{d / dist,
-                              delta,
-                              p.radius[i] * p.radius[j] / sum_r,
-                              1.0 / (p.inv_mass[i] + p.inv_mass[j]),
-                              p.radius[i] - 0.5 * delta,
-                              p.radius[j] - 0.5 * delta,
-                              dt * (p.inv_inertia[i] + p.inv_inertia[j])};
+      ContactGeometry g;
+      if (!pair_geometry(p, i, j, period, dt, g)) continue;
       Vec3 xi = hist[k];
       Vec3 t_i = Vec3::Zero();
       Vec3 t_j = Vec3::Zero();
