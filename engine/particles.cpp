@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "engine/spatial_order.hpp"
+
 namespace drumlab {
 
 void Particles::reserve(std::size_t n) {
@@ -49,6 +51,17 @@ Index Particles::add(const Vec3& x, double r, double density, std::uint8_t cls) 
 void Particles::clear_forces() {
   std::fill(force.begin(), force.end(), Vec3::Zero());
   std::fill(torque.begin(), torque.end(), Vec3::Zero());
+}
+
+void Particles::reorder(std::span<const Index> order, ReorderBuffers& scratch) {
+  for (std::vector<Vec3>* a : {&position, &velocity, &omega, &force, &torque}) {
+    apply_order(*a, order, scratch.vec3);
+  }
+  for (std::vector<double>* a : {&radius, &mass, &inv_mass, &inv_inertia}) {
+    apply_order(*a, order, scratch.real);
+  }
+  apply_order(size_class, order, scratch.byte);
+  apply_order(id, order, scratch.index);
 }
 
 double Particles::min_radius() const {

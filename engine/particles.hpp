@@ -2,11 +2,14 @@
 // Particles as a struct of arrays. Index i is the storage slot (may change when particles are
 // re-sorted); id[i] is the stable identity given at creation.
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "engine/types.hpp"
 
 namespace drumlab {
+
+struct ReorderBuffers;
 
 struct Particles {
   std::vector<Vec3> position;  ///< m
@@ -27,6 +30,8 @@ struct Particles {
   /// Appends a solid sphere at rest. Throws InputError for a non-positive radius or density.
   Index add(const Vec3& x, double r, double density, std::uint8_t cls = 0);
   void clear_forces();
+  /// Re-orders every array: slot k gets the particle now at order[k] (a permutation of 0..n-1).
+  void reorder(std::span<const Index> order, ReorderBuffers& scratch);
   double min_radius() const;
   double max_radius() const;
 };

@@ -11,6 +11,8 @@
 #include "engine/contact/contact_history.hpp"
 #include "engine/contact/contact_model.hpp"
 #include "engine/drum.hpp"
+#include "engine/search/verlet_list.hpp"
+#include "engine/spatial_order.hpp"
 
 namespace drumlab {
 
@@ -54,12 +56,17 @@ struct Simulation::Impl {
   std::vector<IndexPair> pairs;
   WallHistory wall_history;
   PairForceBuffers pair_buffers;
+  /// The active search if it is a Verlet list: the simulation then keeps the history on the
+  /// listed pairs and tests them in the force loop (see VerletListSearch).
+  VerletListSearch* verlet = nullptr;
+  ReorderBuffers reorder;
+  WallHistory wall_scratch;
 };
 
 Simulation::Simulation(const SceneConfig& scene, Particles particles, SimulationOptions options)
     : scene_(scene), particles_(std::move(particles)) {
   impl_ = std::make_unique<Impl>(scene_);
-  search_ = make_search(scene_.search_method);
+  use_search(make_search(scene_.search_method, search_tuning()));
   gravity_ = drum_frame_gravity(scene_.gravity, scene_.drum.tilt);
   omega_ = scene_.drum.omega;
   validate_particles();
@@ -73,7 +80,7 @@ Simulation::Simulation(const SceneConfig& scene, SimulationState state)
     : scene_(scene), particles_(std::move(state.particles)) {
   if (!state.search_method.empty()) scene_.search_method = state.search_method;
   impl_ = std::make_unique<Impl>(scene_);
-  search_ = make_search(scene_.search_method);
+  use_search(make_search(scene_.search_method, search_tuning()));
   gravity_ = drum_frame_gravity(scene_.gravity, scene_.drum.tilt);
   const std::size_t n = particles_.size();
   if (particles_.radius.size() != n || particles_.size_class.size() != n ||
@@ -210,6 +217,15 @@ void Simulation::choose_time_step(const SimulationOptions& options) {
   }
 }
 
+SearchTuning Simulation::search_tuning() const {
+  return {scene_.performance.verlet_skin};
+}
+
+void Simulation::use_search(std::unique_ptr<ContactSearch> search) {
+  search_ = std::move(search);
+  impl_->verlet = dynamic_cast<VerletListSearch*>(search_.get());
+}
+
 void Simulation::compute_forces(double history_dt, bool count) {
   const auto t0 = Clock::now();
   SearchInput in;
@@ -217,31 +233,36 @@ void Simulation::compute_forces(double history_dt, bool count) {
   in.radius = particles_.radius;
   in.margin = 0.0;
   if (impl_->drum.periodic()) in.period_z = impl_->drum.depth();
+  ContactList& contacts = impl_->contacts;
   try {
-    search_->find_pairs(in, impl_->pairs);
+    if (impl_->verlet != nullptr) {
+      // The contact list is the Verlet list itself: it changes only when the list is rebuilt.
+      if (impl_->verlet->refresh(in)) contacts.update(impl_->verlet->list(), particles_.size());
+    } else {
+      search_->find_pairs(in, impl_->pairs);
+      contacts.update(impl_->pairs, particles_.size());
+    }
   } catch (const InputError& e) {
     if (!count) throw;  // initial state: the input is at fault
     throw UnstableError(fmt::format("unstable at step {} (t = {:.6g} s): contact search failed: {}",
                                     steps_ + 1, time_ + dt_, e.what()));
   }
   const auto t1 = Clock::now();
+  particles_.clear_forces();
+  const double period = impl_->drum.periodic() ? impl_->drum.depth() : 0.0;
+  const std::size_t touching = impl_->model.add_pair_forces(
+      particles_, contacts, impl_->pair_buffers, period, dt_, history_dt);
+  if (impl_->verlet != nullptr) impl_->verlet->record_found(touching);
+  const auto t2 = Clock::now();
+  impl_->model.add_wall_forces(particles_, impl_->drum, omega_, impl_->wall_history, dt_,
+                               history_dt);
+  const auto t3 = Clock::now();
   if (count) {
     const SearchCounters& c = search_->counters();
     search_totals_.cells_visited += c.cells_visited;
     search_totals_.pairs_tested += c.pairs_tested;
     search_totals_.pairs_found += c.pairs_found;
     search_totals_.cells_total = c.cells_total;  // grid size of the latest step, not a sum
-  }
-  impl_->contacts.update(impl_->pairs, particles_.size());
-  particles_.clear_forces();
-  const double period = impl_->drum.periodic() ? impl_->drum.depth() : 0.0;
-  impl_->model.add_pair_forces(particles_, impl_->contacts, impl_->pair_buffers, period, dt_,
-                               history_dt);
-  const auto t2 = Clock::now();
-  impl_->model.add_wall_forces(particles_, impl_->drum, omega_, impl_->wall_history, dt_,
-                               history_dt);
-  const auto t3 = Clock::now();
-  if (count) {
     timers_.search += seconds_between(t0, t1);
     timers_.forces += seconds_between(t1, t2);
     timers_.walls += seconds_between(t2, t3);
@@ -270,10 +291,22 @@ void Simulation::drift() {
   }
 }
 
+void Simulation::reorder_particles() {
+  if (particles_.size() < 2) return;
+  ReorderBuffers& b = impl_->reorder;
+  morton_order(particles_.position, 2.0 * particles_.max_radius(), b);
+  particles_.reorder(b.order, b);
+  apply_order(impl_->wall_history, b.order, impl_->wall_scratch);
+  impl_->contacts.renumber(b.new_index);
+  if (impl_->verlet != nullptr) impl_->verlet->invalidate();
+}
+
 void Simulation::step() {
   // Velocity Verlet: half kick with the forces of the current positions, drift, new forces,
   // half kick. Spheres need no orientation, so rotation is the same scheme on omega.
   const auto t0 = Clock::now();
+  const std::uint64_t sort_every = scene_.performance.sort_every;
+  if (sort_every > 0 && steps_ > 0 && steps_ % sort_every == 0) reorder_particles();
   kick(0.5 * dt_);
   drift();
   const auto t1 = Clock::now();
@@ -297,7 +330,8 @@ void Simulation::advance(std::uint64_t n) {
 }
 
 void Simulation::set_search_method(std::string_view name) {
-  search_ = make_search(name);  // throws before replacing anything if the name is unknown
+  // make_search throws before anything is replaced if the name is unknown.
+  use_search(make_search(name, search_tuning()));
   scene_.search_method = std::string(name);
 }
 

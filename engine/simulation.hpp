@@ -61,6 +61,10 @@ class Simulation {
   /// UnstableError with a one-line reason when the state goes bad.
   void advance(std::uint64_t n);
 
+  /// Re-orders the particles in memory along a space-filling curve (cache locality); done
+  /// automatically every scene.performance.sort_every steps. Storage slots change, stable ids
+  /// (particles().id) and contact histories follow.
+  void reorder_particles();
   /// Switches the contact search between steps (contact history is kept).
   void set_search_method(std::string_view name);
   /// Sets the drum's angular velocity (rad/s), e.g. 0 while settling.
@@ -101,6 +105,9 @@ class Simulation {
   /// Search, contact list update, pair and wall forces. history_dt: time since the last call
   /// (0 for the initial state); count: add to the timers and search totals.
   void compute_forces(double history_dt, bool count);
+  SearchTuning search_tuning() const;
+  /// Makes `search` the active method (and notes whether it is a Verlet list).
+  void use_search(std::unique_ptr<ContactSearch> search);
   void kick(double h);
   void drift();
 

@@ -84,6 +84,11 @@ void add_run_options(CLI::App* cmd, RunOptions& opt) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--threads", opt.threads, "OpenMP threads")->check(CLI::Range(1, 1024));
   cmd->add_flag("--unsafe-dt", opt.unsafe_dt, "allow a time step above the Rayleigh time");
+  cmd->add_option("--sort-every", opt.sort_every,
+                  "re-order particles in memory every K steps, 0: never (overrides the scene)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--skin", opt.skin, "Verlet skin in smallest radii (overrides the scene)")
+      ->check(CLI::Range(1e-6, 10.0));
   cmd->add_option("--vtu", opt.vtu_dir, "write a VTU/PVD series for ParaView into DIR");
   cmd->add_flag("--contacts-vtk", opt.contacts_vtk, "with --vtu: contacts as lines (.vtp)");
   cmd->add_flag("--grid-vtk", opt.grid_vtk, "with --vtu: search grid occupancy (.vti)");
@@ -145,6 +150,9 @@ std::unique_ptr<Simulation> make_simulation(const RunOptions& opt, SceneConfig s
 void run_session(const RunOptions& opt, std::span<FrameObserver* const> extra_observers) {
   SceneConfig scene = load_dynamic_scene(opt.scene);
   if (!opt.method.empty()) scene.search_method = opt.method;
+  if (opt.sort_every >= 0)
+    scene.performance.sort_every = static_cast<std::uint64_t>(opt.sort_every);
+  if (opt.skin > 0.0) scene.performance.verlet_skin = opt.skin;
 #ifdef _OPENMP
   omp_set_num_threads(opt.threads);
 #endif

@@ -20,9 +20,11 @@ struct RunOptions {
   double dt_factor = 0.0;
   int threads = 1;
   bool unsafe_dt = false;
-  double settle_time = -1.0;  ///< < 0: the scene's fill.settle_time
-  std::uint64_t every = 0;    ///< steps between frames for observers (0: the run decides)
-  std::uint64_t frames = 0;   ///< if > 0, spread this many frames over the turning phase
+  std::int64_t sort_every = -1;  ///< >= 0: overrides performance.sort_every
+  double skin = 0.0;             ///< > 0: overrides performance.verlet_skin
+  double settle_time = -1.0;     ///< < 0: the scene's fill.settle_time
+  std::uint64_t every = 0;       ///< steps between frames for observers (0: the run decides)
+  std::uint64_t frames = 0;      ///< if > 0, spread this many frames over the turning phase
   // Outputs (see output_observers.hpp).
   std::string vtu_dir;        ///< --vtu DIR
   bool contacts_vtk = false;  ///< --contacts-vtk

@@ -38,6 +38,37 @@ void ContactList::assign(std::span<const std::size_t> row_start, std::span<const
   build_partners();
 }
 
+void ContactList::renumber(std::span<const Index> new_index) {
+  const std::size_t n = rows();
+  const std::size_t m = col_.size();
+  // Old arrays become the source; the entries are re-sorted by the new (i, j) through an index.
+  col_.swap(old_col_);
+  history_.swap(old_history_);
+  renumbered_.resize(m);
+  by_pair_.resize(m);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {
+      const Index a = new_index[i];
+      const Index b = new_index[old_col_[k]];
+      renumbered_[k] = a < b ? IndexPair{a, b} : IndexPair{b, a};
+      if (b < a) old_history_[k] = -old_history_[k];
+      by_pair_[k] = k;
+    }
+  }
+  std::sort(by_pair_.begin(), by_pair_.end(),
+            [&](std::size_t a, std::size_t b) { return renumbered_[a] < renumbered_[b]; });
+  row_start_.assign(n + 1, 0);
+  for (const IndexPair& p : renumbered_) ++row_start_[p.i + 1];
+  for (std::size_t i = 0; i < n; ++i) row_start_[i + 1] += row_start_[i];
+  col_.resize(m);
+  history_.resize(m);
+  for (std::size_t q = 0; q < m; ++q) {
+    col_[q] = renumbered_[by_pair_[q]].j;
+    history_[q] = old_history_[by_pair_[q]];
+  }
+  build_partners();
+}
+
 void ContactList::update(std::span<const IndexPair> pairs, std::size_t n_particles) {
   row_start_.swap(old_row_start_);
   col_.swap(old_col_);

@@ -21,6 +21,9 @@ class ContactList {
   void update(std::span<const IndexPair> pairs, std::size_t n_particles);
   /// Forgets every contact and its history.
   void clear();
+  /// Follows a re-ordering of the particles: particle i becomes new_index[i]. A pair whose order
+  /// flips keeps its history negated (the history is i's displacement relative to j).
+  void renumber(std::span<const Index> new_index);
   /// Replaces the list with a saved one (restart). Throws InputError if the arrays do not form a
   /// valid list: row_start non-decreasing from 0 to col.size(), every row sorted with partners
   /// i < j < rows, history.size() == col.size().
@@ -55,6 +58,8 @@ class ContactList {
   std::vector<std::size_t> fill_;  // scratch: next free slot per row
   std::vector<std::size_t> partner_start_;
   std::vector<std::size_t> partner_k_;
+  std::vector<IndexPair> renumbered_;  // scratch of renumber()
+  std::vector<std::size_t> by_pair_;
 };
 
 }  // namespace drumlab

@@ -79,9 +79,10 @@ struct ContactKernel {
   }
 };
 
-// Geometry of contact k = (i, j); false if the pair only touches within the search tolerance.
+// Geometry of contact k = (i, j); false if the spheres do not overlap. `touching` counts the
+// pairs within the search's touching tolerance (the pairs a search with margin 0 finds).
 inline bool pair_geometry(const Particles& p, std::size_t i, Index j, double period, double dt,
-                          ContactGeometry& g) {
+                          ContactGeometry& g, std::size_t& touching) {
   Vec3 d = p.position[i] - p.position[j];
   if (period > 0.0) {
     if (d.z() > 0.5 * period) d.z() -= period;
@@ -89,7 +90,12 @@ inline bool pair_geometry(const Particles& p, std::size_t i, Index j, double per
   }
   const double sum_r = p.radius[i] + p.radius[j];
   const double dist2 = d.squaredNorm();
-  if (dist2 >= sum_r * sum_r || dist2 == 0.0) return false;
+  if (dist2 >= sum_r * sum_r || dist2 == 0.0) {
+    const double cut = sum_r + kTouchTolerance;
+    if (dist2 <= cut * cut) ++touching;
+    return false;
+  }
+  ++touching;
   const double dist = std::sqrt(dist2);
   const double delta = sum_r - dist;
   g = ContactGeometry{d / dist,
@@ -106,18 +112,19 @@ inline bool pair_geometry(const Particles& p, std::size_t i, Index j, double per
 // two-pass loop below sums them (rows where it is the partner by k, then its own row by k), each
 // contact's torques first summed from zero, so both give bit-identical results.
 template <class Normal, bool Tangential, bool Rolling>
-void pair_loop_serial(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts,
-                      double period, double dt, double history_dt) {
+std::size_t pair_loop_serial(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts,
+                             double period, double dt, double history_dt) {
   const ContactKernel<Normal, Tangential, Rolling> kernel{law};
   const auto row = contacts.row_start();
   const auto col = contacts.col();
   const auto hist = contacts.history();
+  std::size_t touching = 0;
   for (std::size_t i = 0; i < contacts.rows(); ++i) {
     for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
       const Index j = col[k];
       ContactGeometry g;
-      if (!pair_geometry(p, i, j, period, dt, g)) {
-        hist[k].setZero();  // touching within the search tolerance only: no contact yet
+      if (!pair_geometry(p, i, j, period, dt, g, touching)) {
+        hist[k].setZero();  // not (or no longer) overlapping: the history ends
         continue;
       }
       Vec3 t_i = Vec3::Zero(), t_j = Vec3::Zero();
@@ -131,6 +138,7 @@ void pair_loop_serial(const ContactLaw<Normal>& law, Particles& p, ContactList& 
       }
     }
   }
+  return touching;
 }
 
 // Several threads: two passes, so the result does not depend on the number of threads: (1) each
@@ -138,14 +146,13 @@ void pair_loop_serial(const ContactLaw<Normal>& law, Particles& p, ContactList& 
 // history), (2) each particle sums its contacts in a fixed order: the rows where it is the
 // partner, by k, then its own row, by k.
 template <class Normal, bool Tangential, bool Rolling>
-void pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts,
-               PairForceBuffers& buf, double period, double dt, double history_dt) {
+std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts,
+                      PairForceBuffers& buf, double period, double dt, double history_dt) {
 #ifdef _OPENMP
   if (omp_get_max_threads() == 1)
 #endif
   {
-    pair_loop_serial<Normal, Tangential, Rolling>(law, p, contacts, period, dt, history_dt);
-    return;
+    return pair_loop_serial<Normal, Tangential, Rolling>(law, p, contacts, period, dt, history_dt);
   }
   constexpr bool kTorque = Tangential || Rolling;
   const ContactKernel<Normal, Tangential, Rolling> kernel{law};
@@ -158,14 +165,15 @@ void pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& contact
     buf.torque_j.resize(contacts.size());
   }
   const auto rows = static_cast<std::int64_t>(contacts.rows());
-#pragma omp parallel for schedule(dynamic, 512)
+  std::size_t touching = 0;
+#pragma omp parallel for schedule(dynamic, 512) reduction(+ : touching)
   for (std::int64_t ii = 0; ii < rows; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
       ContactGeometry g;
       Vec3 t_i = Vec3::Zero(), t_j = Vec3::Zero();
-      if (!pair_geometry(p, i, col[k], period, dt, g)) {
-        hist[k].setZero();  // touching within the search tolerance only: no contact yet
+      if (!pair_geometry(p, i, col[k], period, dt, g, touching)) {
+        hist[k].setZero();  // not (or no longer) overlapping: the history ends
         buf.force[k].setZero();
       } else {
         const Index j = col[k];
@@ -196,6 +204,7 @@ void pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& contact
     p.force[i] += f;
     if constexpr (kTorque) p.torque[i] += t;
   }
+  return touching;
 }
 
 // The pair loop's force, read-only: history copied (and not advanced), torques discarded.
@@ -211,7 +220,8 @@ void pair_force_loop(const ContactLaw<Normal>& law, const Particles& p, const Co
     for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
       const Index j = col[k];
       ContactGeometry g;
-      if (!pair_geometry(p, i, j, period, dt, g)) continue;
+      std::size_t touching = 0;
+      if (!pair_geometry(p, i, j, period, dt, g, touching)) continue;
       Vec3 xi = hist[k];
       Vec3 t_i = Vec3::Zero();
       Vec3 t_j = Vec3::Zero();
@@ -310,12 +320,16 @@ ContactModel::ContactModel(const SceneConfig& scene) {
   wall_rolling_ = scene.wall.rolling_friction > 0.0;
 }
 
-void ContactModel::add_pair_forces(Particles& p, ContactList& contacts, PairForceBuffers& buffers,
-                                   double period, double dt, double history_dt) const {
+std::size_t ContactModel::add_pair_forces(Particles& p, ContactList& contacts,
+                                          PairForceBuffers& buffers, double period, double dt,
+                                          double history_dt) const {
+  std::size_t touching = 0;
   with_law(pair_, pair_tangential_, pair_rolling_,
            [&]<class N, bool Tangential, bool Rolling>(const ContactLaw<N>& law) {
-             pair_loop<N, Tangential, Rolling>(law, p, contacts, buffers, period, dt, history_dt);
+             touching = pair_loop<N, Tangential, Rolling>(law, p, contacts, buffers, period, dt,
+                                                          history_dt);
            });
+  return touching;
 }
 
 void ContactModel::add_wall_forces(Particles& p, const Drum& drum, double omega,

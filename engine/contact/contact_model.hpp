@@ -68,9 +68,11 @@ class ContactModel {
   /// updates the contacts' history. period > 0: minimum image along z. dt: the time step;
   /// history_dt: time since the previous evaluation (dt, or 0 for the very first one).
   /// Parallel (OpenMP) and independent of the thread count: every particle sums its contacts
-  /// in the same order whatever the number of threads.
-  void add_pair_forces(Particles& p, ContactList& contacts, PairForceBuffers& buffers,
-                       double period, double dt, double history_dt) const;
+  /// in the same order whatever the number of threads. A listed pair that does not overlap
+  /// (e.g. a Verlet-list entry within the skin) adds nothing and its history is reset. Returns the
+  /// pairs within the touching tolerance (the contacts a search with margin 0 would find).
+  std::size_t add_pair_forces(Particles& p, ContactList& contacts, PairForceBuffers& buffers,
+                              double period, double dt, double history_dt) const;
   /// Adds the wall forces of the drum turning at omega (rad/s). history.size() == p.size().
   void add_wall_forces(Particles& p, const Drum& drum, double omega, WallHistory& history,
                        double dt, double history_dt) const;

@@ -97,7 +97,8 @@ struct HertzNormal {
 
   /// force() and tangential() together with two square roots instead of four:
   /// sqrt(S_t m*) = sqrt(S_t / S_n) sqrt(S_n m*) and S_t / S_n = 4 G* / E*.
-  ContactResponse respond(double delta, double vn, double r_eff, double m_eff) const {
+  [[gnu::always_inline]] ContactResponse respond(double delta, double vn, double r_eff,
+                                                 double m_eff) const {
     const double a = std::sqrt(r_eff * delta);
     const double s_n = 2.0 * e_star * a;
     const double damping_n = -2.0 * kSqrt56 * beta * std::sqrt(s_n * m_eff);
@@ -128,8 +129,9 @@ struct MindlinTangential {
   /// Updates the tangential displacement `xi` (m) of one contact and returns the tangential force
   /// on particle i (N). n: unit normal (j -> i); vt: tangential relative velocity of i with
   /// respect to j at the contact point (m/s); fn_abs = |F_n| (N); dt (s).
-  Vec3 force(Vec3& xi, const Vec3& n, const Vec3& vt, const TangentialCoefficients& c,
-             double fn_abs, double dt) const {
+  [[gnu::always_inline]] Vec3 force(Vec3& xi, const Vec3& n, const Vec3& vt,
+                                    const TangentialCoefficients& c, double fn_abs,
+                                    double dt) const {
     // Rotate the history into the current tangent plane, keeping its length.
     const double old_len2 = xi.squaredNorm();
     if (old_len2 > 0.0) {

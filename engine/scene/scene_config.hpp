@@ -67,6 +67,17 @@ struct TimeConfig {
   std::optional<double> revolutions;
 };
 
+/// Knobs that change the speed of a run, never its physics (LAMMPS: neighbor skin, atom_modify
+/// sort).
+struct PerformanceConfig {
+  /// Verlet skin in units of the smallest radius (methods "verlet", "verlet:<grid>").
+  double verlet_skin = 0.3;
+  /// Re-order the particles in memory along a space-filling curve every this many steps (0: never),
+  /// so that neighbours sit close in memory. Trajectories do not depend on it beyond round-off
+  /// of the summation order.
+  std::uint64_t sort_every = 100;
+};
+
 struct OutputConfig {
   std::string directory = "out";
   std::uint64_t diagnostics_every = 1000;  ///< steps between stability checks / progress
@@ -85,6 +96,7 @@ struct SceneConfig {
   FillConfig fill;
   TimeConfig time;
   std::string search_method = "m5";
+  PerformanceConfig performance;
   OutputConfig output;
 
   double min_radius() const;

@@ -398,9 +398,25 @@ void read_output(const Scope& root, SceneConfig& scene) {
   scene.output.diagnostics_every = static_cast<std::uint64_t>(every);
 }
 
+void read_performance(const Scope& root, SceneConfig& scene) {
+  const auto s = root.table("performance");
+  if (!s) return;
+  s->allow_only({"verlet_skin", "sort_every"});
+  PerformanceConfig& p = scene.performance;
+  p.verlet_skin = s->number_or("verlet_skin", p.verlet_skin);
+  if (!(p.verlet_skin > 0.0 && p.verlet_skin <= 10.0)) {
+    s->fail("verlet_skin", fmt::format("must be in (0, 10] (units of the smallest radius), got {}",
+                                       p.verlet_skin));
+  }
+  const std::int64_t every =
+      s->integer("sort_every").value_or(static_cast<std::int64_t>(p.sort_every));
+  if (every < 0) s->fail("sort_every", fmt::format("must be >= 0 (0: never), got {}", every));
+  p.sort_every = static_cast<std::uint64_t>(every);
+}
+
 void read_top_level(const Scope& root, SceneConfig& scene) {
   root.allow_only({"name", "description", "gravity", "search", "drum", "particles", "material",
-                   "wall", "contact", "fill", "time", "output"});
+                   "wall", "contact", "fill", "time", "performance", "output"});
   const std::string stem = std::filesystem::path(scene.source).stem().string();
   scene.name = root.string("name").value_or(stem.empty() ? "scene" : stem);
   if (scene.name.empty()) root.fail("name", "must not be empty");
@@ -430,6 +446,7 @@ SceneConfig build_scene(const toml::table& table, std::string_view source) {
   read_contact(root, scene);
   read_fill(root, scene);
   read_time(root, scene);
+  read_performance(root, scene);
   read_output(root, scene);
   return scene;
 }

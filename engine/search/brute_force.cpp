@@ -5,6 +5,7 @@
 namespace drumlab {
 
 void BruteForceSearch::find_pairs(const SearchInput& in, std::vector<IndexPair>& out) {
+  const auto t0 = SearchClock::now();
   validate_search_input(in);
   const std::size_t n = in.position.size();
   reset_counters(n);
@@ -21,6 +22,7 @@ void BruteForceSearch::find_pairs(const SearchInput& in, std::vector<IndexPair>&
   }
   counters_.pairs_tested = n < 2 ? 0 : n * (n - 1) / 2;
   counters_.pairs_found = out.size();
+  timings_ = {0.0, seconds_since(t0)};
 }
 
 }  // namespace drumlab

@@ -65,21 +65,26 @@ CellGridConfig paper_method(int method) {
 }
 
 void CellGridSearch::find_pairs(const SearchInput& in, std::vector<IndexPair>& out) {
+  const auto t0 = SearchClock::now();
   validate_search_input(in);
   const std::size_t n = in.position.size();
   reset_counters(n);
   out.clear();
+  timings_ = {};
   if (n == 0) return;
   margin_ = in.margin;
   period_ = in.period_z.value_or(0.0);
   lay_grid(in);
   sort_into_cells(in);
+  if (geometry_.hashed) build_hashed();
+  timings_.build = seconds_since(t0);
+  const auto t1 = SearchClock::now();
   if (geometry_.hashed) {
-    build_hashed();
     visit_all(hashed_, in, out);
   } else {
     visit_all(dense_, in, out);
   }
+  timings_.visit = seconds_since(t1);
   counters_.pairs_found = out.size();
 }
 

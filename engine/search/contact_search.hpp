@@ -50,6 +50,19 @@ struct SearchCounters {
   std::uint64_t cells_total = 0;    ///< cells in the grid (0 for methods without a grid)
 };
 
+/// Wall-clock seconds of the last call, split into building the search structure (grid or cell
+/// lists; a Verlet list's rebuild) and visiting the candidates (distance tests).
+struct SearchTimings {
+  double build = 0.0;
+  double visit = 0.0;
+};
+
+/// Knobs of the search that change its speed, never its result.
+struct SearchTuning {
+  /// Verlet skin in units of the smallest radius: pairs within margin + skin are listed.
+  double verlet_skin = 0.3;
+};
+
 class ContactSearch {
  public:
   virtual ~ContactSearch() = default;
@@ -71,6 +84,7 @@ class ContactSearch {
   virtual double cell_size() const { return 0.0; }
 
   const SearchCounters& counters() const { return counters_; }
+  const SearchTimings& timings() const { return timings_; }
   /// Cells visited and pairs tested in the last call, by the particle whose search did the work.
   std::span<const std::uint32_t> cells_visited_per_particle() const { return cells_per_particle_; }
   std::span<const std::uint32_t> pairs_tested_per_particle() const { return tests_per_particle_; }
@@ -79,6 +93,7 @@ class ContactSearch {
   void reset_counters(std::size_t n);
 
   SearchCounters counters_;
+  SearchTimings timings_;
   std::vector<std::uint32_t> cells_per_particle_;
   std::vector<std::uint32_t> tests_per_particle_;
 };
@@ -86,7 +101,7 @@ class ContactSearch {
 /// Names accepted by make_search, in a stable order.
 std::vector<std::string> search_method_names();
 /// Creates a search by name. Throws InputError naming the unknown method and the valid ones.
-std::unique_ptr<ContactSearch> make_search(std::string_view name);
+std::unique_ptr<ContactSearch> make_search(std::string_view name, const SearchTuning& tuning = {});
 
 /// Distance tolerance that makes touching spheres count as a contact (m).
 inline constexpr double kTouchTolerance = 1e-9;

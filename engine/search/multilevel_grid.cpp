@@ -37,10 +37,12 @@ std::uint32_t scan_slots(const Vec3& xi, double ri, Index pi, const Level& level
 }  // namespace
 
 void MultiLevelGridSearch::find_pairs(const SearchInput& in, std::vector<IndexPair>& out) {
+  const auto t0 = SearchClock::now();
   validate_search_input(in);
   const std::size_t n = in.position.size();
   reset_counters(n);
   out.clear();
+  timings_ = {};
   if (n == 0) return;
   assign_levels(in);
   std::uint64_t cells_total = 0;
@@ -48,6 +50,8 @@ void MultiLevelGridSearch::find_pairs(const SearchInput& in, std::vector<IndexPa
     lay_level(level, in);
     cells_total += static_cast<std::uint64_t>(level.n[0] * level.n[1] * level.n[2]);
   }
+  timings_.build = seconds_since(t0);
+  const auto t1 = SearchClock::now();
   for (const Level& level : levels_) {
     if (level.hashed) {
       visit_level(level, level.hashed_index, in, out);
@@ -55,6 +59,7 @@ void MultiLevelGridSearch::find_pairs(const SearchInput& in, std::vector<IndexPa
       visit_level(level, level.dense, in, out);
     }
   }
+  timings_.visit = seconds_since(t1);
   counters_.cells_total = cells_total;
   counters_.pairs_found = out.size();
 }

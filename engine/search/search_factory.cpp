@@ -11,9 +11,6 @@ namespace drumlab {
 
 namespace {
 
-/// Skin of the Verlet lists, in units of the smallest radius.
-constexpr double kDefaultSkinFactor = 0.3;
-
 bool is_paper_method(std::string_view name) {
   return name.size() == 2 && name[0] == 'm' && name[1] >= '1' && name[1] <= '5';
 }
@@ -24,7 +21,7 @@ std::vector<std::string> search_method_names() {
   return {"brute", "m1", "m2", "m3", "m4", "m5", "mlgrid", "verlet", "verlet:m2", "verlet:mlgrid"};
 }
 
-std::unique_ptr<ContactSearch> make_search(std::string_view name) {
+std::unique_ptr<ContactSearch> make_search(std::string_view name, const SearchTuning& tuning) {
   if (name == "brute") return std::make_unique<BruteForceSearch>();
   if (is_paper_method(name)) return std::make_unique<CellGridSearch>(paper_method(name[1] - '0'));
   if (name == "mlgrid") return std::make_unique<MultiLevelGridSearch>();
@@ -32,7 +29,7 @@ std::unique_ptr<ContactSearch> make_search(std::string_view name) {
   if (name == "verlet" || (name.starts_with("verlet:") &&
                            (is_paper_method(name.substr(7)) || name.substr(7) == "mlgrid"))) {
     const std::string_view builder = name == "verlet" ? "m5" : name.substr(7);
-    return std::make_unique<VerletListSearch>(make_search(builder), kDefaultSkinFactor);
+    return std::make_unique<VerletListSearch>(make_search(builder), tuning.verlet_skin);
   }
   throw InputError(fmt::format("unknown search method '{}' (valid: {}, or verlet:<grid>)", name,
                                fmt::join(search_method_names(), ", ")));

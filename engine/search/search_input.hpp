@@ -1,5 +1,6 @@
 #pragma once
 // Checks shared by every search method, and the periodic minimum-image distance.
+#include <chrono>
 #include <cmath>
 
 #include "engine/search/contact_search.hpp"
@@ -14,6 +15,13 @@ void validate_search_input(const SearchInput& in);
 /// `scratch` is reused between calls.
 void sort_pairs(std::vector<IndexPair>& pairs, std::size_t n, std::vector<IndexPair>& scratch,
                 std::vector<std::uint32_t>& counts);
+
+using SearchClock = std::chrono::steady_clock;
+
+/// Seconds from `since` to now.
+inline double seconds_since(SearchClock::time_point since) {
+  return std::chrono::duration<double>(SearchClock::now() - since).count();
+}
 
 /// Squared distance between a and b, using the minimum image along z when period > 0.
 inline double distance_squared(const Vec3& a, const Vec3& b, double period) {

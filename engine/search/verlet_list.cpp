@@ -104,7 +104,8 @@ void VerletListSearch::rebuild(const SearchInput& in) {
   ++rebuilds_;
 }
 
-void VerletListSearch::find_pairs(const SearchInput& in, std::vector<IndexPair>& out) {
+bool VerletListSearch::refresh(const SearchInput& in) {
+  const auto t0 = SearchClock::now();
   validate_search_input(in);
   ++calls_;
   const bool rebuilt = needs_rebuild(in);
@@ -119,9 +120,18 @@ void VerletListSearch::find_pairs(const SearchInput& in, std::vector<IndexPair>&
               builder_->pairs_tested_per_particle().end(), tests_per_particle_.begin());
   }
   for (std::size_t i = 0; i < n; ++i) tests_per_particle_[i] += listed_per_particle_[i];
-  filter(in, out);
   counters_.pairs_tested += list_.size();
+  counters_.pairs_found = 0;
+  timings_ = {seconds_since(t0), 0.0};
+  return rebuilt;
+}
+
+void VerletListSearch::find_pairs(const SearchInput& in, std::vector<IndexPair>& out) {
+  refresh(in);
+  const auto t0 = SearchClock::now();
+  filter(in, out);
   counters_.pairs_found = out.size();
+  timings_.visit = seconds_since(t0);
 }
 
 std::string VerletListSearch::report() const {

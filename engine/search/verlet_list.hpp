@@ -4,7 +4,14 @@
 // has moved more than half the skin since the last build (then no pair outside the list can have
 // come within the margin), or when the particle count, radii, margin or period changed.
 // The check runs on every call, so a contact can never be missed ("dangerous" builds: none).
+//
+// Two ways to use it: find_pairs() filters the list down to the pairs within the margin (any
+// consumer of the ContactSearch interface); a simulation that keeps contact history on the listed
+// pairs itself calls refresh() every step and re-reads list() only after a rebuild: its force loop
+// then tests the listed pairs once (the filter is fused into the force loop, as in LAMMPS's
+// granular pair styles), and it reports the pairs it found with record_found().
 #include <memory>
+#include <span>
 #include <string>
 
 #include "engine/search/contact_search.hpp"
@@ -19,6 +26,15 @@ class VerletListSearch final : public ContactSearch {
   std::string_view name() const override { return name_; }
   std::string_view description() const override { return description_; }
   void find_pairs(const SearchInput& in, std::vector<IndexPair>& out) override;
+  /// Rebuilds the list if needed and counts one call's work (the listed pairs are the pairs
+  /// tested); returns true if the list was rebuilt. Does not filter.
+  bool refresh(const SearchInput& in);
+  /// Pairs within margin + skin at the last build, sorted by (i, j).
+  std::span<const IndexPair> list() const { return list_; }
+  /// Sets the pairs found in the last refresh() (by the caller's own test of the list).
+  void record_found(std::uint64_t pairs) { counters_.pairs_found = pairs; }
+  /// Forces a rebuild at the next call (e.g. after the particles were re-ordered).
+  void invalidate() { reference_.clear(); }
   double cell_size() const override { return builder_->cell_size(); }
 
   std::string report() const override;

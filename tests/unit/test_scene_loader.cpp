@@ -238,6 +238,12 @@ TEST(SceneLoader, BadInputGivesOneLineNamingFileAndKey) {
       {"diagnostics_every 0", edited("diagnostics_every = 50", "diagnostics_every = 0"),
        "output.diagnostics_every"},
       {"not finite", edited("depth = 0.15", "depth = inf"), "drum.depth"},
+      {"negative sort interval", edited("[output]", "[performance]\nsort_every = -1\n[output]"),
+       "performance.sort_every"},
+      {"zero skin", edited("[output]", "[performance]\nverlet_skin = 0\n[output]"),
+       "performance.verlet_skin"},
+      {"unknown performance key", edited("[output]", "[performance]\nsort = 5\n[output]"),
+       "performance.sort"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.what);
@@ -247,6 +253,16 @@ TEST(SceneLoader, BadInputGivesOneLineNamingFileAndKey) {
     EXPECT_NE(message.find(std::string("bad.toml: ") + c.key + ":"), std::string::npos) << message;
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
   }
+}
+
+TEST(SceneLoader, PerformanceKnobs) {
+  const SceneConfig defaults = parse_scene(kGoodScene, "good.toml");
+  EXPECT_EQ(defaults.performance.sort_every, 100u);
+  EXPECT_DOUBLE_EQ(defaults.performance.verlet_skin, 0.3);
+  const SceneConfig s = parse_scene(
+      edited("[output]", "[performance]\nsort_every = 0\nverlet_skin = 0.5\n[output]"), "p.toml");
+  EXPECT_EQ(s.performance.sort_every, 0u);
+  EXPECT_DOUBLE_EQ(s.performance.verlet_skin, 0.5);
 }
 
 TEST(SceneLoader, MissingRequiredTable) {
