@@ -18,10 +18,11 @@ double StressScene::omega() const {
 }
 
 std::string StressScene::toml() const {
-  std::string text =
-      fmt::format("search = \"m5\"\ngravity = [0.0, {}, 0.0]\n", zero_gravity ? 0.0 : -kGravity);
-  text +=
-      fmt::format("[drum]\ndiameter = {}\ndepth = {}\nomega = {:.17g}\n", diameter, depth, omega());
+  std::string text = fmt::format("search = \"{}\"\ngravity = [0.0, {}, 0.0]\n", search,
+                                 zero_gravity ? 0.0 : -kGravity);
+  text += fmt::format(
+      "[drum]\ndiameter = {}\ndepth = {}\nomega = {:.17g}\ntilt_deg = {}\nends = \"{}\"\n",
+      diameter, depth, omega(), tilt_deg, periodic ? "periodic" : "caps");
   if (large_radius > 0.0) {
     text += fmt::format("[[particles]]\nradius = {}\nvolume_fraction = {}\n", radius,
                         1.0 - large_fraction);
@@ -49,8 +50,12 @@ std::string StressScene::summary() const {
   const std::string radii = large_radius > 0.0
                                 ? fmt::format("{:g}/{:g}", radius * 1000.0, large_radius * 1000.0)
                                 : fmt::format("{:g}", radius * 1000.0);
-  return fmt::format("{} p, r {} mm, D {:g} m, Fr {:g}, E {:g} Pa, mu {:g}", count, radii, diameter,
-                     froude, youngs_modulus, friction);
+  const std::string particles =
+      fill_file.empty() ? fmt::format("{} p", count) : fmt::format("file {}", fill_file);
+  std::string drum = periodic ? ", periodic" : "";
+  if (tilt_deg > 0.0) drum += fmt::format(", tilt {:g} deg", tilt_deg);
+  return fmt::format("{}, r {} mm, D {:g} m{}, Fr {:g}, E {:g} Pa, mu {:g}, {}", particles, radii,
+                     diameter, drum, froude, youngs_modulus, friction, search);
 }
 
 std::filesystem::path write_text(const std::filesystem::path& file, const std::string& text) {

@@ -25,6 +25,9 @@ struct StressScene {
   std::size_t diagnostics_every = 50;
   std::string fill_file;  ///< if set: [fill] kind = "file"
   bool zero_gravity = false;
+  std::string search = "m5";
+  bool periodic = false;  ///< periodic drum ends instead of caps
+  double tilt_deg = 0.0;
 
   double omega() const;
   std::string toml() const;
