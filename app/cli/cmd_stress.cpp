@@ -8,6 +8,9 @@
 #include <filesystem>
 
 #include <fmt/format.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include "app/cli/commands.hpp"
 #include "app/cli/stress_suite.hpp"
@@ -47,6 +50,7 @@ struct StressArgs {
   std::string out = "out/stress";
   bool quick = false;
   std::string only;
+  int threads = 1;
 };
 
 void run_stress(const StressArgs& a) {
@@ -56,6 +60,11 @@ void run_stress(const StressArgs& a) {
   if (ec || !std::filesystem::is_directory(out / "work")) {
     throw InputError(fmt::format("--out {}: cannot create the folder ({})", a.out, ec.message()));
   }
+#ifdef _OPENMP
+  // One thread by default: the cases are small, and OpenMP threads that spin-wait on a loaded
+  // machine slow a run down many times.
+  omp_set_num_threads(a.threads);
+#endif
   StressContext ctx;
   ctx.work = std::filesystem::absolute(out / "work");
   ctx.quick = a.quick;
@@ -94,6 +103,8 @@ void add_stress_command(CLI::App& app) {
   cmd->add_option("--out", a->out, "folder for stress.csv and the cases' files (out/stress)");
   cmd->add_flag("--quick", a->quick, "only the cheap cases (what ctest -L stress runs)");
   cmd->add_option("--only", a->only, "run only the cases whose name contains TEXT");
+  cmd->add_option("--threads", a->threads, "OpenMP threads of the in-process cases (1)")
+      ->check(CLI::Range(1, 1024));
   cmd->callback([a] { run_stress(*a); });
 }
 
