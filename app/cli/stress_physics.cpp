@@ -93,8 +93,9 @@ StressOutcome run_flow(const SceneConfig& scene, Particles particles, const Flow
     for (const Vec3& v : sim.particles().velocity) mean_speed += v.norm();
     mean_speed /= static_cast<double>(std::max<std::size_t>(1, n0));
     const std::string speed_ratio =
-        v_wall > 0.0 ? fmt::format("; mean |v| / (omega R) {:.2g} at the end", mean_speed / v_wall)
-                     : "";
+        v_wall > 0.0
+            ? fmt::format("; mean speed / (omega R) {:.2g} at the end", mean_speed / v_wall)
+            : "";
     const std::uint64_t steps = sim.steps();
     StressOutcome out;
     out.pass = problem.empty();
