@@ -84,7 +84,7 @@ StressCase stability_case(const StressContext& ctx, std::string name, const Stre
       fmt::format("{}; {} --h5 --every 5 --checkpoint --checkpoint-every 10", s.summary(), args);
   c.expected = "exit 0 and sane files, or exit 3 with one 'unstable:' line; never NaN in a file";
   c.run = [ctx, s, args, csv, name = c.name] {
-    const fs::path dir = ctx.work / name;
+    const fs::path dir = ctx.work / file_stem(name);
     fs::remove_all(dir);
     fs::create_directories(dir);
     write_text(dir / "scene.toml", s.toml());
@@ -140,7 +140,7 @@ StressCase bad_input_case(const StressContext& ctx, BadInput b) {
   for (const auto& t : b.tokens) names += fmt::format("{}'{}'", names.empty() ? "" : ", ", t);
   c.expected = fmt::format("exit 2, one line naming {}", names);
   c.run = [ctx, b] {
-    const fs::path dir = ctx.work / "inputs" / b.name;
+    const fs::path dir = ctx.work / "inputs" / file_stem(b.name);
     fs::remove_all(dir);
     fs::create_directories(dir);
     for (const auto& [file, text] : b.files) write_text(dir / file, text);

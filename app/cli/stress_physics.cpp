@@ -115,7 +115,7 @@ StressOutcome run_flow(const SceneConfig& scene, Particles particles, const Flow
 
 SceneConfig write_and_load(const StressContext& ctx, const std::string& name,
                            const StressScene& s) {
-  const auto file = write_text(ctx.work / (name + ".toml"), s.toml());
+  const auto file = write_text(ctx.work / (file_stem(name) + ".toml"), s.toml());
   return load_scene(file);
 }
 

@@ -1,5 +1,6 @@
 #include "app/cli/stress_scene.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <fstream>
 
@@ -56,6 +57,15 @@ std::string StressScene::summary() const {
   if (tilt_deg > 0.0) drum += fmt::format(", tilt {:g} deg", tilt_deg);
   return fmt::format("{}, r {} mm, D {:g} m{}, Fr {:g}, E {:g} Pa, mu {:g}, {}", particles, radii,
                      diameter, drum, froude, youngs_modulus, friction, search);
+}
+
+std::string file_stem(const std::string& name) {
+  std::string stem = name;
+  for (char& c : stem) {
+    const bool keep = std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '.' || c == '-';
+    if (!keep) c = '_';
+  }
+  return stem;
 }
 
 std::filesystem::path write_text(const std::filesystem::path& file, const std::string& text) {

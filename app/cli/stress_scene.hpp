@@ -35,6 +35,9 @@ struct StressScene {
   std::string summary() const;
 };
 
+/// A case name as a file or folder name: letters, digits, '.', '-' kept, anything else '_'.
+std::string file_stem(const std::string& name);
+
 /// Writes `text` to `file` and returns the path.
 std::filesystem::path write_text(const std::filesystem::path& file, const std::string& text);
 
