@@ -80,8 +80,8 @@ StressCase stability_case(const StressContext& ctx, std::string name, const Stre
                           const std::string& args, const std::string& csv = "") {
   StressCase c;
   c.name = std::move(name);
-  c.setup =
-      fmt::format("{}; {} --h5 --every 5 --checkpoint --checkpoint-every 10", s.summary(), args);
+  c.setup = fmt::format("{}; {}{}--h5 --every 5 --checkpoint --checkpoint-every 10", s.summary(),
+                        args, args.empty() ? "" : " ");
   c.expected = "exit 0 and sane files, or exit 3 with one 'unstable:' line; never NaN in a file";
   c.run = [ctx, s, args, csv, name = c.name] {
     const fs::path dir = ctx.work / file_stem(name);
