@@ -6,8 +6,8 @@
 
 #include "app/cli/commands.hpp"
 #include "app/cli/scene_setup.hpp"
+#include "engine/fill/file_fill.hpp"
 #include "engine/fill/paper_packing.hpp"
-#include "engine/fill/random_fill.hpp"
 #include "engine/search/auto_select.hpp"
 #include "engine/search/cell_grid.hpp"
 #include "engine/simulation.hpp"
@@ -23,9 +23,13 @@ constexpr double kBytesPerCell = 12;
 
 void print_info(const std::string& file) {
   const SceneConfig scene = load_scene(file);
-  const bool dynamic = scene.fill.kind == FillKind::random;
+  const bool dynamic = scene.dynamic();
   std::vector<std::size_t> counts;
-  if (dynamic) {
+  if (scene.fill.kind == FillKind::file) {
+    const Particles p = initial_fill(scene);
+    counts.assign(scene.classes.size(), 0);
+    for (const std::uint8_t c : p.size_class) ++counts[c];
+  } else if (dynamic) {
     counts = class_counts(scene);
   } else {
     const auto c = paper_packing_counts(scene.fill.box);
@@ -80,7 +84,7 @@ void print_info(const std::string& file) {
              (kBytesPerParticle * static_cast<double>(total) + kBytesPerCell * cells) / 1048576.0,
              kBytesPerParticle, grid);
   if (scene.search_method == "auto" && dynamic) {
-    const Particles fill = random_fill(scene);
+    const Particles fill = initial_fill(scene);
     const SearchChoice choice = choose_search_method(scene, dt, fill.position, fill.radius);
     fmt::print("search method     auto -> {} (paper's rule: {})\n", choice.method,
                choice.paper_rule);

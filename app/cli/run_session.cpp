@@ -13,9 +13,10 @@
 #include "app/cli/output_observers.hpp"
 #include "app/cli/run_report.hpp"
 #include "app/cli/scene_setup.hpp"
-#include "engine/fill/random_fill.hpp"
+#include "engine/fill/file_fill.hpp"
 #include "engine/io/checkpoint.hpp"
 #include "engine/search/auto_select.hpp"
+#include "engine/search/contact_search.hpp"
 
 namespace drumlab::cli {
 
@@ -51,6 +52,9 @@ double advance_phase(Simulation& sim, std::uint64_t steps, const std::string& la
   std::uint64_t frame = 0;
   double output_seconds = 0.0;
   auto emit = [&] {
+    // No frame of a bad state: a writer sees only a state that has just passed the stability
+    // check (finite, inside the drum, sane overlaps), also for frame 0 of a restart.
+    sim.check_stability();
     const auto t0 = std::chrono::steady_clock::now();
     for (FrameObserver* o : observers) o->on_frame(sim, frame);
     ++frame;
@@ -122,7 +126,7 @@ std::unique_ptr<Simulation> make_simulation(const RunOptions& opt, SceneConfig s
     SimulationOptions sim_options;
     sim_options.allow_unsafe_dt = opt.unsafe_dt;
     sim_options.dt_factor_override = opt.dt_factor;
-    Particles particles = random_fill(scene);
+    Particles particles = initial_fill(scene);
     resolve_auto_search(scene, opt, particles, 0.0);
     return std::make_unique<Simulation>(scene, std::move(particles), sim_options);
   }
@@ -149,9 +153,19 @@ std::unique_ptr<Simulation> make_simulation(const RunOptions& opt, SceneConfig s
 
 void run_session(const RunOptions& opt, std::span<FrameObserver* const> extra_observers) {
   SceneConfig scene = load_dynamic_scene(opt.scene);
-  if (!opt.method.empty()) scene.search_method = opt.method;
-  if (opt.sort_every >= 0)
+  if (!opt.method.empty()) {
+    if (opt.method != "auto") {
+      try {
+        make_search(opt.method);
+      } catch (const InputError& e) {
+        throw InputError(fmt::format("--method: {}", e.what()));
+      }
+    }
+    scene.search_method = opt.method;
+  }
+  if (opt.sort_every >= 0) {
     scene.performance.sort_every = static_cast<std::uint64_t>(opt.sort_every);
+  }
   if (opt.skin > 0.0) scene.performance.verlet_skin = opt.skin;
 #ifdef _OPENMP
   omp_set_num_threads(opt.threads);

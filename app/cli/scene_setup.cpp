@@ -9,7 +9,7 @@ namespace drumlab::cli {
 
 SceneConfig load_dynamic_scene(const std::string& file) {
   SceneConfig scene = load_scene(file);
-  if (scene.fill.kind != FillKind::random) {
+  if (!scene.dynamic()) {
     throw InputError(fmt::format(
         "{}: fill.kind: 'paper_packing' is a static packing for `drumlab paper-table`, not a "
         "dynamic run",

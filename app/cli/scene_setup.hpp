@@ -8,7 +8,8 @@
 
 namespace drumlab::cli {
 
-/// Loads a dynamic scene (random fill). A static paper packing is refused with a clear error.
+/// Loads a dynamic scene (random or file fill). A static paper packing is refused with a clear
+/// error.
 SceneConfig load_dynamic_scene(const std::string& file);
 
 /// Froude number omega^2 R / g (g = |gravity| in the drum's cross-section plane).

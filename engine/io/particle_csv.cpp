@@ -72,6 +72,21 @@ ParticleTable parse_particle_csv(std::string_view text, std::string_view source)
     }
     column[c] = static_cast<std::size_t>(it - header.begin());
   }
+  constexpr std::array<std::string_view, 3> velocity_names{"vx", "vy", "vz"};
+  std::array<std::size_t, 3> velocity_column{};
+  std::size_t velocity_found = 0;
+  for (std::size_t c = 0; c < velocity_names.size(); ++c) {
+    const auto it = std::find(header.begin(), header.end(), velocity_names[c]);
+    if (it == header.end()) continue;
+    velocity_column[c] = static_cast<std::size_t>(it - header.begin());
+    ++velocity_found;
+  }
+  if (velocity_found != 0 && velocity_found != 3) {
+    throw InputError(
+        fmt::format("{}:{}: header has {} of the velocity columns vx, vy, vz (give all "
+                    "three or none)",
+                    source, line_no, velocity_found));
+  }
   ParticleTable table;
   while (std::getline(in, line)) {
     ++line_no;
@@ -90,6 +105,14 @@ ParticleTable parse_particle_csv(std::string_view text, std::string_view source)
     }
     table.position.emplace_back(v[0], v[1], v[2]);
     table.radius.push_back(v[3]);
+    table.line.push_back(line_no);
+    if (velocity_found == 3) {
+      Vec3 u;
+      for (std::size_t c = 0; c < 3; ++c)
+        u[static_cast<Eigen::Index>(c)] =
+            parse_number(fields[velocity_column[c]], source, line_no, velocity_names[c]);
+      table.velocity.push_back(u);
+    }
   }
   return table;
 }

@@ -49,6 +49,7 @@ struct ParticleClass {
 enum class FillKind {
   random,         ///< random loose fill of the lower drum, no overlaps, then settle
   paper_packing,  ///< the paper's static cubic packing in a box (contact counting only)
+  file,           ///< the user's own packing from a CSV (x,y,z,r[,vx,vy,vz]), then settle
 };
 
 struct FillConfig {
@@ -58,6 +59,7 @@ struct FillConfig {
   std::uint64_t seed = 1;             ///< random fill seed
   double settle_time = 0.5;           ///< s of settling with the drum at rest before it turns
   Vec3 box = Vec3(1.85, 1.80, 0.15);  ///< paper packing box [0, box), m
+  std::filesystem::path file;         ///< file fill: the CSV, resolved against the scene's folder
 };
 
 struct TimeConfig {
@@ -101,6 +103,8 @@ struct SceneConfig {
 
   double min_radius() const;
   double max_radius() const;
+  /// True for the fills that start a dynamic run (random, file); false for the static packing.
+  bool dynamic() const { return fill.kind != FillKind::paper_packing; }
 };
 
 /// Reads and validates a scene. Throws InputError with one line "FILE: KEY: reason".

@@ -15,6 +15,7 @@
 #include <toml++/toml.h>
 
 #include "engine/scene/scene_config.hpp"
+#include "engine/search/contact_search.hpp"
 
 namespace drumlab {
 namespace {
@@ -336,6 +337,25 @@ void read_paper_fill(const Scope& s, SceneConfig& scene) {
   }
 }
 
+/// [fill] kind = "file": the CSV path relative to the scene file's folder. The file itself is read
+/// by file_fill (engine/fill/file_fill.hpp); here only that it exists.
+void read_file_fill(const Scope& s, SceneConfig& scene) {
+  s.allow_only({"kind", "file", "settle_time"});
+  const auto file = s.string("file");
+  if (!file) s.missing("file", "CSV of the initial particles x,y,z,r[,vx,vy,vz], m and m/s");
+  if (file->empty()) s.fail("file", "must not be empty");
+  std::filesystem::path path(*file);
+  if (path.is_relative()) path = std::filesystem::path(scene.source).parent_path() / path;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    s.fail("file", fmt::format("cannot read particle file {}", path.string()));
+  }
+  scene.fill.file = path;
+  scene.fill.count = 0;  // known once the file is read
+  scene.fill.settle_time = s.number_or("settle_time", scene.fill.settle_time);
+  check_non_negative(s, "settle_time", scene.fill.settle_time);
+}
+
 void read_fill(const Scope& root, SceneConfig& scene) {
   const Scope s = root.required_table("fill");
   const std::string kind = s.string("kind").value_or("random");
@@ -345,14 +365,17 @@ void read_fill(const Scope& root, SceneConfig& scene) {
   } else if (kind == "paper_packing") {
     scene.fill.kind = FillKind::paper_packing;
     read_paper_fill(s, scene);
+  } else if (kind == "file") {
+    scene.fill.kind = FillKind::file;
+    read_file_fill(s, scene);
   } else {
-    s.fail("kind", fmt::format("unknown value '{}' (valid: random, paper_packing)", kind));
+    s.fail("kind", fmt::format("unknown value '{}' (valid: random, file, paper_packing)", kind));
   }
 }
 
 void read_time(const Scope& root, SceneConfig& scene) {
   const auto s = root.table("time");
-  const bool dynamic = scene.fill.kind == FillKind::random;
+  const bool dynamic = scene.dynamic();
   if (!s) {
     if (dynamic) root.missing("time", "[time] with duration or revolutions");
     return;
@@ -424,6 +447,13 @@ void read_top_level(const Scope& root, SceneConfig& scene) {
   scene.gravity = root.vec3("gravity").value_or(scene.gravity);
   scene.search_method = root.string("search").value_or(scene.search_method);
   if (scene.search_method.empty()) root.fail("search", "must not be empty");
+  if (scene.search_method != "auto") {
+    try {
+      make_search(scene.search_method);
+    } catch (const InputError& e) {
+      root.fail("search", e.what());
+    }
+  }
 }
 
 SceneConfig build_scene(const toml::table& table, std::string_view source) {

@@ -1,0 +1,35 @@
+#pragma once
+// `drumlab stress`: cases that try to break the engine. Each case states what it used, what it
+// expects and what it observed, and whether the observation matches the expectation.
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace drumlab::cli {
+
+struct StressOutcome {
+  std::string observed;
+  bool pass = false;
+};
+
+struct StressCase {
+  std::string name;
+  std::string setup;     ///< what the case used (particles, steps, parameters)
+  std::string expected;  ///< the outcome it asserts
+  std::function<StressOutcome()> run;
+};
+
+struct StressContext {
+  std::filesystem::path work;  ///< scratch folder for scenes, CSVs and outputs of the cases
+  bool quick = false;          ///< the cheap subset (ctest label `stress`)
+};
+
+/// Drum flows over the regime map, size ratios, materials, friction, overlapping file packings,
+/// and (full suite only) the long run: in-process through the Simulation API.
+std::vector<StressCase> physics_stress_cases(const StressContext& ctx);
+/// Time steps above the Rayleigh time and adversarial scenes/CSVs/outputs: through the `drumlab`
+/// executable itself, asserting exit codes, one-line messages and the files left behind.
+std::vector<StressCase> cli_stress_cases(const StressContext& ctx);
+
+}  // namespace drumlab::cli
