@@ -233,7 +233,7 @@ DrumObservables measure_drum(const Particles& p, const DrumGeometry& drum,
   obs.com_offset = std::hypot(obs.centre_of_mass.x(), obs.centre_of_mass.y()) / drum.radius;
   obs.upper_fraction = static_cast<double>(upper) / n;
 
-  const double width = options.column_width > 0.0 ? options.column_width : 4.0 * p.max_radius();
+  const double width = options.column_width > 0.0 ? options.column_width : 2.0 * p.max_radius();
   const double gap = options.flight_gap > 0.0 ? options.flight_gap : 0.25 * p.min_radius();
   obs.airborne_fraction = airborne_fraction(p, drum, gap);
   const auto line =

@@ -45,7 +45,7 @@ struct DrumGeometry {
 };
 
 struct ObservableOptions {
-  double column_width = 0.0;   ///< m; 0: two diameters of the largest particle
+  double column_width = 0.0;   ///< m; 0: the diameter of the largest particle
   double end_exclusion = 0.2;  ///< share of the surface's extent left out at each end, [0, 0.45]
   double flight_gap = 0.0;     ///< m; 0: a quarter of the smallest radius
 };
