@@ -12,6 +12,7 @@
 
 #include "app/cli/bench_accuracy_cases.hpp"
 #include "app/cli/scene_setup.hpp"
+#include "engine/analysis/flow_regime.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/simulation.hpp"
 #ifdef DRUMLAB_WITH_RENDER
@@ -368,6 +369,15 @@ void run_bench_accuracy(AccuracyOptions opt) {
         "below that are noise\n",
         c.first, c.second, c.noise,
         m.angle_of_repose_deg != 0.0 ? c.noise / std::abs(m.angle_of_repose_deg) : 0.0);
+    std::string angles;
+    for (const auto& o : ref.drum.samples) angles += fmt::format(" {:.1f}", o.angle_of_repose_deg);
+    fmt::print("window angles    {} deg\n", angles);
+    const RegimeEvidence regime = classify_regime(ref.drum.samples);
+    fmt::print(
+        "observed regime   {} (curvature {:.3f}, in flight {:.3f}, still share {:.2f}, angle swing "
+        "{:.1f} deg; see engine/analysis/flow_regime.hpp); Fr predicts {}\n",
+        regime_name(regime.regime), regime.curvature, regime.airborne_fraction, regime.still_share,
+        regime.angle_swing_deg, regime_for_froude(froude_number(scene)));
   }
   print_recommendation(rows);
   const auto csv = out / fmt::format("accuracy_{}.csv", scene.name);
