@@ -196,7 +196,8 @@ const ErrorMeasure kMeasures[] = {
 };
 
 void write_chart(const std::filesystem::path& file, const std::string& scene,
-                 const std::vector<KnobSweep>& sweeps, const std::vector<Row>& rows) {
+                 const std::vector<KnobSweep>& sweeps, const std::vector<Row>& rows,
+                 double noise_floor) {
 #ifdef DRUMLAB_WITH_RENDER
   std::vector<render::XYPanel> panels;
   for (const ErrorMeasure& m : kMeasures) {
@@ -216,6 +217,16 @@ void write_chart(const std::filesystem::path& file, const std::string& scene,
       }
       p.series.push_back(std::move(series));
     }
+    if (m.error == kMeasures[3].error && std::isfinite(noise_floor)) {
+      render::XYSeries noise{"noise floor (reference window)", {}, {}, false};
+      for (const Row& r : rows) {
+        if (!std::isfinite(r.run_time())) continue;
+        noise.x.push_back(r.run_time());
+        noise.y.push_back(noise_floor);
+      }
+      std::sort(noise.x.begin(), noise.x.end());
+      p.series.push_back(std::move(noise));
+    }
     render::XYSeries front{"Pareto front", {}, {}, true};
     for (const std::size_t k : pareto_front(rows, m.error)) {
       front.x.push_back(rows[k].run_time());
@@ -227,7 +238,7 @@ void write_chart(const std::filesystem::path& file, const std::string& scene,
   render::write_xy_charts(panels, file, 2000, 560);
   fmt::print("wrote {}\n", file.string());
 #else
-  (void)scene, (void)sweeps, (void)rows;
+  (void)scene, (void)sweeps, (void)rows, (void)noise_floor;
   fmt::print("note: built without rendering: no chart {}\n", file.string());
 #endif
 }
@@ -273,19 +284,51 @@ const Row* fastest(const std::vector<Row>& rows, const std::string& knob,
   return best;
 }
 
-void print_recommendation(const std::vector<Row>& rows) {
-  const Row* dt = fastest(rows, "dt_factor", [](const Row& r) {
-    return r.restitution_error < 0.05 && r.duration_error < 0.05 && r.drift < 1e-3 &&
-           r.drum_error() < 0.05;
-  });
-  if (dt != nullptr) {
-    fmt::print(
-        "recommended dt    {} t_R: the fastest time step with collision errors < 5 %, energy "
-        "drift < 1e-3 and drum observables within 5 % of the smallest-dt reference\n",
-        dt->value);
-  } else {
-    fmt::print("recommended dt    none of the time steps met the criteria\n");
+/// Relative standard error of the window mean of each drum observable in `run`, the largest of
+/// them: the noise floor below which a drum error is not resolved by the window.
+double drum_noise_floor(const DrumRun& run, double drum_radius) {
+  const auto& v = run.samples;
+  if (v.size() < 2) return kNaN;
+  const auto n = static_cast<double>(v.size());
+  const auto standard_error = [&](auto get) {
+    double mean = 0.0;
+    for (const auto& o : v) mean += get(o) / n;
+    double var = 0.0;
+    for (const auto& o : v) var += (get(o) - mean) * (get(o) - mean);
+    return std::pair{std::sqrt(var / (n - 1.0) / n), mean};
+  };
+  double floor = 0.0;
+  const auto add_relative = [&](auto get) {
+    const auto [se, mean] = standard_error(get);
+    if (mean != 0.0) floor = std::max(floor, se / std::abs(mean));
+  };
+  add_relative([](const DrumObservables& o) { return o.angle_of_repose_deg; });
+  add_relative([](const DrumObservables& o) { return o.mean_kinetic_energy; });
+  add_relative([](const DrumObservables& o) { return o.flowing_layer_thickness; });
+  for (int axis = 0; axis < 3; ++axis) {
+    const auto [se, mean] =
+        standard_error([axis](const DrumObservables& o) { return o.centre_of_mass(axis); });
+    (void)mean;
+    floor = std::max(floor, se / drum_radius);
   }
+  return floor;
+}
+
+void print_recommendation(const std::vector<Row>& rows) {
+  const Row* flow = fastest(rows, "dt_factor", [](const Row& r) {
+    return r.restitution_error < 0.05 && r.duration_error < 0.05 && r.drum_error() < 0.05;
+  });
+  fmt::print(
+      "recommended dt    drum flows: {} t_R (the fastest time step with collision errors < 5 % "
+      "and drum observables within 5 % of the smallest-dt reference)\n",
+      flow != nullptr ? flow->value : std::string("none"));
+  const Row* exact = fastest(rows, "dt_factor", [](const Row& r) {
+    return r.restitution_error < 0.02 && r.duration_error < 0.02 && r.drift < 1e-3;
+  });
+  fmt::print(
+      "recommended dt    collisions and energy: {} t_R (the fastest with collision errors < 2 % "
+      "and energy drift < 1e-3)\n",
+      exact != nullptr ? exact->value : std::string("none"));
   const Row* search = fastest(rows, "search", [](const Row& r) { return r.drum_error() < 0.01; });
   if (search != nullptr) {
     fmt::print(
@@ -353,6 +396,10 @@ void run_bench_accuracy(AccuracyOptions opt) {
       "sweep; drum_err the largest of those four; traj/rmin the largest particle displacement "
       "from that reference's final state / r_min; wall/sim: wall s per simulated s of the drum "
       "run\n");
+  for (const Row& r : rows) {
+    if (!r.drum.failure.empty())
+      fmt::print("unstable          {} = {}: {}\n", r.knob, r.value, r.drum.failure);
+  }
   const Row& ref = rows.front();
   if (ref.drum.failure.empty()) {
     const DrumObservables& m = ref.drum.mean;
@@ -369,6 +416,10 @@ void run_bench_accuracy(AccuracyOptions opt) {
         "below that are noise\n",
         c.first, c.second, c.noise,
         m.angle_of_repose_deg != 0.0 ? c.noise / std::abs(m.angle_of_repose_deg) : 0.0);
+    fmt::print(
+        "noise floor       {:.3g}: the largest relative standard error of a window mean (angle, "
+        "KE, layer, COM / R) in the reference run; drum_err below it is not resolved\n",
+        drum_noise_floor(ref.drum, drum_radius));
     std::string angles;
     for (const auto& o : ref.drum.samples) angles += fmt::format(" {:.1f}", o.angle_of_repose_deg);
     fmt::print("window angles    {} deg\n", angles);
@@ -383,7 +434,8 @@ void run_bench_accuracy(AccuracyOptions opt) {
   const auto csv = out / fmt::format("accuracy_{}.csv", scene.name);
   write_csv(csv, scene.name, rows);
   fmt::print("wrote {}\n", csv.string());
-  write_chart(out / fmt::format("accuracy_{}.png", scene.name), scene.name, sweeps, rows);
+  write_chart(out / fmt::format("accuracy_{}.png", scene.name), scene.name, sweeps, rows,
+              ref.drum.failure.empty() ? drum_noise_floor(ref.drum, drum_radius) : kNaN);
 }
 
 }  // namespace drumlab::cli
