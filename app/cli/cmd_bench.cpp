@@ -76,7 +76,10 @@ void add_bench_command(CLI::App& app) {
   CLI::App* accuracy = bench->add_subcommand(
       "accuracy", "Run time against error: time step and search sweeps (see bench_accuracy.hpp)");
   add_state_options(accuracy, a->scene, a->plan, a->out);
-  accuracy->add_flag("--quick", a->quick, "short windows (and scenes/accuracy_quick.toml)");
+  accuracy->get_option("--scene")->description(
+      "scene file (default: scenes/accuracy_drum.toml; --quick: scenes/accuracy_quick.toml)");
+  accuracy->add_flag("--quick", a->quick,
+                     "short windows; --turn 0.2 and scenes/accuracy_quick.toml unless given");
   accuracy->callback([a, accuracy] {
     if (a->quick && accuracy->count("--turn") == 0) a->plan.turn_revolutions = 0.2;
     run_bench_accuracy(*a);
