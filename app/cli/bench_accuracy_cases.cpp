@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <utility>
 
 #include "engine/contact/hertz_mindlin.hpp"
 #include "engine/simulation.hpp"
@@ -191,6 +192,56 @@ DrumRun run_drum(const RollingState& rolling, const RunSettings& s, double trans
     run.failure = e.what();
   }
   return run;
+}
+
+SteadyCheck steady_check(const DrumRun& run) {
+  SteadyCheck c;
+  std::vector<double> a;
+  for (const auto& o : run.samples) {
+    if (o.surface_found) a.push_back(o.angle_of_repose_deg);
+  }
+  if (a.size() < 2) return c;
+  const std::size_t h = a.size() / 2;
+  double mean = 0.0;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    (k < h ? c.first : c.second) += a[k];
+    mean += a[k];
+  }
+  c.first /= static_cast<double>(h);
+  c.second /= static_cast<double>(a.size() - h);
+  mean /= static_cast<double>(a.size());
+  double var = 0.0;
+  for (const double v : a) var += (v - mean) * (v - mean);
+  c.noise = std::sqrt(var / static_cast<double>(a.size() - 1) / static_cast<double>(a.size()));
+  return c;
+}
+
+double drum_noise_floor(const DrumRun& run, double drum_radius) {
+  const auto& v = run.samples;
+  if (v.size() < 2) return kNaN;
+  const auto n = static_cast<double>(v.size());
+  const auto standard_error = [&](auto get) {
+    double mean = 0.0;
+    for (const auto& o : v) mean += get(o) / n;
+    double var = 0.0;
+    for (const auto& o : v) var += (get(o) - mean) * (get(o) - mean);
+    return std::pair{std::sqrt(var / (n - 1.0) / n), mean};
+  };
+  double floor = 0.0;
+  const auto add_relative = [&](auto get) {
+    const auto [se, mean] = standard_error(get);
+    if (mean != 0.0) floor = std::max(floor, se / std::abs(mean));
+  };
+  add_relative([](const DrumObservables& o) { return o.angle_of_repose_deg; });
+  add_relative([](const DrumObservables& o) { return o.mean_kinetic_energy; });
+  add_relative([](const DrumObservables& o) { return o.flowing_layer_thickness; });
+  for (int axis = 0; axis < 3; ++axis) {
+    const auto [se, mean] =
+        standard_error([axis](const DrumObservables& o) { return o.centre_of_mass(axis); });
+    (void)mean;
+    floor = std::max(floor, se / drum_radius);
+  }
+  return floor;
 }
 
 }  // namespace drumlab::cli

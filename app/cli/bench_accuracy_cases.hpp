@@ -47,4 +47,18 @@ struct DrumRun {
 DrumRun run_drum(const RollingState& rolling, const RunSettings& s, double transient, double window,
                  int samples);
 
+/// Mean angle of the first and second half of a run's samples, and the standard error of the
+/// mean angle over all samples (the noise of a time average over the window), degrees.
+struct SteadyCheck {
+  double first = 0.0;
+  double second = 0.0;
+  double noise = 0.0;
+};
+SteadyCheck steady_check(const DrumRun& run);
+
+/// Relative standard error of the window mean of each drum observable (angle, KE, layer; COM
+/// divided by the drum radius), the largest of them: the noise floor below which a drum error is
+/// not resolved by the window. NaN with fewer than two samples.
+double drum_noise_floor(const DrumRun& run, double drum_radius);
+
 }  // namespace drumlab::cli
