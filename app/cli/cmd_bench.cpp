@@ -1,9 +1,11 @@
 // drumlab bench throughput [--scene S] [--threads N] [--methods LIST] [--steps N] [--out DIR]
 // drumlab bench search [--scene S] [--methods LIST] [--table2] [--out DIR]
+// drumlab bench accuracy [--scene S] [--quick] [--out DIR]
 // Benchmarks that print figures (speed targets live here, not in timed tests): see
 // bench_throughput.hpp and bench_search.hpp.
 #include <memory>
 
+#include "app/cli/bench_accuracy.hpp"
 #include "app/cli/bench_search.hpp"
 #include "app/cli/bench_throughput.hpp"
 #include "app/cli/commands.hpp"
@@ -31,7 +33,7 @@ void add_state_options(CLI::App* cmd, std::string& scene, RollingPlan& plan, std
 }  // namespace
 
 void add_bench_command(CLI::App& app) {
-  CLI::App* bench = app.add_subcommand("bench", "Benchmarks: throughput, contact search");
+  CLI::App* bench = app.add_subcommand("bench", "Benchmarks: throughput, contact search, accuracy");
   bench->require_subcommand(1);
 
   auto t = std::make_shared<ThroughputOptions>();
@@ -67,6 +69,20 @@ void add_bench_command(CLI::App& app) {
   search->callback([s] {
     if (s->scene.empty()) s->scene = shipped_scene("drum_demo.toml");
     run_bench_search(*s);
+  });
+
+  auto a = std::make_shared<AccuracyOptions>();
+  a->plan.turn_revolutions = 0.5;  // a steady rolling flow before the sweep
+  CLI::App* accuracy = bench->add_subcommand(
+      "accuracy", "Run time against error: time step and search sweeps (see bench_accuracy.hpp)");
+  add_state_options(accuracy, a->scene, a->plan, a->out);
+  accuracy->get_option("--scene")->description(
+      "scene file (default: scenes/accuracy_drum.toml; --quick: scenes/accuracy_quick.toml)");
+  accuracy->add_flag("--quick", a->quick,
+                     "short windows; --turn 0.2 and scenes/accuracy_quick.toml unless given");
+  accuracy->callback([a, accuracy] {
+    if (a->quick && accuracy->count("--turn") == 0) a->plan.turn_revolutions = 0.2;
+    run_bench_accuracy(*a);
   });
 }
 
