@@ -1,10 +1,12 @@
 // drumlab bench throughput [--scene S] [--threads N] [--methods LIST] [--steps N] [--out DIR]
 // drumlab bench search [--scene S] [--methods LIST] [--table2] [--out DIR]
+// drumlab bench skips [--scene S] [--steps N] [--repeats R] [--out DIR]
 // Benchmarks that print figures (speed targets live here, not in timed tests): see
 // bench_throughput.hpp and bench_search.hpp.
 #include <memory>
 
 #include "app/cli/bench_search.hpp"
+#include "app/cli/bench_skips.hpp"
 #include "app/cli/bench_throughput.hpp"
 #include "app/cli/commands.hpp"
 #include "app/cli/scene_setup.hpp"
@@ -26,6 +28,27 @@ void add_state_options(CLI::App* cmd, std::string& scene, RollingPlan& plan, std
   cmd->add_option("--cache", plan.cache_dir, "folder of the cached rolling states")
       ->capture_default_str();
   cmd->add_option("--out", out, "folder for the CSV and PNG")->capture_default_str();
+}
+
+/// `bench skips`: the speed each skip of scene_features() gains (bench_skips.hpp).
+void add_skips_subcommand(CLI::App* bench) {
+  auto k = std::make_shared<SkipsBenchOptions>();
+  CLI::App* cmd = bench->add_subcommand(
+      "skips", "Speed gained by each skip (friction, rolling, 2D grid, periodic ends, writers)");
+  add_state_options(cmd, k->scene, k->plan, k->out);
+  cmd->add_option("--steps", k->steps, "timed steps per run")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--repeats", k->repeats, "runs per variant (median kept)")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
+  cmd->add_option("--every", k->every, "writer cadence in steps (default: steps / 10)");
+  cmd->add_option("--tiny", k->tiny, "coefficient that forces the general path")
+      ->capture_default_str();
+  cmd->callback([k] {
+    if (k->scene.empty()) k->scene = shipped_scene("drum_demo.toml");
+    run_bench_skips(*k);
+  });
 }
 
 }  // namespace
@@ -68,6 +91,8 @@ void add_bench_command(CLI::App& app) {
     if (s->scene.empty()) s->scene = shipped_scene("drum_demo.toml");
     run_bench_search(*s);
   });
+
+  add_skips_subcommand(bench);
 }
 
 }  // namespace drumlab::cli
