@@ -1,0 +1,83 @@
+#pragma once
+// Observables of the granular bed in a rotating drum, measured from one particle state (positions,
+// velocities, radii, masses) in the drum frame: axis along z through x = y = 0, gravity as given.
+//
+// The cross-section is described by two unit vectors perpendicular to the axis:
+//   up    = -(gravity projected onto the cross-section), normalised;
+//   carry = direction of the drum wall's velocity at the lowest point of the mantle
+//           (sign(omega) z_hat x (-up); +z_hat x (-up) when omega = 0).
+// With gravity -y and omega > 0 (counter-clockwise), up = +y and carry = +x: the drum lifts the
+// bed on the +x side.
+//
+// Definitions (all documented in the fields below):
+// * Free surface: the cross-section is cut into columns (width `column_width` along carry and
+//   along z); the height of a column is the highest particle top (up . x + r) in it; the surface
+//   height at a carry position is the median over the z columns (robust against single particles
+//   in flight). A straight line is fitted (least squares) to the surface heights of the central
+//   part of the surface (`end_exclusion` of the occupied extent left out at each end, where the
+//   wall bends the surface).
+// * Dynamic angle of repose: atan of the fitted slope, degrees, positive when the surface rises
+//   in the carry direction (the usual case in a turning drum).
+// * Flowing layer: particles in the same central window are binned by their depth below the
+//   fitted line (along its normal); the mean velocity component along the downhill tangent of
+//   the line is computed per bin. The layer thickness is the depth of the first sign change of
+//   that mean velocity from downhill (> 0, flowing) to uphill (<= 0, carried up with the drum),
+//   interpolated linearly between bins. 0 when the top bin does not move downhill (no flowing
+//   layer: a bed at rest or turning as a solid body); the whole bed depth when no bin moves uphill.
+// * Particles in free flight: particles with no other particle and no drum mantle within
+//   `flight_gap` of their surface.
+#include <optional>
+#include <vector>
+
+#include "engine/particles.hpp"
+#include "engine/types.hpp"
+
+namespace drumlab {
+
+class Simulation;
+
+/// What the observables need to know about the drum.
+struct DrumGeometry {
+  Vec3 gravity = Vec3(0.0, -9.81, 0.0);  ///< drum frame, m/s^2
+  double omega = 0.0;                    ///< rad/s about +z
+  double radius = 0.0;                   ///< mantle radius R, m
+  std::optional<double> period_z;        ///< depth of a drum with periodic ends
+};
+
+struct ObservableOptions {
+  double column_width = 0.0;   ///< m; 0: two diameters of the largest particle
+  double end_exclusion = 0.2;  ///< share of the surface's extent left out at each end, [0, 0.45]
+  double flight_gap = 0.0;     ///< m; 0: a quarter of the smallest radius
+};
+
+struct DrumObservables {
+  std::size_t particles = 0;
+  bool surface_found = false;        ///< at least 3 surface points in the central window
+  double angle_of_repose_deg = 0.0;  ///< degrees, positive rising along `carry`
+  std::size_t surface_points = 0;    ///< columns used for the line fit
+  double surface_chord = 0.0;        ///< extent (along carry) of the fitted points, m
+  double surface_rms = 0.0;          ///< rms residual of the line fit, m
+  /// Largest distance between a cubic fitted to the same surface points and the line, divided by
+  /// the chord: ~0 for a flat surface, a few per cent for the S shape of a cascading bed.
+  double surface_curvature = 0.0;
+  double flowing_layer_thickness = 0.0;  ///< m, see the header comment
+  double bed_depth = 0.0;  ///< deepest particle centre below the line in the central window, m
+  double mean_kinetic_energy = 0.0;     ///< translational, J per particle
+  double mean_rotational_energy = 0.0;  ///< J per particle
+  double solid_body_energy = 0.0;       ///< mean 1/2 m (omega rho)^2 of a bed turning rigidly, J
+  Vec3 centre_of_mass = Vec3::Zero();   ///< mass-weighted, m
+  double com_offset = 0.0;         ///< distance of the COM from the axis in the cross-section / R
+  double airborne_fraction = 0.0;  ///< share of particles in free flight
+  double upper_fraction = 0.0;     ///< share of particle centres above the axis (along up)
+  Vec3 up = Vec3::Zero();          ///< the cross-section axes used (unit vectors)
+  Vec3 carry = Vec3::Zero();
+};
+
+/// Measures the observables. Throws InputError if the particle arrays disagree in size, the
+/// radius is not positive, gravity has no component across the axis or an option is out of range.
+DrumObservables measure_drum(const Particles& particles, const DrumGeometry& drum,
+                             const ObservableOptions& options = {});
+/// Same, for the current state of a simulation (its gravity, drum omega, radius and ends).
+DrumObservables measure_drum(const Simulation& sim, const ObservableOptions& options = {});
+
+}  // namespace drumlab

@@ -1,0 +1,221 @@
+// Drum observables and the regime classifier on synthetic particle sets with known answers.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <numbers>
+
+#include "engine/analysis/drum_observables.hpp"
+#include "engine/analysis/flow_regime.hpp"
+
+namespace drumlab {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+/// A bed on a touching cubic lattice (spacing 2r) filling the part of a drum of radius R below
+/// the plane u = c + tan(theta) h, written in the cross-section axes (up, carry). Velocities:
+/// `flow` m/s downhill along the plane at the surface, falling linearly to zero at depth
+/// `layer` below the plane and uphill below it.
+struct SlabSpec {
+  double radius_drum = 0.2;
+  double r = 0.002;
+  double depth = 0.02;
+  double theta_deg = 30.0;
+  double c = -0.05;
+  double layer = 0.03;
+  double flow = 0.5;
+  Vec3 up = Vec3::UnitY();
+  Vec3 carry = Vec3::UnitX();
+};
+
+Particles tilted_slab(const SlabSpec& s) {
+  Particles p;
+  const double step = 2.0 * s.r;
+  const double tan_t = std::tan(s.theta_deg * kPi / 180.0);
+  const double len = std::sqrt(1.0 + tan_t * tan_t);
+  const Vec3 downhill = -(s.carry + tan_t * s.up) / len;
+  const double reach = s.radius_drum - s.r;
+  for (double h = -reach; h <= reach; h += step) {
+    for (double u = -reach; u <= reach; u += step) {
+      if (h * h + u * u > reach * reach || u + s.r > s.c + tan_t * h) continue;
+      const double depth_below = (s.c + tan_t * h - u) / len;
+      for (double z = s.r; z <= s.depth - s.r + 1e-12; z += step) {
+        const Index i = p.add(h * s.carry + u * s.up + z * Vec3::UnitZ(), s.r, 2500.0);
+        p.velocity[i] = s.flow * (1.0 - depth_below / s.layer) * downhill;
+      }
+    }
+  }
+  return p;
+}
+
+DrumGeometry geometry(const SlabSpec& s, double omega = 1.0) {
+  DrumGeometry g;
+  g.gravity = -9.81 * s.up;
+  g.omega = omega;
+  g.radius = s.radius_drum;
+  return g;
+}
+
+TEST(DrumObservables, TiltedSlabGivesItsAngleAndLayer) {
+  const SlabSpec s;
+  const Particles p = tilted_slab(s);
+  const DrumObservables o = measure_drum(p, geometry(s));
+  ASSERT_TRUE(o.surface_found);
+  EXPECT_GE(o.surface_points, 10u);
+  EXPECT_NEAR(o.angle_of_repose_deg, 30.0, 0.2);
+  // The fitted line lies within a particle diameter of the plane, so the layer does too.
+  EXPECT_NEAR(o.flowing_layer_thickness, s.layer, 2.0 * s.r);
+  EXPECT_LT(o.surface_curvature, 0.005);
+  EXPECT_EQ(o.airborne_fraction, 0.0);
+  EXPECT_TRUE(o.up.isApprox(Vec3::UnitY()));
+  EXPECT_TRUE(o.carry.isApprox(Vec3::UnitX()));
+}
+
+TEST(DrumObservables, SlabCentreOfMassMatchesTheCircularSegment) {
+  // Oracle: centroid of the disc (radius rho = R - r) on the side n.x <= d of a line, with
+  // n = (-sin t, cos t) the line's upward normal: -(2/3)(rho^2 - d^2)^(3/2) / area * n.
+  const SlabSpec s;
+  const Particles p = tilted_slab(s);
+  const DrumObservables o = measure_drum(p, geometry(s));
+  const double t = s.theta_deg * kPi / 180.0;
+  const double rho = s.radius_drum - s.r;
+  const double d = (s.c - s.r) * std::cos(t);
+  const double cap = rho * rho * std::acos(d / rho) - d * std::sqrt(rho * rho - d * d);
+  const double dist = -(2.0 / 3.0) * std::pow(rho * rho - d * d, 1.5) / (kPi * rho * rho - cap);
+  const Vec3 expected = dist * Vec3(-std::sin(t), std::cos(t), 0.0);
+  EXPECT_NEAR(o.centre_of_mass.x(), expected.x(), 1e-3);
+  EXPECT_NEAR(o.centre_of_mass.y(), expected.y(), 1e-3);
+  EXPECT_NEAR(o.centre_of_mass.z(), 0.5 * s.depth, 1e-12);  // 5 symmetric layers
+  EXPECT_NEAR(o.com_offset, expected.norm() / s.radius_drum, 2.0 * s.r / s.radius_drum);
+}
+
+TEST(DrumObservables, CentreOfMassAndEnergyOfTwoParticles) {
+  Particles p;
+  p.add(Vec3(0.0, -0.1, 0.01), 0.01, 1000.0);
+  p.add(Vec3(0.1, -0.1, 0.03), 0.02, 1000.0);  // 8 times the mass
+  p.velocity[0] = Vec3(1.0, 0.0, 0.0);
+  p.omega[1] = Vec3(0.0, 0.0, 2.0);
+  DrumGeometry g;
+  g.radius = 0.3;
+  const DrumObservables o = measure_drum(p, g);
+  EXPECT_NEAR(o.centre_of_mass.x(), 0.1 * 8.0 / 9.0, 1e-12);
+  EXPECT_NEAR(o.centre_of_mass.y(), -0.1, 1e-12);
+  EXPECT_NEAR(o.centre_of_mass.z(), (0.01 + 8.0 * 0.03) / 9.0, 1e-12);
+  const double m0 = 1000.0 * 4.0 / 3.0 * kPi * 1e-6;
+  EXPECT_NEAR(o.mean_kinetic_energy, 0.25 * m0, 1e-12);
+  EXPECT_NEAR(o.mean_rotational_energy, 0.5 * 0.5 * 0.4 * 8.0 * m0 * 4e-4 * 4.0, 1e-12);
+  EXPECT_EQ(o.airborne_fraction, 1.0);  // neither touches anything
+}
+
+TEST(DrumObservables, FollowTheGravityAndTurningDirection) {
+  // Gravity along -x: up = +x and, turning counter-clockwise, carry = z x (-up) = -y.
+  SlabSpec s;
+  s.up = Vec3::UnitX();
+  s.carry = -Vec3::UnitY();
+  const DrumObservables o = measure_drum(tilted_slab(s), geometry(s));
+  EXPECT_TRUE(o.carry.isApprox(s.carry));
+  EXPECT_NEAR(o.angle_of_repose_deg, 30.0, 0.5);
+  EXPECT_NEAR(o.flowing_layer_thickness, s.layer, 2.0 * s.r);
+  // The same bed in a drum turning the other way rises against the carry direction.
+  const DrumObservables back = measure_drum(tilted_slab(s), geometry(s, -1.0));
+  EXPECT_TRUE(back.carry.isApprox(-s.carry));
+  EXPECT_NEAR(back.angle_of_repose_deg, -30.0, 0.5);
+}
+
+TEST(DrumObservables, SolidBodyRotationHasNoFlowingLayer) {
+  SlabSpec s;
+  s.theta_deg = 0.0;
+  Particles p = tilted_slab(s);
+  const double omega = 1.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    p.velocity[i] = omega * Vec3::UnitZ().cross(p.position[i]);
+  }
+  const DrumObservables o = measure_drum(p, geometry(s, omega));
+  EXPECT_NEAR(o.angle_of_repose_deg, 0.0, 0.5);
+  EXPECT_EQ(o.flowing_layer_thickness, 0.0);
+  EXPECT_NEAR(o.mean_kinetic_energy, o.solid_body_energy, 1e-12 * o.solid_body_energy);
+}
+
+TEST(DrumObservables, ParticlesInFlightDoNotMoveTheSurface) {
+  const SlabSpec s;
+  Particles p = tilted_slab(s);
+  const std::size_t bed = p.size();
+  for (int k = 0; k < 4; ++k) p.add(Vec3(-0.02 + 0.03 * k, 0.1, 0.003), s.r, 2500.0);
+  const DrumObservables o = measure_drum(p, geometry(s));
+  EXPECT_NEAR(o.airborne_fraction, 4.0 / static_cast<double>(bed + 4), 1e-15);
+  EXPECT_NEAR(o.angle_of_repose_deg, 30.0, 0.5);
+}
+
+TEST(DrumObservables, RejectsBadInput) {
+  Particles p;
+  p.add(Vec3(0.0, -0.1, 0.01), 0.01, 1000.0);
+  DrumGeometry g;
+  g.radius = 0.0;
+  EXPECT_THROW(measure_drum(p, g), InputError);
+  g.radius = 0.3;
+  g.gravity = Vec3(0.0, 0.0, -9.81);  // along the axis: no cross-section direction
+  EXPECT_THROW(measure_drum(p, g), InputError);
+  g.gravity = Vec3(0.0, -9.81, 0.0);
+  ObservableOptions bad;
+  bad.end_exclusion = 0.6;
+  EXPECT_THROW(measure_drum(p, g, bad), InputError);
+  p.velocity[0].x() = NAN;
+  EXPECT_THROW(measure_drum(p, g), InputError);
+}
+
+DrumObservables sample(double angle, double layer, double curvature = 0.0) {
+  DrumObservables o;
+  o.surface_found = true;
+  o.angle_of_repose_deg = angle;
+  o.flowing_layer_thickness = layer;
+  o.surface_curvature = curvature;
+  o.upper_fraction = 0.1;
+  o.com_offset = 0.5;
+  return o;
+}
+
+TEST(FlowRegime, ClassifiesEachRegimeFromItsSignature) {
+  const std::vector<DrumObservables> rolling(6, sample(32.0, 0.02));
+  EXPECT_EQ(classify_regime(rolling).regime, FlowRegime::rolling);
+
+  const std::vector<DrumObservables> cascading(6, sample(40.0, 0.03, 0.05));
+  EXPECT_EQ(classify_regime(cascading).regime, FlowRegime::cascading);
+
+  std::vector<DrumObservables> slumping;  // saw-tooth angle, mostly at rest
+  for (int k = 0; k < 6; ++k) slumping.push_back(sample(28.0 + 2.0 * k, k == 5 ? 0.01 : 0.0));
+  const RegimeEvidence slump = classify_regime(slumping);
+  EXPECT_EQ(slump.regime, FlowRegime::slumping);
+  EXPECT_NEAR(slump.angle_swing_deg, 10.0, 1e-12);
+  EXPECT_NEAR(slump.still_share, 5.0 / 6.0, 1e-12);
+
+  std::vector<DrumObservables> cataracting(6, sample(45.0, 0.05, 0.06));
+  for (auto& o : cataracting) o.airborne_fraction = 0.05;
+  EXPECT_EQ(classify_regime(cataracting).regime, FlowRegime::cataracting);
+
+  std::vector<DrumObservables> centrifuging(6, sample(0.0, 0.0));
+  for (auto& o : centrifuging) {
+    o.upper_fraction = 0.48;
+    o.com_offset = 0.02;
+  }
+  EXPECT_EQ(classify_regime(centrifuging).regime, FlowRegime::centrifuging);
+
+  EXPECT_EQ(classify_regime({}).regime, FlowRegime::unknown);
+  EXPECT_EQ(regime_name(FlowRegime::cascading), "cascading");
+}
+
+TEST(FlowRegime, MeasuredSlabIsRollingAndRigidBedIsSlumping) {
+  const SlabSpec s;
+  const std::vector<DrumObservables> flowing(3, measure_drum(tilted_slab(s), geometry(s)));
+  EXPECT_EQ(classify_regime(flowing).regime, FlowRegime::rolling);
+  Particles rigid = tilted_slab(s);
+  for (std::size_t i = 0; i < rigid.size(); ++i) {
+    rigid.velocity[i] = Vec3::UnitZ().cross(rigid.position[i]);
+  }
+  const std::vector<DrumObservables> still(3, measure_drum(rigid, geometry(s)));
+  EXPECT_EQ(classify_regime(still).regime, FlowRegime::slumping);
+}
+
+}  // namespace
+}  // namespace drumlab
