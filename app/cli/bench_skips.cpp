@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <limits>
 #include <memory>
@@ -42,14 +43,24 @@ struct SkipCase {
   bool same_physics = true;
   bool walls_only = false;  ///< compare the wall phase only (different physics)
   std::string note;
-  std::vector<double> with_s, without_s;                     ///< seconds per step, one per repeat
+  /// Seconds per step, one per repeat: process CPU time and wall clock.
+  std::vector<double> with_cpu, without_cpu, with_wall, without_wall;
   double max_dx = std::numeric_limits<double>::quiet_NaN();  ///< |x_with - x_without| / r_min
 };
 
 struct RunResult {
-  double seconds_per_step = 0.0;  ///< wall clock of stepping + writers, or the wall timer
+  double cpu_per_step = 0.0;   ///< process CPU s of stepping + writers (the wall timer: walls_only)
+  double wall_per_step = 0.0;  ///< wall-clock s of stepping + writers, or the wall-phase timer
   std::vector<Vec3> position_by_id;
 };
+
+/// CPU seconds of this process (one thread runs: less disturbed by other processes than the wall
+/// clock on a busy shared machine).
+double process_cpu_seconds() {
+  timespec t{};
+  ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 double median(std::vector<double> v) {
   if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
@@ -78,6 +89,7 @@ RunResult run_variant(const RollingState& rolling, const Variant& v, const Skips
       opt.every > 0 ? opt.every : std::max<std::uint64_t>(1, opt.steps / 10);
   const StepTimers t0 = sim.timers();
   const auto start = std::chrono::steady_clock::now();
+  const double cpu0 = process_cpu_seconds();
   std::uint64_t frame = 0;
   for (auto& w : writers) w->on_frame(sim, frame);
   for (std::uint64_t done = 0; done < opt.steps;) {
@@ -87,12 +99,15 @@ RunResult run_variant(const RollingState& rolling, const Variant& v, const Skips
     ++frame;
     for (auto& w : writers) w->on_frame(sim, frame);
   }
+  const double cpu = process_cpu_seconds() - cpu0;
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   writers.clear();  // closes the files (untimed, like the one-off end of a run)
   RunResult r;
   const double steps = static_cast<double>(opt.steps);
-  r.seconds_per_step = walls_only ? (sim.timers().walls - t0.walls) / steps : wall / steps;
+  const double walls = (sim.timers().walls - t0.walls) / steps;
+  r.cpu_per_step = walls_only ? walls : cpu / steps;
+  r.wall_per_step = walls_only ? walls : wall / steps;
   const Particles& p = sim.particles();
   r.position_by_id.resize(p.size());
   for (std::size_t i = 0; i < p.size(); ++i) r.position_by_id[p.id[i]] = p.position[i];
@@ -179,14 +194,17 @@ std::vector<SkipCase> make_cases(const SceneConfig& base, const std::string& met
 void write_csv(const std::filesystem::path& file, const std::string& scene,
                const SkipsBenchOptions& opt, const std::vector<SkipCase>& cases) {
   write_file_atomically(file, [&](std::ostream& os) {
-    os << "scene,skip,general_path,measure,steps,repeats,with_skip_s_per_step,"
-          "without_skip_s_per_step,gain,same_physics,max_dx_over_rmin,note\n";
+    os << "scene,skip,general_path,measure,steps,repeats,with_skip_cpu_s_per_step,"
+          "without_skip_cpu_s_per_step,gain_cpu,with_skip_wall_s_per_step,"
+          "without_skip_wall_s_per_step,gain_wall,same_physics,max_dx_over_rmin,note\n";
     for (const SkipCase& c : cases) {
-      const double w = median(c.with_s), wo = median(c.without_s);
-      os << fmt::format("{},{},{},{},{},{},{:.6g},{:.6g},{:.4g},{},{},\"{}\"\n", scene, c.name,
-                        c.general, c.walls_only ? "wall phase" : "step", opt.steps, opt.repeats, w,
-                        wo, wo / w, c.same_physics ? 1 : 0,
-                        std::isfinite(c.max_dx) ? fmt::format("{:.3g}", c.max_dx) : "", c.note);
+      const double w = median(c.with_cpu), wo = median(c.without_cpu);
+      const double ww = median(c.with_wall), wwo = median(c.without_wall);
+      os << fmt::format(
+          "{},{},{},{},{},{},{:.6g},{:.6g},{:.4g},{:.6g},{:.6g},{:.4g},{},{},\"{}\"\n", scene,
+          c.name, c.general, c.walls_only ? "wall phase (wall clock)" : "step", opt.steps,
+          opt.repeats, w, wo, wo / w, ww, wwo, wwo / ww, c.same_physics ? 1 : 0,
+          std::isfinite(c.max_dx) ? fmt::format("{:.3g}", c.max_dx) : "", c.note);
     }
   });
 }
@@ -198,11 +216,11 @@ void write_chart(const std::filesystem::path& file, const std::string& scene,
   render::BarSeries with{"with the skip", {}}, without{"general path", {}}, gain{"gain", {}};
   for (const SkipCase& c : cases) {
     names.push_back(c.name);
-    with.values.push_back(1e3 * median(c.with_s));
-    without.values.push_back(1e3 * median(c.without_s));
-    gain.values.push_back(median(c.without_s) / median(c.with_s));
+    with.values.push_back(1e3 * median(c.with_cpu));
+    without.values.push_back(1e3 * median(c.without_cpu));
+    gain.values.push_back(median(c.without_cpu) / median(c.with_cpu));
   }
-  render::BarPanel time{fmt::format("{}: time per step (walls: wall phase only)", scene),
+  render::BarPanel time{fmt::format("{}: CPU time per step (periodic: wall phase)", scene),
                         "ms per step (median)",
                         names,
                         {with, without},
@@ -217,10 +235,12 @@ void write_chart(const std::filesystem::path& file, const std::string& scene,
 }
 
 void print_row(const SkipCase& c) {
-  const double w = median(c.with_s), wo = median(c.without_s);
-  fmt::print("{:<18} {:>10.4g} {:>12.4g} {:>6.2f}x {:>12} {:<38} {}\n", c.name, 1e3 * w, 1e3 * wo,
-             wo / w, c.same_physics ? fmt::format("{:.3g}", c.max_dx) : std::string("n/a"),
-             c.general, c.note);
+  const double w = median(c.with_cpu), wo = median(c.without_cpu);
+  const double wall_gain = median(c.without_wall) / median(c.with_wall);
+  fmt::print("{:<18} {:>10.4g} {:>12.4g} {:>6.2f}x {:>8.2f}x {:>12} {:<38} {}\n", c.name, 1e3 * w,
+             1e3 * wo, wo / w, wall_gain,
+             c.same_physics ? fmt::format("{:.3g}", c.max_dx) : std::string("n/a"), c.general,
+             c.note);
 }
 
 }  // namespace
@@ -261,8 +281,10 @@ void run_bench_skips(const SkipsBenchOptions& opt) {
       RunResult b = run_variant(rolling, skip_first ? c.without_skip : c.with_skip, opt,
                                 c.walls_only, scratch);
       if (!skip_first) std::swap(a, b);
-      c.with_s.push_back(a.seconds_per_step);
-      c.without_s.push_back(b.seconds_per_step);
+      c.with_cpu.push_back(a.cpu_per_step);
+      c.without_cpu.push_back(b.cpu_per_step);
+      c.with_wall.push_back(a.wall_per_step);
+      c.without_wall.push_back(b.wall_per_step);
       if (r == 0 && c.same_physics) {
         c.max_dx = max_difference(a.position_by_id, b.position_by_id) / rolling.scene.min_radius();
       }
@@ -271,12 +293,15 @@ void run_bench_skips(const SkipsBenchOptions& opt) {
     std::fflush(stdout);
   }
   std::filesystem::remove_all(scratch);
-  fmt::print("{:<18} {:>10} {:>12} {:>7} {:>12} {:<38} {}\n", "skip", "with ms", "general ms",
-             "gain", "max|dx|/rmin", "general path", "note");
+  fmt::print("{:<18} {:>10} {:>12} {:>7} {:>9} {:>12} {:<38} {}\n", "skip", "with ms", "general ms",
+             "gain", "wall gain", "max|dx|/rmin", "general path", "note");
   for (const SkipCase& c : cases) print_row(c);
   fmt::print(
-      "ms: median milliseconds per step (wall clock of stepping, writers included); "
-      "periodic ends: the wall phase only. max|dx|/rmin: largest position difference after "
+      "ms: median CPU milliseconds per step of this (single-threaded) process, stepping and "
+      "writers included; gain = general / with skip; wall gain: the same from the wall clock "
+      "(includes waiting for the CPU on a busy machine, and for the disk); periodic ends: the "
+      "engine's wall-phase timer (wall clock) for both. max|dx|/rmin: largest position difference "
+      "after "
       "the run between the two paths, over the smallest radius (round-off when the physics "
       "is the same)\n");
   const auto csv = out / fmt::format("skips_{}.csv", name);

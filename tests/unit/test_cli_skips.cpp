@@ -82,24 +82,26 @@ TEST(CliBench, SkipsWritesOneRowPerSkipAndSamePhysicsAgrees) {
   const auto lines = csv_lines(out / "skips_tiny_skips.csv");
   ASSERT_EQ(lines.size(), 7u) << r.output;
   EXPECT_EQ(lines[0],
-            "scene,skip,general_path,measure,steps,repeats,with_skip_s_per_step,"
-            "without_skip_s_per_step,gain,same_physics,max_dx_over_rmin,note");
+            "scene,skip,general_path,measure,steps,repeats,with_skip_cpu_s_per_step,"
+            "without_skip_cpu_s_per_step,gain_cpu,with_skip_wall_s_per_step,"
+            "without_skip_wall_s_per_step,gain_wall,same_physics,max_dx_over_rmin,note");
   const std::vector<std::string> skips = {"friction 0",       "rolling 0",     "2D grid m2 vs m3",
                                           "2D grid m2 vs m5", "periodic ends", "no writers"};
   for (std::size_t k = 0; k < skips.size(); ++k) {
     const auto f = fields(lines[k + 1]);
-    ASSERT_EQ(f.size(), 12u) << lines[k + 1];
+    ASSERT_EQ(f.size(), 15u) << lines[k + 1];
     EXPECT_EQ(f[1], skips[k]);
     EXPECT_GT(std::atof(f[6].c_str()), 0.0) << lines[k + 1];
     EXPECT_GT(std::atof(f[7].c_str()), 0.0) << lines[k + 1];
+    EXPECT_GT(std::atof(f[9].c_str()), 0.0) << lines[k + 1];
     if (skips[k] == "periodic ends") {
-      EXPECT_EQ(f[9], "0");
-      EXPECT_TRUE(f[10].empty());
+      EXPECT_EQ(f[12], "0");
+      EXPECT_TRUE(f[13].empty());
     } else {
       // Same physics: positions after 20 steps agree to round-off (relative to r_min).
-      EXPECT_EQ(f[9], "1");
-      ASSERT_FALSE(f[10].empty()) << lines[k + 1];
-      EXPECT_LT(std::atof(f[10].c_str()), 1e-9) << lines[k + 1];
+      EXPECT_EQ(f[12], "1");
+      ASSERT_FALSE(f[13].empty()) << lines[k + 1];
+      EXPECT_LT(std::atof(f[13].c_str()), 1e-9) << lines[k + 1];
     }
   }
   EXPECT_FALSE(std::filesystem::exists(out / "skips_tiny_skips_writers"));  // scratch removed
