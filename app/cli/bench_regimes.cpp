@@ -59,7 +59,8 @@ bool agrees(const std::string& predicted, std::string_view observed) {
   return observed != "unknown" && predicted.find(observed) != std::string::npos;
 }
 
-RegimeRow run_froude(const RollingState& settled, double fr, const RegimeWindow& w) {
+RegimeRow run_froude(const RollingState& settled, double fr, const RegimeWindow& w,
+                     const ObservableOptions& observe) {
   RegimeRow row;
   row.froude = fr;
   SceneConfig scene = settled.scene;
@@ -79,7 +80,7 @@ RegimeRow run_froude(const RollingState& settled, double fr, const RegimeWindow&
   std::vector<DrumObservables> window;
   for (int s = 0; s < w.samples; ++s) {
     sim.advance(between);
-    window.push_back(measure_drum(sim));
+    window.push_back(measure_drum(sim, observe));
     row.flowing_layer += window.back().flowing_layer_thickness / w.samples;
   }
   row.evidence = classify_regime(window);
@@ -178,9 +179,11 @@ void run_bench_regimes(const RegimesBenchOptions& opt) {
       "{:>7} {:>6}\n",
       "Fr", "omega", "trans", "window", "predicted (Fr)", "observed", "agree", "angle", "swing",
       "still", "curv", "air", "upper", "layermm", "wall_s");
+  ObservableOptions observe;
+  observe.column_width = opt.column_width;
   std::vector<RegimeRow> rows;
   for (const double fr : froude) {
-    rows.push_back(run_froude(settled, fr, w));
+    rows.push_back(run_froude(settled, fr, w, observe));
     print_row(rows.back());
     std::fflush(stdout);
   }

@@ -17,6 +17,7 @@ struct RegimesBenchOptions {
   std::string scene;           ///< scene file (default: scenes/regime_drum.toml)
   std::vector<double> froude;  ///< empty: 1e-4 ... 1 (quick: 1e-3, 1e-2, 0.1, 1)
   bool quick = false;          ///< shorter transient and window, fewer Froude numbers
+  double column_width = 0.0;   ///< surface column width, m (0: the observables' default)
   std::string out = "out/bench";
   RollingPlan plan;  ///< settling only (turn_revolutions = 0)
 };

@@ -60,6 +60,9 @@ void add_regimes_subcommand(CLI::App* bench) {
       "regimes", "Regime map: observed flow regime and angle of repose against Fr = 1e-4..1");
   cmd->add_option("--scene", r->scene, "scene file (default: scenes/regime_drum.toml)");
   cmd->add_option("--froude", r->froude, "Froude numbers (default: 1e-4 ... 1)")->delimiter(',');
+  cmd->add_option("--column-width", r->column_width,
+                  "surface column width, m (default: two largest diameters)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_flag("--quick", r->quick, "4 Froude numbers, short transient and window (< 1 min)");
   cmd->add_option("--settle-time", r->plan.settle_time,
                   "s of settling at rest (default: the scene's fill.settle_time)")
