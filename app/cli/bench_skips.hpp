@@ -7,7 +7,8 @@
 //   periodic ends (no end-cap contacts)              vs  caps: different physics, wall phase only
 //   no output writers                                vs  --vtu and --h5 writers every K steps
 // Each pair starts from the same state; the position difference after the run is printed (round
-// off for the same physics). Median over repeats; table on stdout, CSV + PNG bar chart.
+// off for the same physics). Median over repeats of the CPU time per step (one thread; the wall
+// clock beside it); table on stdout, CSV + PNG bar chart.
 #include <cstdint>
 #include <string>
 
