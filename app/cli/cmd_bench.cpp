@@ -1,12 +1,16 @@
 // drumlab bench throughput [--scene S] [--threads N] [--methods LIST] [--steps N] [--out DIR]
 // drumlab bench search [--scene S] [--methods LIST] [--table2] [--out DIR]
 // drumlab bench accuracy [--scene S] [--quick] [--out DIR]
+// drumlab bench skips [--scene S] [--steps N] [--repeats R] [--out DIR]
+// drumlab bench regimes [--scene S] [--froude LIST] [--quick] [--out DIR]
 // Benchmarks that print figures (speed targets live here, not in timed tests): see
 // bench_throughput.hpp and bench_search.hpp.
 #include <memory>
 
 #include "app/cli/bench_accuracy.hpp"
+#include "app/cli/bench_regimes.hpp"
 #include "app/cli/bench_search.hpp"
+#include "app/cli/bench_skips.hpp"
 #include "app/cli/bench_throughput.hpp"
 #include "app/cli/commands.hpp"
 #include "app/cli/scene_setup.hpp"
@@ -30,10 +34,56 @@ void add_state_options(CLI::App* cmd, std::string& scene, RollingPlan& plan, std
   cmd->add_option("--out", out, "folder for the CSV and PNG")->capture_default_str();
 }
 
+/// `bench skips`: the speed each skip of scene_features() gains (bench_skips.hpp).
+void add_skips_subcommand(CLI::App* bench) {
+  auto k = std::make_shared<SkipsBenchOptions>();
+  CLI::App* cmd = bench->add_subcommand(
+      "skips", "Speed gained by each skip (friction, rolling, 2D grid, periodic ends, writers)");
+  add_state_options(cmd, k->scene, k->plan, k->out);
+  cmd->add_option("--steps", k->steps, "timed steps per run")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--repeats", k->repeats, "runs per variant (median kept)")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
+  cmd->add_option("--every", k->every, "writer cadence in steps (default: steps / 10)");
+  cmd->add_option("--tiny", k->tiny, "coefficient that forces the general path")
+      ->capture_default_str();
+  cmd->callback([k] {
+    if (k->scene.empty()) k->scene = shipped_scene("drum_demo.toml");
+    run_bench_skips(*k);
+  });
+}
+
+/// `bench regimes`: the drum regime map (bench_regimes.hpp).
+void add_regimes_subcommand(CLI::App* bench) {
+  auto r = std::make_shared<RegimesBenchOptions>();
+  CLI::App* cmd = bench->add_subcommand(
+      "regimes", "Regime map: observed flow regime and angle of repose against Fr = 1e-4..1");
+  cmd->add_option("--scene", r->scene, "scene file (default: scenes/regime_drum.toml)");
+  cmd->add_option("--froude", r->froude, "Froude numbers (default: 1e-4 ... 1)")->delimiter(',');
+  cmd->add_option("--column-width", r->column_width,
+                  "surface column width, m (default: two largest diameters)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--quick", r->quick, "4 Froude numbers, short transient and window (< 1 min)");
+  cmd->add_option("--settle-time", r->plan.settle_time,
+                  "s of settling at rest (default: the scene's fill.settle_time)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--fresh", r->plan.fresh, "settle again, ignoring the cache");
+  cmd->add_option("--cache", r->plan.cache_dir, "folder of the cached settled states")
+      ->capture_default_str();
+  cmd->add_option("--out", r->out, "folder for the CSV and PNG")->capture_default_str();
+  cmd->callback([r] {
+    if (r->scene.empty()) r->scene = shipped_scene("regime_drum.toml");
+    run_bench_regimes(*r);
+  });
+}
+
 }  // namespace
 
 void add_bench_command(CLI::App& app) {
-  CLI::App* bench = app.add_subcommand("bench", "Benchmarks: throughput, contact search, accuracy");
+  CLI::App* bench = app.add_subcommand(
+      "bench", "Benchmarks: throughput, contact search, accuracy, skips, regimes");
   bench->require_subcommand(1);
 
   auto t = std::make_shared<ThroughputOptions>();
@@ -84,6 +134,8 @@ void add_bench_command(CLI::App& app) {
     if (a->quick && accuracy->count("--turn") == 0) a->plan.turn_revolutions = 0.2;
     run_bench_accuracy(*a);
   });
+  add_skips_subcommand(bench);
+  add_regimes_subcommand(bench);
 }
 
 }  // namespace drumlab::cli

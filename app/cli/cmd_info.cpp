@@ -8,6 +8,8 @@
 #include "app/cli/scene_setup.hpp"
 #include "engine/fill/file_fill.hpp"
 #include "engine/fill/paper_packing.hpp"
+#include "engine/fill/random_fill.hpp"
+#include "engine/scene/scene_features.hpp"
 #include "engine/search/auto_select.hpp"
 #include "engine/search/cell_grid.hpp"
 #include "engine/simulation.hpp"
@@ -20,6 +22,18 @@ namespace {
 /// history) and per grid cell; an estimate, stated as such.
 constexpr double kBytesPerParticle = 5 * 24 + 4 * 8 + 1 + 4 + (24 + 8 + 24 + 4 + 4 + 8) + 6 * 48;
 constexpr double kBytesPerCell = 12;
+
+/// The "needs / skips" section: each term the engine computes or leaves out for this scene, and
+/// why.
+void print_features(const SceneConfig& scene) {
+  const SceneFeatures f = scene_features(scene);
+  fmt::print(
+      "needs / skips     (what the engine computes for this scene; `drumlab bench skips` "
+      "measures each skip)\n");
+  for (const SceneFeature& x : f.list) {
+    fmt::print("  {:<15} {:<39} {}\n", feature_use_name(x.use), x.term, x.why);
+  }
+}
 
 void print_info(const std::string& file) {
   const SceneConfig scene = load_scene(file);
@@ -93,6 +107,7 @@ void print_info(const std::string& file) {
     fmt::print("search method     {} (set by the scene; `--method` overrides it in `run`)\n",
                scene.search_method);
   }
+  if (dynamic) print_features(scene);
   if (!dynamic) fmt::print("note              static packing: use `drumlab paper-table`\n");
 }
 

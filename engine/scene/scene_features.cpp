@@ -1,0 +1,109 @@
+#include "engine/scene/scene_features.hpp"
+
+#include <fmt/format.h>
+
+namespace drumlab {
+namespace {
+
+/// The grid a search method name uses: "2D", "3D", "none" (brute) or "auto".
+std::string grid_of(const std::string& method) {
+  std::string m = method;
+  if (m == "verlet") return "3D";  // Verlet lists built by m5
+  if (m.rfind("verlet:", 0) == 0) m = m.substr(7);
+  if (m == "m1" || m == "m2" || m == "m4") return "2D";
+  if (m == "brute") return "none";
+  if (m == "auto") return "auto";
+  return "3D";  // m3, m5, mlgrid
+}
+
+SceneFeature term(std::string name, bool needed, std::string why) {
+  return {std::move(name), needed ? FeatureUse::needed : FeatureUse::skipped, std::move(why)};
+}
+
+SceneFeature tangential(const char* who, const char* key, double mu) {
+  return term(fmt::format("tangential history ({})", who), mu > 0.0,
+              mu > 0.0 ? fmt::format("{} = {} > 0: Mindlin spring with history", key, mu)
+                       : fmt::format("{} = 0: no tangential force, no history update", key));
+}
+
+SceneFeature rolling(const char* who, const char* key, double mu_r) {
+  return term(fmt::format("rolling resistance ({})", who), mu_r > 0.0,
+              mu_r > 0.0 ? fmt::format("{} = {} > 0", key, mu_r)
+                         : fmt::format("{} = 0: no rolling torque", key));
+}
+
+SceneFeature grid_feature(const SceneConfig& scene, const SceneFeatures& f) {
+  const std::string grid = grid_of(scene.search_method);
+  const std::string depth =
+      fmt::format("depth {} m = {:.3g} largest diameters", scene.drum.depth, f.depth_in_diameters);
+  if (!f.shallow) {
+    return {"3D search grid", FeatureUse::needed,
+            fmt::format("{} > {:g}: deep drum, a 3D grid pays (search = {})", depth,
+                        kShallowDepthInDiameters, scene.search_method)};
+  }
+  if (grid == "2D") {
+    return {"3D search grid", FeatureUse::skipped,
+            fmt::format("{} <= {:g}: shallow, the scene's {} uses a 2D grid (cells span the depth)",
+                        depth, kShallowDepthInDiameters, scene.search_method)};
+  }
+  return {"3D search grid", FeatureUse::available,
+          fmt::format("{} <= {:g}: shallow, a 2D grid (m2) suffices, but search = {} ({}); use "
+                      "--method m2 or verlet:m2",
+                      depth, kShallowDepthInDiameters, scene.search_method,
+                      grid == "auto" ? "decided at run time" : grid)};
+}
+
+}  // namespace
+
+SceneFeatures scene_features(const SceneConfig& scene) {
+  SceneFeatures f;
+  f.pair_tangential = scene.material.friction > 0.0;
+  f.wall_tangential = scene.wall.friction > 0.0;
+  f.pair_rolling = scene.material.rolling_friction > 0.0;
+  f.wall_rolling = scene.wall.rolling_friction > 0.0;
+  f.rotation = f.pair_tangential || f.wall_tangential || f.pair_rolling || f.wall_rolling;
+  f.cohesion = false;
+  f.end_caps = scene.drum.ends == DrumEnds::caps;
+  const double largest = 2.0 * scene.max_radius();
+  f.depth_in_diameters = largest > 0.0 ? scene.drum.depth / largest : 0.0;
+  f.shallow = largest > 0.0 && f.depth_in_diameters <= kShallowDepthInDiameters;
+  f.grid_2d = grid_of(scene.search_method) == "2D";
+
+  f.list.push_back(tangential("particle-particle", "material.friction", scene.material.friction));
+  f.list.push_back(tangential("particle-wall", "wall.friction", scene.wall.friction));
+  f.list.push_back(term("rotation (angular velocity)", f.rotation,
+                        f.rotation ? "some contact applies a torque (friction or rolling > 0)"
+                                   : "no friction and no rolling resistance: no torque, "
+                                     "angular velocities are not integrated"));
+  f.list.push_back(
+      rolling("particle-particle", "material.rolling_friction", scene.material.rolling_friction));
+  f.list.push_back(rolling("particle-wall", "wall.rolling_friction", scene.wall.rolling_friction));
+  f.list.push_back(
+      {"cohesion", FeatureUse::not_implemented, "the engine has no cohesion law yet: always off"});
+  f.list.push_back(term("end-cap contacts", f.end_caps,
+                        f.end_caps ? "drum.ends = caps: mantle and both caps tested per particle"
+                                   : "drum.ends = periodic: only the mantle is tested"));
+  f.list.push_back(grid_feature(scene, f));
+  f.list.push_back({"output writers / VTK objects", FeatureUse::command_line,
+                    "not in the scene: created only for --vtu/--h5/--checkpoint or render; "
+                    "without them no writer and no VTK object exists"});
+  return f;
+}
+
+const char* feature_use_name(FeatureUse use) {
+  switch (use) {
+    case FeatureUse::needed:
+      return "needed";
+    case FeatureUse::skipped:
+      return "skipped";
+    case FeatureUse::available:
+      return "available";
+    case FeatureUse::not_implemented:
+      return "not implemented";
+    case FeatureUse::command_line:
+      return "command line";
+  }
+  return "?";
+}
+
+}  // namespace drumlab
