@@ -209,11 +209,12 @@ void Simulation::choose_time_step(const SimulationOptions& options) {
                     "time.dt_factor)",
                     scene_label(scene_), dt_));
   }
-  if (dt_ > rayleigh_time_ && !options.allow_unsafe_dt) {
+  if (dt_ > kMaxSafeDtFactor * rayleigh_time_ && !options.allow_unsafe_dt) {
     throw InputError(fmt::format(
-        "{}: time.dt = {:.6g} s is above the Rayleigh time {:.6g} s (stability limit); use a "
-        "smaller dt or --unsafe-dt",
-        scene_label(scene_), dt_, rayleigh_time_));
+        "{}: time.dt = {:.6g} s is above the stability limit of {} Rayleigh times ({:.6g} s; "
+        "the Rayleigh time is {:.6g} s); use a smaller dt or --unsafe-dt",
+        scene_label(scene_), dt_, kMaxSafeDtFactor, kMaxSafeDtFactor * rayleigh_time_,
+        rayleigh_time_));
   }
 }
 

@@ -74,8 +74,11 @@ void print_info(const std::string& file) {
   const double t_r = rayleigh_time(scene.min_radius(), scene.material);
   const double dt = scene.time.dt ? *scene.time.dt : scene.time.dt_factor * t_r;
   fmt::print("Rayleigh time     {:.4g} s (smallest radius {} m)\n", t_r, scene.min_radius());
-  fmt::print("time step         {:.4g} s = {:.3g} Rayleigh times{}\n", dt, dt / t_r,
-             dt > t_r ? "  (ABOVE the stability limit: refused without --unsafe-dt)" : "");
+  fmt::print(
+      "time step         {:.4g} s = {:.3g} Rayleigh times{}\n", dt, dt / t_r,
+      dt > kMaxSafeDtFactor * t_r
+          ? "  (ABOVE the stability limit of 0.5 Rayleigh times: refused without --unsafe-dt)"
+          : "");
   const double fr = froude_number(scene);
   fmt::print("Froude number     {:.4g} -> {} regime expected\n", fr, regime_for_froude(fr));
   if (scene.drum.omega != 0.0) {

@@ -32,7 +32,8 @@ TEST(CliRun, BadScenesGiveOneLineErrors) {
       {"negative.toml", negative, "", "radius"},
       {"typo.toml", unknown_key, "", "omgea"},
       {"method.toml", small_drum_scene(), "--method m6", "unknown search method 'm6'"},
-      {"bigdt.toml", small_drum_scene("dt = 0.01\nduration = 0.01"), "", "above the Rayleigh time"},
+      {"bigdt.toml", small_drum_scene("dt = 0.01\nduration = 0.01"), "",
+       "above the stability limit"},
       {"paper.toml", "", "", "cannot read scene file"},
   };
   for (const Case& c : cases) {

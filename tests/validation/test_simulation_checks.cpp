@@ -37,14 +37,21 @@ TEST(SimulationSetup, DtAboveTheRayleighTimeNeedsTheUnsafeOption) {
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     const std::string msg = e.what();
-    EXPECT_NE(msg.find("scenes/x.toml: time.dt = 1 s is above the Rayleigh time"),
-              std::string::npos)
+    EXPECT_NE(
+        msg.find("scenes/x.toml: time.dt = 1 s is above the stability limit of 0.5 Rayleigh times"),
+        std::string::npos)
         << msg;
     EXPECT_NE(msg.find("--unsafe-dt"), std::string::npos) << msg;
   }
   SimulationOptions o;
   o.allow_unsafe_dt = true;
   EXPECT_NO_THROW(Simulation(s, one_particle(Vec3(0, 0, 0.5)), o));
+  // The limit is half the Rayleigh time: 0.6 t_R is refused, 0.5 t_R accepted.
+  s.time.dt.reset();
+  s.time.dt_factor = 0.6;
+  EXPECT_THROW(Simulation(s, one_particle(Vec3(0, 0, 0.5))), InputError);
+  s.time.dt_factor = 0.5;
+  EXPECT_NO_THROW(Simulation(s, one_particle(Vec3(0, 0, 0.5))));
 }
 
 TEST(SimulationSetup, ParticlesOutsideTheDrumAreRejected) {
