@@ -7,6 +7,7 @@
 #include <memory>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -25,6 +26,8 @@ namespace {
 
 struct ThroughputRow {
   std::string method;
+  std::string label;  ///< method, with the sort interval when several are compared
+  std::uint64_t sort_every = 0;
   int threads = 1;
   std::size_t particles = 0;
   PhaseStats phase;
@@ -66,17 +69,21 @@ void set_threads(int threads) {
 #endif
 }
 
-ThroughputRow measure(const RollingState& rolling, const std::string& method, int threads,
-                      std::uint64_t steps, std::uint64_t warmup) {
+ThroughputRow measure(const RollingState& rolling, const std::string& method,
+                      std::uint64_t sort_every, int threads, std::uint64_t steps,
+                      std::uint64_t warmup) {
   set_threads(threads);
   ThroughputRow row;
   row.method = method;
+  row.sort_every = sort_every;
   row.threads = threads;
+  SceneConfig scene = rolling.scene;
+  scene.performance.sort_every = sort_every;
   const std::size_t heap0 = heap_bytes_in_use();
   {
     SimulationState state = rolling.state;  // counted: the copy becomes the simulation's
     state.search_method = method;
-    Simulation sim(rolling.scene, std::move(state));
+    Simulation sim(scene, std::move(state));
     row.particles = sim.particles().size();
     sim.advance(warmup);
     const std::uint64_t rebuilds0 = verlet_rebuilds(sim);
@@ -99,9 +106,9 @@ std::string optional_number(double v) {
 
 void print_row(const ThroughputRow& r) {
   fmt::print(
-      "{:<14} {:>3} {:>6} {:>12.4g} {:>7.2f} {:>7.1f} {:>7.1f} {:>7.1f} {:>7.1f} {:>8.2f} {:>8} "
+      "{:<20} {:>3} {:>6} {:>12.4g} {:>7.2f} {:>7.1f} {:>7.1f} {:>7.1f} {:>7.1f} {:>8.2f} {:>8} "
       "{:>8} {:>8.0f}\n",
-      r.method, r.threads, r.phase.steps, r.rate(), r.speedup,
+      r.label, r.threads, r.phase.steps, r.rate(), r.speedup,
       100.0 * r.share(r.phase.timers.search), 100.0 * r.share(r.phase.timers.forces),
       100.0 * r.share(r.phase.timers.walls), 100.0 * r.share(r.phase.timers.integration),
       r.per_particle_step(r.phase.search.pairs_tested),
@@ -112,18 +119,18 @@ void print_row(const ThroughputRow& r) {
 void write_csv(const std::filesystem::path& file, const std::string& scene,
                const std::vector<ThroughputRow>& rows) {
   write_file_atomically(file, [&](std::ostream& os) {
-    os << "scene,method,threads,particles,steps,stepping_s,particle_steps_per_s,speedup,"
+    os << "scene,method,sort_every,threads,particles,steps,stepping_s,particle_steps_per_s,speedup,"
           "search_share,forces_share,walls_share,integration_share,cells_per_particle,"
           "tested_per_particle,contacts_per_particle,tested_per_contact,verlet_rebuilds,"
           "heap_bytes_per_particle\n";
     for (const ThroughputRow& r : rows) {
       const auto& t = r.phase.timers;
       os << fmt::format(
-          "{},{},{},{},{},{:.6g},{:.6g},{:.4g},{:.4f},{:.4f},{:.4f},{:.4f},{:.4g},"
+          "{},{},{},{},{},{},{:.6g},{:.6g},{:.4g},{:.4f},{:.4f},{:.4f},{:.4f},{:.4g},"
           "{:.4g},{:.4g},{},{},{:.1f}\n",
-          scene, r.method, r.threads, r.particles, r.phase.steps, r.stepping(), r.rate(), r.speedup,
-          r.share(t.search), r.share(t.forces), r.share(t.walls), r.share(t.integration),
-          r.per_particle_step(r.phase.search.cells_visited),
+          scene, r.method, r.sort_every, r.threads, r.particles, r.phase.steps, r.stepping(),
+          r.rate(), r.speedup, r.share(t.search), r.share(t.forces), r.share(t.walls),
+          r.share(t.integration), r.per_particle_step(r.phase.search.cells_visited),
           r.per_particle_step(r.phase.search.pairs_tested),
           2.0 * r.per_particle_step(r.phase.search.pairs_found),
           optional_number(r.tested_per_contact()), r.rebuilds, r.heap_bytes_per_particle);
@@ -146,7 +153,7 @@ void write_chart(const std::filesystem::path& file, const std::string& scene,
     render::BarSeries s = r;
     for (const std::string& m : methods) {
       const auto it = std::find_if(rows.begin(), rows.end(),
-                                   [&](auto& x) { return x.method == m && x.threads == t; });
+                                   [&](auto& x) { return x.label == m && x.threads == t; });
       r.values.push_back(it->rate() * 1e-6);
       s.values.push_back(100.0 * it->share(it->phase.timers.search));
     }
@@ -185,20 +192,36 @@ void run_bench_throughput(const ThroughputOptions& opt) {
                  : std::string());
   std::vector<int> threads{1};
   if (opt.threads > 1) threads.push_back(opt.threads);
-  fmt::print("{:<14} {:>3} {:>6} {:>12} {:>7} {:>7} {:>7} {:>7} {:>7} {:>8} {:>8} {:>8} {:>8}\n",
+  std::vector<std::uint64_t> sorts;
+  for (const std::int64_t k : opt.sort_every) sorts.push_back(static_cast<std::uint64_t>(k));
+  if (sorts.empty()) sorts.push_back(rolling.scene.performance.sort_every);
+  fmt::print("re-ordering       every {} steps (performance.sort_every; 0: never){}\n",
+             fmt::join(sorts, " / "),
+             opt.repeats > 1 ? fmt::format(", fastest of {} runs per row", opt.repeats) : "");
+  fmt::print("{:<20} {:>3} {:>6} {:>12} {:>7} {:>7} {:>7} {:>7} {:>7} {:>8} {:>8} {:>8} {:>8}\n",
              "method", "thr", "steps", "p-steps/s", "speedup", "search%", "forces%", "walls%",
              "integr%", "tested/p", "tst/cont", "rebuilds", "heap B/p");
   std::vector<ThroughputRow> rows;
+  std::vector<std::string> labels;
   for (const std::string& m : methods) {
     const std::uint64_t steps = m == "brute" ? std::min(opt.steps, kBruteMaxSteps) : opt.steps;
-    double base_rate = 0.0;
-    for (const int t : threads) {
-      ThroughputRow row = measure(rolling, m, t, steps, m == "brute" ? 1 : opt.warmup);
-      if (t == 1) base_rate = row.rate();
-      row.speedup = base_rate > 0.0 ? row.rate() / base_rate : 0.0;
-      print_row(row);
-      std::fflush(stdout);  // rows as they come, also into a pipe or file
-      rows.push_back(std::move(row));
+    for (const std::uint64_t k : sorts) {
+      const std::string label = sorts.size() > 1 ? fmt::format("{} sort {}", m, k) : m;
+      labels.push_back(label);
+      double base_rate = 0.0;
+      for (const int t : threads) {
+        ThroughputRow row;
+        for (int rep = 0; rep < std::max(1, opt.repeats); ++rep) {
+          ThroughputRow run = measure(rolling, m, k, t, steps, m == "brute" ? 1 : opt.warmup);
+          if (rep == 0 || run.rate() > row.rate()) row = std::move(run);
+        }
+        row.label = label;
+        if (t == 1) base_rate = row.rate();
+        row.speedup = base_rate > 0.0 ? row.rate() / base_rate : 0.0;
+        print_row(row);
+        std::fflush(stdout);  // rows as they come, also into a pipe or file
+        rows.push_back(std::move(row));
+      }
     }
   }
   fmt::print(
@@ -211,12 +234,12 @@ void run_bench_throughput(const ThroughputOptions& opt) {
   }
   if (best != nullptr) {
     fmt::print("fastest (1 thread) {}: {:.4g} particle-steps/s, search {:.1f} % of the step\n",
-               best->method, best->rate(), 100.0 * best->share(best->phase.timers.search));
+               best->label, best->rate(), 100.0 * best->share(best->phase.timers.search));
   }
   const auto csv = out / fmt::format("throughput_{}.csv", name);
   write_csv(csv, name, rows);
   fmt::print("wrote {}\n", csv.string());
-  write_chart(out / fmt::format("throughput_{}.png", name), name, methods, threads, rows);
+  write_chart(out / fmt::format("throughput_{}.png", name), name, labels, threads, rows);
 }
 
 }  // namespace drumlab::cli

@@ -16,7 +16,10 @@ struct ThroughputOptions {
   int threads = 1;                   ///< > 1: also run with this many OpenMP threads
   std::uint64_t steps = 500;         ///< timed steps per method
   std::uint64_t warmup = 20;         ///< untimed steps first (first Verlet build, caches)
-  std::string out = "out/bench";     ///< CSV + PNG folder
+  /// Particle re-ordering intervals to compare (performance.sort_every); empty: the scene's.
+  std::vector<std::int64_t> sort_every;
+  int repeats = 1;  ///< runs per row; the fastest is kept (a noisy machine only slows runs down)
+  std::string out = "out/bench";  ///< CSV + PNG folder
   RollingPlan plan;
 };
 

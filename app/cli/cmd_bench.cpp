@@ -99,6 +99,15 @@ void add_bench_command(CLI::App& app) {
       ->capture_default_str();
   throughput->add_option("--warmup", t->warmup, "untimed steps before timing")
       ->capture_default_str();
+  throughput
+      ->add_option("--sort-every", t->sort_every,
+                   "particle re-ordering intervals to compare, e.g. 0,25,100,1000 (0: never; "
+                   "default: the scene's performance.sort_every)")
+      ->delimiter(',')
+      ->check(CLI::NonNegativeNumber);
+  throughput->add_option("--repeats", t->repeats, "runs per row, the fastest kept")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
   throughput->callback([t] {
     if (t->scene.empty()) t->scene = shipped_scene("drum_demo.toml");
     run_bench_throughput(*t);
