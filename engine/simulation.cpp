@@ -299,7 +299,7 @@ void Simulation::reorder_particles() {
   particles_.reorder(b.order, b);
   apply_order(impl_->wall_history, b.order, impl_->wall_scratch);
   impl_->contacts.renumber(b.new_index);
-  if (impl_->verlet != nullptr) impl_->verlet->invalidate();
+  if (impl_->verlet != nullptr) impl_->verlet->renumber(b.order, b.new_index);
 }
 
 void Simulation::step() {

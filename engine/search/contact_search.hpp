@@ -60,7 +60,7 @@ struct SearchTimings {
 /// Knobs of the search that change its speed, never its result.
 struct SearchTuning {
   /// Verlet skin in units of the smallest radius: pairs within margin + skin are listed.
-  double verlet_skin = 0.3;
+  double verlet_skin = 0.5;
 };
 
 class ContactSearch {

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "engine/search/search_input.hpp"
+#include "engine/spatial_order.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -77,16 +78,18 @@ bool VerletListSearch::needs_rebuild(const SearchInput& in) const {
     return true;
   }
   const double limit = 0.25 * skin_ * skin_;  // (skin / 2)^2
-  double largest = 0.0;
+  // A non-finite position fails the test too: the rebuild's input check then reports it.
+  int moved = 0;
   const auto count = static_cast<std::int64_t>(n);
-#pragma omp parallel for reduction(max : largest) schedule(static)
+#pragma omp parallel for reduction(| : moved) schedule(static)
   for (std::int64_t i = 0; i < count; ++i) {
-    largest = std::max(largest, distance_squared(in.position[i], reference_[i], period_));
+    moved |= !(distance_squared(in.position[i], reference_[i], period_) <= limit);
   }
-  return largest > limit;
+  return moved != 0;
 }
 
 void VerletListSearch::rebuild(const SearchInput& in) {
+  validate_search_input(in);
   const std::size_t n = in.position.size();
   const double rmin = n == 0 ? 0.0 : *std::min_element(in.radius.begin(), in.radius.end());
   skin_ = skin_factor_ * rmin;
@@ -104,10 +107,30 @@ void VerletListSearch::rebuild(const SearchInput& in) {
   ++rebuilds_;
 }
 
+void VerletListSearch::renumber(std::span<const Index> order, std::span<const Index> new_index) {
+  if (reference_.size() != order.size()) {  // no list for these particles: rebuild anyway
+    invalidate();
+    return;
+  }
+  for (IndexPair& p : list_) {
+    const Index a = new_index[p.i];
+    const Index b = new_index[p.j];
+    p = a < b ? IndexPair{a, b} : IndexPair{b, a};
+  }
+  const std::size_t n = order.size();
+  sort_pairs(list_, n, scratch_pairs_, scratch_counts_);
+  apply_order(reference_, order, scratch_positions_);
+  apply_order(radius_, order, scratch_radii_);
+  listed_per_particle_.assign(n, 0);
+  for (const IndexPair& p : list_) ++listed_per_particle_[p.i];
+}
+
 bool VerletListSearch::refresh(const SearchInput& in) {
   const auto t0 = SearchClock::now();
-  validate_search_input(in);
+  if (in.position.size() != in.radius.size()) validate_search_input(in);  // throws
   ++calls_;
+  // The full input check runs with every rebuild (in the builder); between rebuilds the listed
+  // pairs stay exact, and a non-finite position forces a rebuild (see needs_rebuild).
   const bool rebuilt = needs_rebuild(in);
   if (rebuilt) rebuild(in);
   const std::size_t n = in.position.size();

@@ -33,8 +33,11 @@ class VerletListSearch final : public ContactSearch {
   std::span<const IndexPair> list() const { return list_; }
   /// Sets the pairs found in the last refresh() (by the caller's own test of the list).
   void record_found(std::uint64_t pairs) { counters_.pairs_found = pairs; }
-  /// Forces a rebuild at the next call (e.g. after the particles were re-ordered).
+  /// Forces a rebuild at the next call.
   void invalidate() { reference_.clear(); }
+  /// Follows a re-ordering of the particles (slot k now holds the particle that was at
+  /// order[k]; particle i moved to new_index[i]): the list stays valid without a rebuild.
+  void renumber(std::span<const Index> order, std::span<const Index> new_index);
   double cell_size() const override { return builder_->cell_size(); }
 
   std::string report() const override;
@@ -61,7 +64,9 @@ class VerletListSearch final : public ContactSearch {
   std::vector<IndexPair> scratch_pairs_;
   std::vector<std::uint32_t> scratch_counts_;
   std::vector<Vec3> reference_;  ///< positions at the last build
-  std::vector<double> radius_;   ///< radii at the last build
+  std::vector<Vec3> scratch_positions_;
+  std::vector<double> scratch_radii_;
+  std::vector<double> radius_;  ///< radii at the last build
   double margin_ = -1.0;
   double period_ = 0.0;
   std::uint64_t rebuilds_ = 0, calls_ = 0;

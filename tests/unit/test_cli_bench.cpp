@@ -57,13 +57,15 @@ TEST(CliBench, ThroughputWritesOneRowPerMethodAndAChart) {
   const auto lines = lines_of(out / "throughput_tiny_bench.csv");
   ASSERT_EQ(lines.size(), 5u) << r.output;
   EXPECT_EQ(lines[0],
-            "scene,method,threads,particles,steps,stepping_s,particle_steps_per_s,speedup,"
+            "scene,method,sort_every,threads,particles,steps,stepping_s,particle_steps_per_s,"
+            "speedup,"
             "search_share,forces_share,walls_share,integration_share,cells_per_particle,"
             "tested_per_particle,contacts_per_particle,tested_per_contact,verlet_rebuilds,"
             "heap_bytes_per_particle");
   const std::vector<std::string> methods = {"m5", "verlet", "mlgrid", "brute"};
   for (std::size_t k = 0; k < methods.size(); ++k) {
-    EXPECT_EQ(lines[k + 1].rfind("tiny_bench," + methods[k] + ",1,300,5,", 0), 0u) << lines[k + 1];
+    EXPECT_EQ(lines[k + 1].rfind("tiny_bench," + methods[k] + ",100,1,300,5,", 0), 0u)
+        << lines[k + 1];
   }
   if (!built_without_render(r.output)) {
     EXPECT_TRUE(is_png(out / "throughput_tiny_bench.png"));
@@ -75,6 +77,16 @@ TEST(CliBench, ThroughputWritesOneRowPerMethodAndAChart) {
   EXPECT_NE(again.output.find("cached "), std::string::npos) << again.output;
   EXPECT_EQ(again.output.find("cached as"), std::string::npos) << again.output;
   EXPECT_EQ(lines_of(out / "throughput_tiny_bench.csv").size(), 3u);
+
+  // A sort-interval sweep: one row per interval, labelled with it.
+  const auto sweep = run_cli(common + " --methods verlet --sort-every 0,2 --repeats 2");
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.output;
+  EXPECT_NE(sweep.output.find("verlet sort 2"), std::string::npos) << sweep.output;
+  const auto rows = lines_of(out / "throughput_tiny_bench.csv");
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[1].rfind("tiny_bench,verlet,0,1,300,5,", 0), 0u) << rows[1];
+  EXPECT_EQ(rows[2].rfind("tiny_bench,verlet,2,1,300,5,", 0), 0u) << rows[2];
+  EXPECT_NE(run_cli(common + " --sort-every -1").exit_code, 0);
 }
 
 TEST(CliBench, SearchWritesOneRowPerMethodAndAChart) {
