@@ -119,7 +119,7 @@ RegimeEvidence classify_regime(std::span<const DrumObservables> window,
     e.regime = FlowRegime::centrifuging;
   } else if (e.airborne_fraction >= t.airborne_fraction) {
     e.regime = FlowRegime::cataracting;
-  } else if (e.still_share >= t.still_share) {
+  } else if (e.still_share >= t.still_share || e.intermittency >= t.intermittency) {
     e.regime = FlowRegime::slumping;
   } else if (e.curvature >= t.curvature) {
     e.regime = FlowRegime::cascading;

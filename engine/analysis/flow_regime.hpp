@@ -27,7 +27,11 @@
 // 2. cataracting: particles are thrown off the rising bed. Mean share of particles in free
 //    flight >= airborne_fraction (0.02).
 // 3. slumping: intermittent avalanches. still_share >= still_share (0.3), with still_speed 0.25:
-//    at least 30 % of the samples move at <= 1/4 of the window's mean relative speed.
+//    at least 30 % of the samples move at <= 1/4 of the window's mean relative speed; or
+//    intermittency >= intermittency (0.6), which also catches a quiet phase that creeps instead
+//    of resting. For a two-state flow (a share f of the time flowing, at rest otherwise) the
+//    intermittency is sqrt((1 - f) / f): 0.6 means f = 0.74, the same ~30 % quiet share; a
+//    continuous flow stays at 0.1-0.3 (the default `bench regimes` run, Fr >= 1e-3).
 // 4. cascading: a continuous flow with a curved (S- or kidney-shaped) surface: curvature of the
 //    window-mean surface >= curvature (0.02).
 // 5. rolling: otherwise (a continuous flow with a flat surface).
@@ -52,6 +56,7 @@ struct FlowRegimeThresholds {
   double airborne_fraction = 0.02;
   double still_speed = 0.25;  ///< still sample: relative speed <= still_speed x window mean
   double still_share = 0.3;
+  double intermittency = 0.6;  ///< std / mean of the samples' relative speed
   double curvature = 0.02;     ///< of the window-mean surface
   int smoothing = 5;           ///< samples in the moving average of the angle
   double end_exclusion = 0.2;  ///< for the window-mean surface fit, as in ObservableOptions

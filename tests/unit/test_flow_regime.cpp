@@ -76,7 +76,15 @@ TEST(FlowRegime, IntermittentAvalanchesAreSlumping) {
   for (int k = 0; k < 30; ++k) window[k].relative_speed = (k < 8 ? 0.05 : 0.4) * kWallSpeed;
   const RegimeEvidence r = classify_regime(window);
   EXPECT_NEAR(r.still_share, 8.0 / 30.0, 1e-12);
+  EXPECT_LT(r.intermittency, 0.6);
   EXPECT_EQ(r.regime, FlowRegime::rolling);
+  // A quiet phase that creeps at 0.3 x the mean instead of resting: no still sample, but the
+  // avalanches make the speed intermittent (std / mean 1.17).
+  for (int k = 0; k < 30; ++k) window[k].relative_speed = (k < 8 ? 1.5 : 0.15) * kWallSpeed;
+  const RegimeEvidence c = classify_regime(window);
+  EXPECT_EQ(c.still_share, 0.0);
+  EXPECT_NEAR(c.intermittency, 1.17, 0.01);
+  EXPECT_EQ(c.regime, FlowRegime::slumping);
 }
 
 TEST(FlowRegime, CurvedWindowMeanSurfaceIsCascading) {
