@@ -115,14 +115,17 @@ std::string disagreement(const RegimeRow& r) {
       why = fmt::format("in flight {:.3f} >= {}", e.airborne_fraction, t.airborne_fraction);
       break;
     case FlowRegime::slumping:
-      why = fmt::format("still share {:.2f} (>= {}) or intermittency {:.2f} (>= {})", e.still_share,
-                        t.still_share, e.intermittency, t.intermittency);
+      why = fmt::format("still share {:.2f} (rule: >= {}), intermittency {:.2f} (rule: >= {})",
+                        e.still_share, t.still_share, e.intermittency, t.intermittency);
       break;
     case FlowRegime::cascading:
     case FlowRegime::rolling:
-      why = fmt::format("in flight {:.3f} < {}, still share {:.2f} < {}, curvature {:.3f} {} {}",
-                        e.airborne_fraction, t.airborne_fraction, e.still_share, t.still_share,
-                        e.curvature, e.regime == FlowRegime::cascading ? ">=" : "<", t.curvature);
+      why = fmt::format(
+          "in flight {:.3f} < {}, still share {:.2f} < {}, intermittency {:.2f} < {}, curvature "
+          "{:.3f} {} {}",
+          e.airborne_fraction, t.airborne_fraction, e.still_share, t.still_share, e.intermittency,
+          t.intermittency, e.curvature, e.regime == FlowRegime::cascading ? ">=" : "<",
+          t.curvature);
       break;
     case FlowRegime::unknown:
       why = "no surface found";
@@ -178,11 +181,17 @@ void write_chart(const std::filesystem::path& file, const std::string& scene,
   render::XYSeries still{"still share", {}, {}, false};
   render::XYSeries air{"in flight x10", {}, {}, false};
   render::XYSeries curv{"surface curvature x10", {}, {}, false};
+  render::XYSeries interm{"intermittency", {}, {}, false};
   for (const RegimeRow& r : rows) {
     const RegimeEvidence& e = r.evidence;
-    for (auto* s : {&profile, &sample_mean, &still, &air, &curv}) s->x.push_back(r.froude);
-    profile.y.push_back(e.profile_angle_deg);
-    sample_mean.y.push_back(e.mean_angle_deg);
+    for (auto* s : {&profile, &sample_mean, &still, &air, &curv, &interm}) {
+      s->x.push_back(r.froude);
+    }
+    // A bed carried round has no free surface: no angle of repose drawn.
+    const bool ring = e.regime == FlowRegime::centrifuging;
+    profile.y.push_back(ring ? NAN : e.profile_angle_deg);
+    sample_mean.y.push_back(ring ? NAN : e.mean_angle_deg);
+    interm.y.push_back(e.intermittency);
     still.y.push_back(e.still_share);
     air.y.push_back(10.0 * e.airborne_fraction);
     curv.y.push_back(10.0 * e.curvature);
@@ -201,7 +210,7 @@ void write_chart(const std::filesystem::path& file, const std::string& scene,
   render::XYPanel b{"regime evidence (rules: engine/analysis/flow_regime.hpp)",
                     "Froude number",
                     "share",
-                    {still, air, curv},
+                    {still, interm, air, curv},
                     true,
                     false};
   render::write_xy_charts({a, b}, file, 1800, 600);
