@@ -59,9 +59,9 @@ void add_skips_subcommand(CLI::App* bench) {
 void add_regimes_subcommand(CLI::App* bench) {
   auto r = std::make_shared<RegimesBenchOptions>();
   CLI::App* cmd = bench->add_subcommand(
-      "regimes", "Regime map: observed flow regime and angle of repose against Fr = 1e-4..1");
+      "regimes", "Regime map: observed flow regime and angle of repose against Fr = 3e-5..3");
   cmd->add_option("--scene", r->scene, "scene file (default: scenes/regime_drum.toml)");
-  cmd->add_option("--froude", r->froude, "Froude numbers (default: 1e-4 ... 1)")->delimiter(',');
+  cmd->add_option("--froude", r->froude, "Froude numbers (default: 3e-5 ... 3)")->delimiter(',');
   cmd->add_option("--column-width", r->column_width,
                   "surface column width, m (default: two largest diameters)")
       ->check(CLI::NonNegativeNumber);

@@ -16,18 +16,6 @@
 namespace drumlab {
 namespace {
 
-struct SurfacePoint {
-  double h = 0.0;  ///< position along carry, m
-  double u = 0.0;  ///< surface height along up, m
-};
-
-struct SurfaceLine {
-  double a = 0.0;  ///< u = a + b h
-  double b = 0.0;
-  double h_lo = 0.0;  ///< central window along carry
-  double h_hi = 0.0;
-};
-
 void validate(const Particles& p, const DrumGeometry& drum, const ObservableOptions& o) {
   const std::size_t n = p.size();
   if (p.position.size() != n || p.velocity.size() != n || p.mass.size() != n ||
@@ -56,8 +44,8 @@ double median(std::vector<double> v) {
 }
 
 /// Column tops -> one surface height per carry bin (median over the z columns).
-std::vector<SurfacePoint> surface_points(const Particles& p, const Vec3& up, const Vec3& carry,
-                                         double width) {
+std::vector<SurfaceHeight> surface_points(const Particles& p, const Vec3& up, const Vec3& carry,
+                                          double width) {
   std::map<std::pair<long, long>, double> column_top;  // (carry bin, z bin) -> highest top
   for (std::size_t i = 0; i < p.size(); ++i) {
     const Vec3& x = p.position[i];
@@ -67,7 +55,7 @@ std::vector<SurfacePoint> surface_points(const Particles& p, const Vec3& up, con
     auto [it, inserted] = column_top.try_emplace(key, top);
     if (!inserted) it->second = std::max(it->second, top);
   }
-  std::vector<SurfacePoint> out;
+  std::vector<SurfaceHeight> out;
   std::vector<double> tops;
   for (auto it = column_top.begin(); it != column_top.end();) {
     const long bin = it->first.first;
@@ -79,7 +67,7 @@ std::vector<SurfacePoint> surface_points(const Particles& p, const Vec3& up, con
 }
 
 /// Least-squares polynomial of the given degree through the points; coefficients low to high.
-Eigen::VectorXd poly_fit(const std::vector<SurfacePoint>& pts, int degree, double h0) {
+Eigen::VectorXd poly_fit(const std::vector<SurfaceHeight>& pts, int degree, double h0) {
   Eigen::MatrixXd a(static_cast<Eigen::Index>(pts.size()), degree + 1);
   Eigen::VectorXd y(static_cast<Eigen::Index>(pts.size()));
   for (std::size_t k = 0; k < pts.size(); ++k) {
@@ -100,42 +88,9 @@ double poly_value(const Eigen::VectorXd& c, double t) {
   return v;
 }
 
-/// Fits the line to the central part of the surface; fills the surface fields of `obs`.
-std::optional<SurfaceLine> fit_surface(const std::vector<SurfacePoint>& all, double exclusion,
-                                       DrumObservables& obs) {
-  if (all.empty()) return std::nullopt;
-  const double lo = all.front().h;
-  const double hi = all.back().h;
-  const double cut = exclusion * (hi - lo);
-  std::vector<SurfacePoint> pts;
-  for (const auto& s : all) {
-    if (s.h >= lo + cut - 1e-12 && s.h <= hi - cut + 1e-12) pts.push_back(s);
-  }
-  if (pts.size() < 3) return std::nullopt;
-  const double h0 = 0.5 * (pts.front().h + pts.back().h);
-  const Eigen::VectorXd line = poly_fit(pts, 1, h0);
-  SurfaceLine out{line(0) - line(1) * h0, line(1), lo + cut, hi - cut};
-  double sq = 0.0;
-  for (const auto& s : pts) sq += std::pow(s.u - poly_value(line, s.h - h0), 2);
-  obs.surface_found = true;
-  obs.surface_points = pts.size();
-  obs.surface_chord = pts.back().h - pts.front().h;
-  obs.surface_rms = std::sqrt(sq / static_cast<double>(pts.size()));
-  obs.angle_of_repose_deg = std::atan(out.b) * 180.0 / std::numbers::pi;
-  if (pts.size() >= 5 && obs.surface_chord > 0.0) {
-    const Eigen::VectorXd cubic = poly_fit(pts, 3, h0);
-    double dev = 0.0;
-    for (const auto& s : pts) {
-      dev = std::max(dev, std::abs(poly_value(cubic, s.h - h0) - poly_value(line, s.h - h0)));
-    }
-    obs.surface_curvature = dev / obs.surface_chord;
-  }
-  return out;
-}
-
 /// Flowing-layer thickness from the downhill velocity profile across depth (see the header).
 void measure_flowing_layer(const Particles& p, const Vec3& up, const Vec3& carry,
-                           const SurfaceLine& line, DrumObservables& obs) {
+                           const SurfaceFit& line, DrumObservables& obs) {
   const double len = std::sqrt(1.0 + line.b * line.b);
   const Vec3 along = (carry + line.b * up) / len;  // rises with carry for b > 0
   const Vec3 downhill = line.b >= 0.0 ? Vec3(-along) : along;
@@ -199,6 +154,41 @@ double airborne_fraction(const Particles& p, const DrumGeometry& drum, double ga
 
 }  // namespace
 
+std::optional<SurfaceFit> fit_surface_profile(const std::vector<SurfaceHeight>& all,
+                                              double exclusion) {
+  if (all.empty()) return std::nullopt;
+  const double lo = all.front().h;
+  const double hi = all.back().h;
+  const double cut = exclusion * (hi - lo);
+  std::vector<SurfaceHeight> pts;
+  for (const auto& s : all) {
+    if (s.h >= lo + cut - 1e-12 && s.h <= hi - cut + 1e-12) pts.push_back(s);
+  }
+  if (pts.size() < 3) return std::nullopt;
+  const double h0 = 0.5 * (pts.front().h + pts.back().h);
+  const Eigen::VectorXd line = poly_fit(pts, 1, h0);
+  SurfaceFit out;
+  out.a = line(0) - line(1) * h0;
+  out.b = line(1);
+  out.h_lo = lo + cut;
+  out.h_hi = hi - cut;
+  double sq = 0.0;
+  for (const auto& s : pts) sq += std::pow(s.u - poly_value(line, s.h - h0), 2);
+  out.points = pts.size();
+  out.chord = pts.back().h - pts.front().h;
+  out.rms = std::sqrt(sq / static_cast<double>(pts.size()));
+  out.angle_deg = std::atan(out.b) * 180.0 / std::numbers::pi;
+  if (pts.size() >= 5 && out.chord > 0.0) {
+    const Eigen::VectorXd cubic = poly_fit(pts, 3, h0);
+    double dev = 0.0;
+    for (const auto& s : pts) {
+      dev = std::max(dev, std::abs(poly_value(cubic, s.h - h0) - poly_value(line, s.h - h0)));
+    }
+    out.curvature = dev / out.chord;
+  }
+  return out;
+}
+
 DrumObservables measure_drum(const Particles& p, const DrumGeometry& drum,
                              const ObservableOptions& options) {
   validate(p, drum, options);
@@ -212,7 +202,7 @@ DrumObservables measure_drum(const Particles& p, const DrumGeometry& drum,
   obs.carry = (drum.omega < 0.0 ? -1.0 : 1.0) * Vec3::UnitZ().cross(-obs.up);
   if (p.empty()) return obs;
 
-  double mass = 0.0, ke = 0.0, re = 0.0, sb = 0.0;
+  double mass = 0.0, ke = 0.0, re = 0.0, sb = 0.0, rel = 0.0;
   Vec3 mx = Vec3::Zero();
   std::size_t upper = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
@@ -223,6 +213,7 @@ DrumObservables measure_drum(const Particles& p, const DrumGeometry& drum,
     ke += 0.5 * m * p.velocity[i].squaredNorm();
     re += 0.5 * p.omega[i].squaredNorm() / p.inv_inertia[i];
     sb += 0.5 * m * drum.omega * drum.omega * (x.x() * x.x() + x.y() * x.y());
+    rel += (p.velocity[i] - drum.omega * Vec3::UnitZ().cross(x)).norm();
     if (obs.up.dot(x) > 0.0) ++upper;
   }
   const auto n = static_cast<double>(p.size());
@@ -232,13 +223,23 @@ DrumObservables measure_drum(const Particles& p, const DrumGeometry& drum,
   obs.centre_of_mass = mx / mass;
   obs.com_offset = std::hypot(obs.centre_of_mass.x(), obs.centre_of_mass.y()) / drum.radius;
   obs.upper_fraction = static_cast<double>(upper) / n;
+  obs.relative_speed = rel / n;
+  obs.wall_speed = std::abs(drum.omega) * drum.radius;
 
   const double width = options.column_width > 0.0 ? options.column_width : 2.0 * p.max_radius();
   const double gap = options.flight_gap > 0.0 ? options.flight_gap : 0.25 * p.min_radius();
   obs.airborne_fraction = airborne_fraction(p, drum, gap);
-  const auto line =
-      fit_surface(surface_points(p, obs.up, obs.carry, width), options.end_exclusion, obs);
-  if (line) measure_flowing_layer(p, obs.up, obs.carry, *line, obs);
+  obs.surface_profile = surface_points(p, obs.up, obs.carry, width);
+  const auto line = fit_surface_profile(obs.surface_profile, options.end_exclusion);
+  if (line) {
+    obs.surface_found = true;
+    obs.angle_of_repose_deg = line->angle_deg;
+    obs.surface_points = line->points;
+    obs.surface_chord = line->chord;
+    obs.surface_rms = line->rms;
+    obs.surface_curvature = line->curvature;
+    measure_flowing_layer(p, obs.up, obs.carry, *line, obs);
+  }
   return obs;
 }
 

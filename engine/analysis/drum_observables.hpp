@@ -26,6 +26,11 @@
 //   layer: a bed at rest or turning as a solid body); the whole bed depth when no bin moves uphill.
 // * Particles in free flight: particles with no other particle and no drum mantle within
 //   `flight_gap` of their surface.
+// * Relative speed: mean over all particles of |v - omega z_hat x x|, the speed relative to a
+//   rigid rotation with the drum. ~0 for a bed turning as a solid body (or at rest); in a steady
+//   flow the material lifted by the drum must stream back through the flowing layer, so its
+//   time mean is of order omega R whatever the regime (see flow_regime.hpp).
+#include <cstddef>
 #include <optional>
 #include <vector>
 
@@ -50,6 +55,30 @@ struct ObservableOptions {
   double flight_gap = 0.0;     ///< m; 0: a quarter of the smallest radius
 };
 
+/// One point of the free surface: the surface height (along up) at a carry position, both m.
+struct SurfaceHeight {
+  double h = 0.0;  ///< position along carry, m (the centre of a column bin)
+  double u = 0.0;  ///< surface height along up, m
+};
+
+/// A straight line u = a + b h (and a cubic) fitted to the central part of a surface profile.
+struct SurfaceFit {
+  double a = 0.0;
+  double b = 0.0;
+  double h_lo = 0.0;  ///< the central window along carry, m
+  double h_hi = 0.0;
+  double angle_deg = 0.0;  ///< atan(b), degrees
+  std::size_t points = 0;
+  double chord = 0.0;      ///< extent of the fitted points along carry, m
+  double rms = 0.0;        ///< rms residual of the line fit, m
+  double curvature = 0.0;  ///< max |cubic - line| / chord (0 with fewer than 5 points)
+};
+
+/// Fits the line (and the cubic) to `profile` (sorted by h) without its `end_exclusion` share of
+/// the extent at each end; nullopt with fewer than 3 points left.
+std::optional<SurfaceFit> fit_surface_profile(const std::vector<SurfaceHeight>& profile,
+                                              double end_exclusion);
+
 struct DrumObservables {
   std::size_t particles = 0;
   bool surface_found = false;        ///< at least 3 surface points in the central window
@@ -69,7 +98,12 @@ struct DrumObservables {
   double com_offset = 0.0;         ///< distance of the COM from the axis in the cross-section / R
   double airborne_fraction = 0.0;  ///< share of particles in free flight
   double upper_fraction = 0.0;     ///< share of particle centres above the axis (along up)
-  Vec3 up = Vec3::Zero();          ///< the cross-section axes used (unit vectors)
+  double relative_speed = 0.0;     ///< mean |v - omega z_hat x x| over the particles, m/s
+  double wall_speed = 0.0;         ///< |omega| R, m/s
+  /// The surface heights of all column bins (before the end exclusion), sorted by h; the bins
+  /// sit at fixed positions, so profiles of several samples can be averaged bin by bin.
+  std::vector<SurfaceHeight> surface_profile;
+  Vec3 up = Vec3::Zero();  ///< the cross-section axes used (unit vectors)
   Vec3 carry = Vec3::Zero();
 };
 

@@ -2,22 +2,45 @@
 // Classifies the flow regime of a rotating drum (slumping, rolling, cascading, cataracting,
 // centrifuging) from drum observables sampled over a time window (see drum_observables.hpp).
 //
-// The rules, applied in this order to the window's samples (thresholds in FlowRegimeThresholds):
-// 1. centrifuging: the bed is carried around the whole mantle. Mean share of particle centres
-//    above the axis >= upper_fraction and the centre of mass within com_offset * R of the axis.
+// Window statistics (RegimeEvidence):
+// * relative speed: each sample's mean particle speed relative to a rigid rotation with the drum.
+//   In any steady regime the material the drum lifts must stream back, so the window mean is of
+//   order omega R; a continuous flow stays near that mean in every sample, while a slumping bed
+//   turns as a solid body (relative speed ~0) between short avalanches that carry the whole flux.
+//   A sample is *still* when its relative speed is <= still_speed x the window mean; still_share
+//   is the share of still samples, intermittency the coefficient of variation (std / mean).
+//   Both are means over all particles, so they do not suffer from the noise of a surface fit.
+// * window-mean surface: the surface profiles of all samples are averaged bin by bin (median
+//   over the samples; bins present in fewer than half of the samples dropped), then the line and
+//   the cubic are fitted to its central part (end_exclusion at each end). Its angle is the dynamic
+//   angle of repose (profile_angle_deg); its curvature (max |cubic - line| / chord) tells a flat
+//   from an S-shaped surface without the per-sample noise of a surface 10-20 particles wide.
+// * the per-sample fitted angle: mean, raw swing (max - min), and the swing of the angle smoothed
+//   by a centred moving average over `smoothing` samples (the avalanche saw-tooth; reported as
+//   evidence, not used by the rules: in a small drum the per-sample noise of several degrees makes
+//   even the smoothed swing a few degrees in every regime).
+//
+// The rules, applied in this order (thresholds in FlowRegimeThresholds):
+// 1. centrifuging: the bed is carried around the whole mantle as a ring. Mean share of particle
+//    centres above the axis >= upper_fraction (0.35) and the centre of mass within
+//    com_offset (0.15) * R of the axis.
 // 2. cataracting: particles are thrown off the rising bed. Mean share of particles in free
-//    flight >= airborne_fraction.
-// 3. slumping: the bed turns as a solid body and relaxes in discrete avalanches. At least
-//    still_share of the samples show no flowing layer (surface not moving downhill), or the angle
-//    of repose swings by more than angle_swing_deg (max - min) over the window.
-// 4. cascading: a continuous flow with a curved (S- or kidney-shaped) surface. Mean surface
-//    curvature (cubic vs line deviation / chord) >= curvature.
+//    flight >= airborne_fraction (0.02).
+// 3. slumping: intermittent avalanches. still_share >= still_share (0.3), with still_speed 0.25:
+//    at least 30 % of the samples move at <= 1/4 of the window's mean relative speed; or
+//    intermittency >= intermittency (0.6), which also catches a quiet phase that creeps instead
+//    of resting. For a two-state flow (a share f of the time flowing, at rest otherwise) the
+//    intermittency is sqrt((1 - f) / f): 0.6 means f = 0.74, the same ~30 % quiet share; a
+//    continuous flow stays at 0.1-0.3 (the default `bench regimes` run, Fr >= 1e-3).
+// 4. cascading: a continuous flow with a curved (S- or kidney-shaped) surface: curvature of the
+//    window-mean surface >= curvature (0.02).
 // 5. rolling: otherwise (a continuous flow with a flat surface).
 // A window whose samples found no surface at all (e.g. an empty drum) is `unknown`.
-// The thresholds are heuristics chosen for beds of ~25-50 % fill; they are the documented
-// definition, not a universal law.
+// The thresholds are heuristics chosen for beds of ~25-50 % fill and samples spaced more finely
+// than an avalanche cycle; they are the documented definition, not a universal law.
 #include <span>
 #include <string_view>
+#include <vector>
 
 #include "engine/analysis/drum_observables.hpp"
 
@@ -31,19 +54,28 @@ struct FlowRegimeThresholds {
   double upper_fraction = 0.35;
   double com_offset = 0.15;
   double airborne_fraction = 0.02;
+  double still_speed = 0.25;  ///< still sample: relative speed <= still_speed x window mean
   double still_share = 0.3;
-  double angle_swing_deg = 5.0;
-  double curvature = 0.02;
+  double intermittency = 0.6;  ///< std / mean of the samples' relative speed
+  double curvature = 0.02;     ///< of the window-mean surface
+  int smoothing = 5;           ///< samples in the moving average of the angle
+  double end_exclusion = 0.2;  ///< for the window-mean surface fit, as in ObservableOptions
 };
 
 /// Window statistics the classification used (means over the samples unless stated).
 struct RegimeEvidence {
   FlowRegime regime = FlowRegime::unknown;
   std::size_t samples = 0;
-  double mean_angle_deg = 0.0;
-  double angle_swing_deg = 0.0;  ///< max - min over samples with a surface
-  double still_share = 0.0;      ///< share of samples without a flowing layer
-  double curvature = 0.0;
+  double mean_angle_deg = 0.0;      ///< mean of the per-sample fitted angles
+  double angle_swing_deg = 0.0;     ///< max - min of the per-sample angles
+  double smoothed_swing_deg = 0.0;  ///< max - min of the moving-average angle
+  double profile_angle_deg = 0.0;   ///< angle of the window-mean surface (dynamic angle of repose)
+  double curvature = 0.0;           ///< curvature of the window-mean surface
+  bool profile_found = false;       ///< the window-mean surface had >= 3 central points
+  double still_share = 0.0;         ///< share of still samples (see the header comment)
+  double intermittency = 0.0;       ///< std / mean of the samples' relative speed
+  double relative_speed = 0.0;      ///< m/s
+  double speed_ratio = 0.0;         ///< relative_speed / (omega R); 0 when the drum is at rest
   double airborne_fraction = 0.0;
   double upper_fraction = 0.0;
   double com_offset = 0.0;
@@ -51,5 +83,8 @@ struct RegimeEvidence {
 
 RegimeEvidence classify_regime(std::span<const DrumObservables> window,
                                const FlowRegimeThresholds& thresholds = {});
+
+/// The window-mean surface profile (see the header comment); empty without surfaces.
+std::vector<SurfaceHeight> mean_surface_profile(std::span<const DrumObservables> window);
 
 }  // namespace drumlab

@@ -1,4 +1,4 @@
-// `drumlab bench regimes --quick` end to end on the shipped regime drum with two Froude numbers
+// `drumlab bench regimes --quick` end to end on the small regime drum with two Froude numbers
 // and a short settling: exit 0, one CSV row per Froude number with the regime predicted from Fr,
 // an observed regime that is one of the classifier's names and a finite angle of repose; bad
 // Froude numbers give exit code 2. The regimes observed in so short a window are not asserted.
@@ -27,11 +27,12 @@ std::vector<std::string> split(const std::string& line) {
 TEST(CliBench, RegimesQuickPrintsPredictedBesideObserved) {
   TempDir dir("bench-regimes");
   const auto out = dir.path() / "out";
-  const auto r = run_cli("bench regimes --quick --froude 0.005,1 --settle-time 0.2 --cache " +
+  const auto r = run_cli(std::string("bench regimes --quick --scene ") + DRUMLAB_SCENES_DIR +
+                         "/regime_drum_small.toml --froude 0.005,1 --settle-time 0.2 --cache " +
                          (dir.path() / "cache").string() + " --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("window"), std::string::npos) << r.output;
-  std::ifstream csv(out / "regimes_regime_drum.csv");
+  std::ifstream csv(out / "regimes_regime_drum_small.csv");
   std::vector<std::string> lines;
   for (std::string line; std::getline(csv, line);) lines.push_back(line);
   ASSERT_EQ(lines.size(), 3u) << r.output;
