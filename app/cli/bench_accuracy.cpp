@@ -52,7 +52,17 @@ std::vector<KnobSweep> sweep_table(std::size_t particles) {
        "contact search method (reference: brute, else the first)",
        {"brute", "m1", "m2", "m3", "m4", "m5", "mlgrid", "verlet", "verlet:m2"},
        [](RunSettings& s, const std::string& v) { s.method = v; }},
-      // Verlet skin and particle sort interval become rows here once they are scene keys.
+      {"verlet_skin",
+       "Verlet skin / R_min with verlet:m2 (reference: the first)",
+       {"0.2", "0.5", "1.0"},
+       [](RunSettings& s, const std::string& v) {
+         s.method = "verlet:m2";
+         s.performance.verlet_skin = std::stod(v);
+       }},
+      {"sort_every",
+       "particle re-ordering interval, steps (reference: 0 = never)",
+       {"0", "25", "100", "1000"},
+       [](RunSettings& s, const std::string& v) { s.performance.sort_every = std::stoull(v); }},
   };
   if (particles > kAccuracyBruteMaxParticles) {
     auto& v = t[1].values;
@@ -311,7 +321,7 @@ void run_bench_accuracy(AccuracyOptions opt) {
   fmt::print("energy            36 elastic frictionless spheres r = {} m, {} s\n", r_min,
              pr.energy_time);
   const std::vector<KnobSweep> sweeps = sweep_table(n);
-  const RunSettings baseline{scene.time.dt_factor, scene.search_method};
+  const RunSettings baseline{scene.time.dt_factor, scene.search_method, scene.performance};
   fmt::print("baseline          dt = {} t_R, search {} (knobs not swept keep these)\n",
              baseline.dt_factor, baseline.method);
   print_header();

@@ -26,6 +26,7 @@ SceneConfig bare_scene(const SceneConfig& scene, const RunSettings& s) {
   c.material.rolling_friction = 0.0;
   c.wall = c.material;
   c.search_method = s.method;
+  c.performance = s.performance;
   c.time.dt.reset();
   c.time.dt_factor = s.dt_factor;
   c.output.diagnostics_every = 1000;
@@ -167,8 +168,10 @@ DrumRun run_drum(const RollingState& rolling, const RunSettings& s, double trans
   SimulationState state = rolling.state;
   state.search_method = s.method;
   state.dt = s.dt_factor * rayleigh_time(rolling.scene.min_radius(), rolling.scene.material);
+  SceneConfig scene = rolling.scene;
+  scene.performance = s.performance;
   try {
-    Simulation sim(rolling.scene, std::move(state));
+    Simulation sim(scene, std::move(state));
     const auto t0 = sim.time();
     const auto timed = [&](std::uint64_t n) {
       const auto start = std::chrono::steady_clock::now();

@@ -11,8 +11,9 @@ namespace drumlab::cli {
 
 /// One point in knob space: everything a sweep may change.
 struct RunSettings {
-  double dt_factor = 0.2;  ///< time step / Rayleigh time of the smallest particle
-  std::string method;      ///< contact search method
+  double dt_factor = 0.2;         ///< time step / Rayleigh time of the smallest particle
+  std::string method;             ///< contact search method
+  PerformanceConfig performance;  ///< Verlet skin, particle sort interval
 };
 
 /// Head-on collision of two equal spheres (the scene's smallest radius and material).

@@ -61,7 +61,8 @@ TEST(CliBenchAccuracy, QuickSweepWritesCsvAndChartAndErrorFallsWithDt) {
   EXPECT_NE(r.output.find("steady state"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("recommended dt"), std::string::npos) << r.output;
   const auto rows = read_csv(out / "accuracy_accuracy_quick.csv");
-  ASSERT_EQ(rows.size(), 15u) << r.output;  // 6 time steps + 9 search methods (brute included)
+  // 6 time steps + 9 search methods (brute included) + 3 Verlet skins + 4 sort intervals.
+  ASSERT_EQ(rows.size(), 22u) << r.output;
   if (r.output.find("built without rendering") == std::string::npos) {
     EXPECT_TRUE(looks_like_png(out / "accuracy_accuracy_quick.png"));
   }
@@ -95,6 +96,21 @@ TEST(CliBenchAccuracy, QuickSweepWritesCsvAndChartAndErrorFallsWithDt) {
     EXPECT_GT(number(row, "wall_per_simulated_s"), 0.0) << row.at("value");
   }
   EXPECT_EQ(methods, 9u);
+
+  // The Verlet skin changes which pairs are listed, never the forces: identical trajectories.
+  // Re-ordering changes only the summation order (round-off), and every run stays stable.
+  std::size_t skins = 0, sorts = 0;
+  for (const auto& row : rows) {
+    if (row.at("knob") == "verlet_skin") {
+      ++skins;
+      EXPECT_EQ(number(row, "trajectory_rmin"), 0.0) << row.at("value");
+    } else if (row.at("knob") == "sort_every") {
+      ++sorts;
+      EXPECT_EQ(row.at("status"), "ok") << row.at("value");
+    }
+  }
+  EXPECT_EQ(skins, 3u);
+  EXPECT_EQ(sorts, 4u);
 }
 
 TEST(CliBenchAccuracy, BadOutputFolderIsExitTwo) {
