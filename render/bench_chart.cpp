@@ -9,19 +9,15 @@
 #include <vtkAxis.h>
 #include <vtkChartLegend.h>
 #include <vtkChartXY.h>
-#include <vtkContextActor.h>
-#include <vtkContextScene.h>
 #include <vtkDoubleArray.h>
-#include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkNew.h>
 #include <vtkPlot.h>
-#include <vtkRenderer.h>
 #include <vtkStringArray.h>
 #include <vtkTable.h>
 #include <vtkTextProperty.h>
 
+#include "render/chart_canvas.hpp"
 #include "render/frame_writer.hpp"
-#include "render/offscreen_context.hpp"
 
 namespace drumlab::render {
 
@@ -123,36 +119,9 @@ void fill_chart(vtkChartXY* chart, const BarPanel& panel) {
 void write_bar_charts(const std::vector<BarPanel>& panels, const std::filesystem::path& file,
                       int width, int height) {
   if (panels.empty()) throw std::invalid_argument("write_bar_charts: no panels");
-  OffscreenContext context(width, height);  // outlives every VTK object below
-  {
-    vtkNew<vtkGenericOpenGLRenderWindow> window;
-    window->SetOwnContext(false);
-    window->SetSize(width, height);
-    window->SetIsCurrent(true);
-    window->SetReadyForRendering(true);
-    window->SetMultiSamples(0);
-    if (!window->InitializeFromCurrentContext()) {
-      throw std::runtime_error("render: VTK could not use the OSMesa context");
-    }
-    // What vtkContextView does (ViewsContext2D is not linked): a context actor in a renderer.
-    vtkNew<vtkRenderer> renderer;
-    renderer->SetBackground(1.0, 1.0, 1.0);
-    window->AddRenderer(renderer);
-    vtkNew<vtkContextActor> actor;
-    actor->GetScene()->SetRenderer(renderer);
-    renderer->AddActor(actor);
-    const float w = static_cast<float>(width) / static_cast<float>(panels.size());
-    for (std::size_t k = 0; k < panels.size(); ++k) {
-      vtkNew<vtkChartXY> chart;
-      chart->SetAutoSize(false);
-      chart->SetSize(vtkRectf(static_cast<float>(k) * w, 0.0f, w, static_cast<float>(height)));
-      fill_chart(chart, panels[k]);
-      actor->GetScene()->AddItem(chart);
-    }
-    window->Render();
-    const Image image = context.read_image();
-    write_png(image, file);
-  }
+  write_chart_panels(
+      panels.size(), [&](vtkChartXY* chart, std::size_t k) { fill_chart(chart, panels[k]); }, file,
+      width, height);
 }
 
 }  // namespace drumlab::render
