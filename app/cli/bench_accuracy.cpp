@@ -6,9 +6,6 @@
 #include <limits>
 
 #include <fmt/format.h>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include "app/cli/bench_accuracy_cases.hpp"
 #include "app/cli/scene_setup.hpp"
@@ -296,9 +293,7 @@ void run_bench_accuracy(AccuracyOptions opt) {
   }
   Protocol pr;
   if (opt.quick) pr = Protocol{0.05, 0.1, 5, 0.1};
-#ifdef _OPENMP
-  omp_set_num_threads(1);  // run times comparable between settings and with bench throughput
-#endif
+  set_threads(1);  // run times comparable between settings and with bench throughput
   const std::filesystem::path out = opt.out;
   make_output_dir(out);
   const RollingState rolling = rolling_state(opt.scene, opt.plan);

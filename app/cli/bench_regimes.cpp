@@ -7,9 +7,6 @@
 #include <vector>
 
 #include <fmt/format.h>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include "app/cli/scene_setup.hpp"
 #include "engine/analysis/drum_observables.hpp"
@@ -232,9 +229,7 @@ void run_bench_regimes(const RegimesBenchOptions& opt) {
   }
   const std::filesystem::path out = opt.out;
   make_output_dir(out);
-#ifdef _OPENMP
-  omp_set_num_threads(1);  // small drums: one thread; 2 threads on a busy 2-core VM crawl
-#endif
+  set_threads(1);  // small drums: one thread; 2 threads on a busy 2-core VM crawl
   const auto t_start = std::chrono::steady_clock::now();
   RollingPlan plan = opt.plan;
   plan.turn_revolutions = 0.0;  // settled at rest; each Froude number turns it from there

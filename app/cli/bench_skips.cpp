@@ -11,9 +11,6 @@
 #include <vector>
 
 #include <fmt/format.h>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include "app/cli/output_observers.hpp"
 #include "engine/io/atomic_file.hpp"
@@ -251,9 +248,7 @@ void run_bench_skips(const SkipsBenchOptions& opt) {
   }
   const std::filesystem::path out = opt.out;
   make_output_dir(out);
-#ifdef _OPENMP
-  omp_set_num_threads(1);  // also for preparing the state: 2 threads on a busy 2-core VM crawl
-#endif
+  set_threads(1);  // also for preparing the state: 2 threads on a busy 2-core VM crawl
   const RollingState rolling = rolling_state(opt.scene, opt.plan);
   const std::string& name = rolling.scene.name;
   const std::string method = rolling.state.search_method;

@@ -1,5 +1,9 @@
 #include "app/cli/bench_state.hpp"
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 #include <malloc.h>
 #include <sys/resource.h>
 
@@ -107,6 +111,14 @@ void make_output_dir(const std::filesystem::path& dir) {
     throw InputError(fmt::format("{}: cannot create the output directory ({})", dir.string(),
                                  ec ? ec.message() : "not a directory"));
   }
+}
+
+void set_threads(int threads) {
+#ifdef _OPENMP
+  omp_set_num_threads(threads);
+#else
+  if (threads > 1) fmt::print("note: built without OpenMP: {} threads asked, 1 runs\n", threads);
+#endif
 }
 
 }  // namespace drumlab::cli

@@ -35,6 +35,10 @@ std::size_t heap_bytes_in_use();
 /// Peak resident set size of the process so far (getrusage ru_maxrss), bytes.
 std::size_t peak_rss_bytes();
 
+/// Sets the OpenMP thread count for the next parallel regions (a note if built without OpenMP
+/// and more than one thread was asked for).
+void set_threads(int threads);
+
 /// Creates `dir` (and parents) or throws InputError naming it.
 void make_output_dir(const std::filesystem::path& dir);
 

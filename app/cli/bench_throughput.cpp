@@ -8,9 +8,6 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include "app/cli/run_report.hpp"
 #include "engine/io/atomic_file.hpp"
@@ -59,14 +56,6 @@ struct ThroughputRow {
 std::uint64_t verlet_rebuilds(const Simulation& sim) {
   const auto* v = dynamic_cast<const VerletListSearch*>(&sim.search());
   return v != nullptr ? v->rebuilds() : 0;
-}
-
-void set_threads(int threads) {
-#ifdef _OPENMP
-  omp_set_num_threads(threads);
-#else
-  if (threads > 1) fmt::print("note: built without OpenMP: --threads {} runs 1 thread\n", threads);
-#endif
 }
 
 ThroughputRow measure(const RollingState& rolling, const std::string& method,
