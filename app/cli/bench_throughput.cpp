@@ -175,6 +175,11 @@ void run_bench_throughput(const ThroughputOptions& opt) {
   fmt::print("scene             {} ({}), {} particles\n", name, opt.scene,
              rolling.state.particles.size());
   fmt::print("state             {}\n", rolling.origin);
+#ifdef DRUMLAB_AVX2_BUILD
+  fmt::print("build             AVX2 + FMA (-march=x86-64-v3; cmake -DDRUMLAB_AVX2=OFF: SSE2)\n");
+#else
+  fmt::print("build             x86-64 baseline (SSE2), no AVX2/FMA\n");
+#endif
   fmt::print("run               {} warm-up + {} timed steps per method{}\n", opt.warmup, opt.steps,
              std::find(methods.begin(), methods.end(), "brute") != methods.end()
                  ? fmt::format(" (brute: at most {})", kBruteMaxSteps)

@@ -44,6 +44,12 @@ void ContactList::renumber(std::span<const Index> new_index) {
   // Old arrays become the source; the entries are re-sorted by the new (i, j) through an index.
   col_.swap(old_col_);
   history_.swap(old_history_);
+  // Scratch with headroom: re-ordering is sampled every sort_every steps, so without it a list
+  // slightly longer than at any earlier re-ordering would allocate again.
+  if (renumbered_.capacity() < m) {
+    renumbered_.reserve(2 * m);
+    by_pair_.reserve(2 * m);
+  }
   renumbered_.resize(m);
   by_pair_.resize(m);
   for (std::size_t i = 0; i < n; ++i) {
