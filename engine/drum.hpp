@@ -2,6 +2,7 @@
 // The analytic rotating drum, in its own frame: a cylinder of radius R = D/2 about the z axis,
 // with ends at z = 0 and z = H that are either end caps (rotating with the drum) or periodic.
 // The wall surface moves with velocity omega z_hat x r at the point r.
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -48,6 +49,14 @@ class Drum {
 
   WallContact contact(WallPart part, const Vec3& x, double r) const {
     return part == WallPart::cylinder ? cylinder_contact(x, r) : cap_contact(part, x, r);
+  }
+
+  /// Smallest gap (m) between a sphere and the wall parts: the cylinder and, unless periodic,
+  /// both caps; negative when it overlaps one of them.
+  double gap(const Vec3& x, double r) const {
+    const double g = radius_ - std::sqrt(x.x() * x.x() + x.y() * x.y()) - r;
+    if (periodic_) return g;
+    return std::min({g, x.z() - r, depth_ - x.z() - r});
   }
 
   /// Velocity of the wall surface (cylinder or caps) at point p (m/s): omega z_hat x p.

@@ -10,6 +10,7 @@
 
 #include "engine/contact/contact_history.hpp"
 #include "engine/contact/contact_model.hpp"
+#include "engine/contact/wall_candidates.hpp"
 #include "engine/drum.hpp"
 #include "engine/search/verlet_list.hpp"
 #include "engine/spatial_order.hpp"
@@ -61,6 +62,8 @@ struct Simulation::Impl {
   VerletListSearch* verlet = nullptr;
   ReorderBuffers reorder;
   WallHistory wall_scratch;
+  WallCandidates walls;
+  double wall_reach = -1.0;  ///< m; set on the first force evaluation (radii do not change)
 };
 
 Simulation::Simulation(const SceneConfig& scene, Particles particles, SimulationOptions options)
@@ -255,8 +258,13 @@ void Simulation::compute_forces(double history_dt, bool count) {
       particles_, contacts, impl_->pair_buffers, period, dt_, history_dt);
   if (impl_->verlet != nullptr) impl_->verlet->record_found(touching);
   const auto t2 = Clock::now();
-  impl_->model.add_wall_forces(particles_, impl_->drum, omega_, impl_->wall_history, dt_,
-                               history_dt);
+  // Only the particles near the wall: the reach is the Verlet skin, for every search method.
+  if (impl_->wall_reach < 0.0) {
+    impl_->wall_reach = scene_.performance.verlet_skin * particles_.min_radius();
+  }
+  impl_->walls.refresh(particles_, impl_->drum, impl_->wall_reach, impl_->wall_history);
+  impl_->model.add_wall_forces(particles_, impl_->walls.list(), impl_->drum, omega_,
+                               impl_->wall_history, dt_, history_dt);
   const auto t3 = Clock::now();
   if (count) {
     const SearchCounters& c = search_->counters();
@@ -299,6 +307,7 @@ void Simulation::reorder_particles() {
   particles_.reorder(b.order, b);
   apply_order(impl_->wall_history, b.order, impl_->wall_scratch);
   impl_->contacts.renumber(b.new_index);
+  impl_->walls.renumber(b.order, b.new_index);
   if (impl_->verlet != nullptr) impl_->verlet->renumber(b.order, b.new_index);
 }
 

@@ -1,0 +1,43 @@
+#pragma once
+// The particles that can touch the drum wall: a Verlet list for the wall. The wall loop visits
+// only these (the outer layer of the bed) instead of testing every particle against the cylinder
+// and both caps every step. The wall is a surface of revolution with flat ends, so its shape does
+// not change as the drum turns: a particle whose gap to every wall part exceeded `reach` at the
+// last build, and that has moved by less than reach / 2 since, cannot touch the wall.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "engine/contact/contact_model.hpp"
+#include "engine/drum.hpp"
+#include "engine/particles.hpp"
+
+namespace drumlab {
+
+class WallCandidates {
+ public:
+  /// Rebuilds the list if this is the first call, the particle count or `reach` (m, > 0) changed,
+  /// or a particle moved by more than reach / 2 since the last build (in x, y only for periodic
+  /// ends, where z does not matter). On a rebuild, the wall history of every particle left out is
+  /// zeroed: it does not touch the wall. Returns true if it rebuilt.
+  bool refresh(const Particles& p, const Drum& drum, double reach, WallHistory& history);
+  /// The candidates, increasing.
+  std::span<const Index> list() const { return list_; }
+  /// Follows a re-ordering of the particles (slot k now holds the particle that was at order[k];
+  /// particle i moved to new_index[i]): the list stays valid without a rebuild.
+  void renumber(std::span<const Index> order, std::span<const Index> new_index);
+  /// Forces a rebuild at the next refresh.
+  void invalidate() { reference_.clear(); }
+  std::uint64_t rebuilds() const { return rebuilds_; }
+
+ private:
+  bool needs_rebuild(const Particles& p, const Drum& drum, double reach) const;
+
+  std::vector<Index> list_;
+  std::vector<Vec3> reference_;  ///< positions at the last build
+  std::vector<Vec3> scratch_;
+  double reach_ = 0.0;
+  std::uint64_t rebuilds_ = 0;
+};
+
+}  // namespace drumlab
