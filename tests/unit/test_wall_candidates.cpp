@@ -1,0 +1,145 @@
+// WallCandidates, the wall's Verlet list: checked against a full scan of every particle and
+// wall part (the oracle), through random moves below and above half the reach, re-ordering and
+// periodic ends.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "engine/contact/wall_candidates.hpp"
+#include "engine/spatial_order.hpp"
+
+namespace drumlab {
+namespace {
+
+constexpr double kRadius = 0.005;
+constexpr double kReach = 0.5 * kRadius;
+
+Particles random_particles(const Drum& drum, std::size_t n, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  Particles p;
+  while (p.size() < n) {
+    const Vec3 x(u(rng) * drum.radius(), u(rng) * drum.radius(),
+                 (0.5 + 0.5 * u(rng)) * drum.depth());
+    // Some slightly inside the wall, as in a running drum; none deeper than a tenth of r.
+    if (drum.gap(x, kRadius) > -0.1 * kRadius) p.add(x, kRadius, 2500.0);
+  }
+  return p;
+}
+
+// The oracle: every particle that overlaps some wall part now.
+std::vector<Index> touching_wall(const Particles& p, const Drum& drum) {
+  std::vector<Index> out;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (std::size_t part = 0; part < kWallParts; ++part) {
+      if (drum.contact(static_cast<WallPart>(part), p.position[i], p.radius[i]).overlap > 0.0) {
+        out.push_back(static_cast<Index>(i));
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+bool listed(const WallCandidates& w, Index i) {
+  return std::binary_search(w.list().begin(), w.list().end(), i);
+}
+
+void move_all(Particles& p, double step, std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (Vec3& x : p.position) {
+    Vec3 d(u(rng), u(rng), u(rng));
+    if (d.norm() > 0.0) x += (step * u(rng)) * d.normalized();  // |move| < step
+  }
+}
+
+TEST(WallCandidates, ListIsExactlyTheParticlesWithinReachAtABuild) {
+  std::mt19937 rng(7);
+  const Drum drum(DrumConfig{0.2, 0.06, 1.0, 0.0, DrumEnds::caps});
+  Particles p = random_particles(drum, 4000, rng);
+  WallHistory history(p.size(), {Vec3(1, 2, 3), Vec3(1, 2, 3), Vec3(1, 2, 3)});
+  WallCandidates w;
+  ASSERT_TRUE(w.refresh(p, drum, kReach, history));
+  ASSERT_TRUE(std::is_sorted(w.list().begin(), w.list().end()));
+  std::size_t near = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const bool within = drum.gap(p.position[i], kRadius) <= kReach;
+    near += within;
+    EXPECT_EQ(listed(w, static_cast<Index>(i)), within) << "particle " << i;
+    if (!within) {  // history of particles left out is zeroed, the others kept
+      EXPECT_EQ(history[i][0], Vec3::Zero());
+      EXPECT_EQ(history[i][2], Vec3::Zero());
+    } else {
+      EXPECT_EQ(history[i][1], Vec3(1, 2, 3));
+    }
+  }
+  EXPECT_GT(near, 100u);
+  EXPECT_LT(near, p.size() / 2) << "the list should leave out the interior";
+}
+
+TEST(WallCandidates, EveryTouchingParticleIsListedWhileMovesStayBelowHalfTheReach) {
+  std::mt19937 rng(11);
+  const Drum drum(DrumConfig{0.2, 0.06, 1.0, 0.0, DrumEnds::caps});
+  Particles p = random_particles(drum, 4000, rng);
+  WallHistory history(p.size());
+  WallCandidates w;
+  w.refresh(p, drum, kReach, history);
+  const std::vector<Vec3> start = p.position;
+  // Many small moves that add up to just under reach / 2 from the build: no rebuild, and the
+  // oracle's touching particles are all candidates.
+  for (int round = 0; round < 5; ++round) {
+    move_all(p, 0.09 * kReach, rng);
+    ASSERT_FALSE(w.refresh(p, drum, kReach, history)) << "round " << round;
+    for (const Index i : touching_wall(p, drum)) {
+      EXPECT_TRUE(listed(w, i)) << "particle " << i << " touches the wall but is not listed";
+    }
+  }
+  // One particle beyond half the reach: rebuild.
+  p.position[17] = start[17] + Vec3(0.51 * kReach, 0.0, 0.0);
+  EXPECT_TRUE(w.refresh(p, drum, kReach, history));
+  EXPECT_EQ(w.rebuilds(), 2u);
+  // A different reach or particle count rebuilds too.
+  EXPECT_TRUE(w.refresh(p, drum, 2.0 * kReach, history));
+}
+
+TEST(WallCandidates, FollowsAReorderingWithoutARebuild) {
+  std::mt19937 rng(3);
+  const Drum drum(DrumConfig{0.2, 0.06, 1.0, 0.0, DrumEnds::caps});
+  Particles p = random_particles(drum, 2000, rng);
+  WallHistory history(p.size());
+  WallCandidates w;
+  w.refresh(p, drum, kReach, history);
+  std::vector<Index> ids_before;
+  for (const Index i : w.list()) ids_before.push_back(p.id[i]);
+  ReorderBuffers b;
+  morton_order(p.position, 2.0 * kRadius, b);
+  p.reorder(b.order, b);
+  w.renumber(b.order, b.new_index);
+  EXPECT_FALSE(w.refresh(p, drum, kReach, history)) << "nothing moved: no rebuild";
+  ASSERT_TRUE(std::is_sorted(w.list().begin(), w.list().end()));
+  std::vector<Index> ids_after;
+  for (const Index i : w.list()) ids_after.push_back(p.id[i]);
+  std::sort(ids_before.begin(), ids_before.end());
+  std::sort(ids_after.begin(), ids_after.end());
+  EXPECT_EQ(ids_after, ids_before);
+}
+
+TEST(WallCandidates, PeriodicEndsIgnoreTheAxialMotion) {
+  std::mt19937 rng(5);
+  const Drum drum(DrumConfig{0.2, 0.06, 1.0, 0.0, DrumEnds::periodic});
+  Particles p = random_particles(drum, 2000, rng);
+  WallHistory history(p.size());
+  WallCandidates w;
+  w.refresh(p, drum, kReach, history);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    // No caps: only the cylinder decides.
+    const double rho = p.position[i].head<2>().norm();
+    EXPECT_EQ(listed(w, static_cast<Index>(i)), drum.radius() - rho - kRadius <= kReach);
+  }
+  for (Vec3& x : p.position) x.z() = drum.wrap_z(x.z() + 0.3 * drum.depth());
+  EXPECT_FALSE(w.refresh(p, drum, kReach, history));
+  for (const Index i : touching_wall(p, drum)) EXPECT_TRUE(listed(w, i));
+}
+
+}  // namespace
+}  // namespace drumlab
