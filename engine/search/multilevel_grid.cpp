@@ -104,7 +104,9 @@ void MultiLevelGridSearch::assign_levels(const SearchInput& in) {
 void MultiLevelGridSearch::lay_level(Level& level, const SearchInput& in) {
   const Box bounds = search_bounds(in);
   const double reach = 2.0 * level.rmax + in.margin + kTouchTolerance;
-  const GridAxes axes(bounds, reach, "mlgrid");
+  // Cells a hair wider than the reach, so that the round-off allowance of reach_cells() does not
+  // push the stencil from 1 to 2 cells each way (5^3 instead of 3^3 cells visited).
+  const GridAxes axes(bounds, reach * (1.0 + 1e-9), "mlgrid");
   level.origin = bounds.lo;
   level.b = axes.side();
   level.k = axes.reach_cells(reach);

@@ -187,6 +187,17 @@ TEST(CellGrid, InteriorParticleVisitsThePaperStencil) {
   EXPECT_EQ(m1.cells_visited_per_particle()[1], 85u);
 }
 
+TEST(MultiLevelGrid, OneSizeVisitsTheThreeByThreeHalfShell) {
+  // One size class: cells as wide as the contact reach, so every particle visits at most the
+  // 14 cells of the 3x3x3 half shell (an earlier version's round-off allowance made it 5x5x5).
+  Cloud c = random_box(3000, 1.0, Vec3(-0.1, -0.1, 0.0), Vec3(0.2, 0.2, 0.1), 5);
+  for (double& r : c.r) r = 0.005;
+  auto ml = make_search("mlgrid");
+  sorted_pairs(*ml, c);
+  const auto cells = ml->cells_visited_per_particle();
+  EXPECT_EQ(*std::max_element(cells.begin(), cells.end()), 14u);  // fewer only at the edges
+}
+
 TEST(SearchFactory, UnknownMethodNamesTheValidOnes) {
   try {
     make_search("m7");
