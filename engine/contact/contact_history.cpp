@@ -12,6 +12,7 @@ void ContactList::clear() {
   history_.clear();
   partner_start_.clear();
   partner_k_.clear();
+  partners_current_ = false;
 }
 
 void ContactList::assign(std::span<const std::size_t> row_start, std::span<const Index> col,
@@ -35,7 +36,7 @@ void ContactList::assign(std::span<const std::size_t> row_start, std::span<const
   row_start_.assign(row_start.begin(), row_start.end());
   col_.assign(col.begin(), col.end());
   history_.assign(history.begin(), history.end());
-  build_partners();
+  partners_current_ = false;
 }
 
 void ContactList::renumber(std::span<const Index> new_index) {
@@ -72,7 +73,7 @@ void ContactList::renumber(std::span<const Index> new_index) {
     col_[q] = renumbered_[by_pair_[q]].j;
     history_[q] = old_history_[by_pair_[q]];
   }
-  build_partners();
+  partners_current_ = false;
 }
 
 void ContactList::update(std::span<const IndexPair> pairs, std::size_t n_particles) {
@@ -81,7 +82,13 @@ void ContactList::update(std::span<const IndexPair> pairs, std::size_t n_particl
   history_.swap(old_history_);
   build_rows(pairs, n_particles);
   transfer_history();
+  partners_current_ = false;
+}
+
+void ContactList::index_partners() {
+  if (partners_current_) return;
   build_partners();
+  partners_current_ = true;
 }
 
 void ContactList::build_partners() {

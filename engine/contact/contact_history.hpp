@@ -35,8 +35,11 @@ class ContactList {
   /// Contacts of particle i are k in [row_start()[i], row_start()[i + 1]), partner col()[k] > i.
   std::span<const std::size_t> row_start() const { return row_start_; }
   std::span<const Index> col() const { return col_; }
+  /// Builds the partner index below if the list changed since it was last built (only the
+  /// multi-threaded force loop needs it, so one thread skips the work).
+  void index_partners();
   /// Contacts in which particle j is the partner: k = partner_contacts()[q] for q in
-  /// [partner_start()[j], partner_start()[j + 1]), increasing k.
+  /// [partner_start()[j], partner_start()[j + 1]), increasing k. Valid after index_partners().
   std::span<const std::size_t> partner_start() const { return partner_start_; }
   std::span<const std::size_t> partner_contacts() const { return partner_k_; }
   std::span<Vec3> history() { return history_; }
@@ -58,6 +61,7 @@ class ContactList {
   std::vector<std::size_t> fill_;  // scratch: next free slot per row
   std::vector<std::size_t> partner_start_;
   std::vector<std::size_t> partner_k_;
+  bool partners_current_ = false;      ///< partner_start_, partner_k_ match the list
   std::vector<IndexPair> renumbered_;  // scratch of renumber()
   std::vector<std::size_t> by_pair_;
 };

@@ -240,6 +240,7 @@ std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& 
           }
         });
   }
+  contacts.index_partners();
   const auto partner_start = contacts.partner_start();
   const auto partner_k = contacts.partner_contacts();
 #pragma omp parallel for schedule(static)
