@@ -49,8 +49,12 @@ Index Particles::add(const Vec3& x, double r, double density, std::uint8_t cls) 
 }
 
 void Particles::clear_forces() {
-  std::fill(force.begin(), force.end(), Vec3::Zero());
-  std::fill(torque.begin(), torque.end(), Vec3::Zero());
+  const auto n = static_cast<std::int64_t>(force.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < n; ++i) {
+    force[i].setZero();
+    torque[i].setZero();
+  }
 }
 
 void Particles::reorder(std::span<const Index> order, ReorderBuffers& scratch) {

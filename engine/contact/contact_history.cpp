@@ -53,25 +53,43 @@ void ContactList::renumber(std::span<const Index> new_index) {
   }
   renumbered_.resize(m);
   by_pair_.resize(m);
-  for (std::size_t i = 0; i < n; ++i) {
+  const auto rows_old = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ii = 0; ii < rows_old; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
     for (std::size_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {
       const Index a = new_index[i];
       const Index b = new_index[old_col_[k]];
       renumbered_[k] = a < b ? IndexPair{a, b} : IndexPair{b, a};
       if (b < a) old_history_[k] = -old_history_[k];
-      by_pair_[k] = k;
     }
   }
-  std::sort(by_pair_.begin(), by_pair_.end(),
-            [&](std::size_t a, std::size_t b) { return renumbered_[a] < renumbered_[b]; });
+  // Counting sort of the entries by their new first index, then each (short, independent) row
+  // by the second: O(m), where a comparison sort of all entries took O(m log m).
   row_start_.assign(n + 1, 0);
   for (const IndexPair& p : renumbered_) ++row_start_[p.i + 1];
   for (std::size_t i = 0; i < n; ++i) row_start_[i + 1] += row_start_[i];
+  fill_.assign(row_start_.begin(), row_start_.end() - 1);
+  for (std::size_t k = 0; k < m; ++k) by_pair_[fill_[renumbered_[k].i]++] = k;
   col_.resize(m);
   history_.resize(m);
-  for (std::size_t q = 0; q < m; ++q) {
-    col_[q] = renumbered_[by_pair_[q]].j;
-    history_[q] = old_history_[by_pair_[q]];
+  const auto count = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ii = 0; ii < count; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    const std::size_t begin = row_start_[i];
+    for (std::size_t a = begin + 1; a < row_start_[i + 1]; ++a) {
+      const std::size_t v = by_pair_[a];
+      std::size_t b = a;
+      for (; b > begin && renumbered_[by_pair_[b - 1]].j > renumbered_[v].j; --b) {
+        by_pair_[b] = by_pair_[b - 1];
+      }
+      by_pair_[b] = v;
+    }
+    for (std::size_t q = begin; q < row_start_[i + 1]; ++q) {
+      col_[q] = renumbered_[by_pair_[q]].j;
+      history_[q] = old_history_[by_pair_[q]];
+    }
   }
   partners_current_ = false;
 }

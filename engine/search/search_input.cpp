@@ -51,17 +51,18 @@ void sort_pairs(std::vector<IndexPair>& pairs, std::size_t n, std::vector<IndexP
   for (std::size_t i = 0; i < n; ++i) counts[i + 1] += counts[i];
   scratch.resize(pairs.size());
   for (const IndexPair& p : pairs) scratch[counts[p.i]++] = p;
-  // counts[i] is now the end of row i; rows are short: insertion sort by j.
-  std::size_t begin = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t end = counts[i];
+  // counts[i] is now the end of row i; rows are short and independent: insertion sort by j.
+  const auto rows = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < rows; ++i) {
+    const std::size_t begin = i == 0 ? 0 : counts[static_cast<std::size_t>(i) - 1];
+    const std::size_t end = counts[static_cast<std::size_t>(i)];
     for (std::size_t a = begin + 1; a < end; ++a) {
       const IndexPair v = scratch[a];
       std::size_t b = a;
       for (; b > begin && scratch[b - 1].j > v.j; --b) scratch[b] = scratch[b - 1];
       scratch[b] = v;
     }
-    begin = end;
   }
   pairs.swap(scratch);
 }
