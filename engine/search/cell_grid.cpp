@@ -6,34 +6,15 @@
 #include <numeric>
 #include <type_traits>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include <fmt/format.h>
 
 #include "engine/search/grid_axes.hpp"
 #include "engine/search/search_input.hpp"
+#include "engine/threads.hpp"
 
 namespace drumlab {
 
 namespace {
-
-int max_threads() {
-#ifdef _OPENMP
-  return omp_get_max_threads();
-#else
-  return 1;
-#endif
-}
-
-int thread_number() {
-#ifdef _OPENMP
-  return omp_get_thread_num();
-#else
-  return 0;
-#endif
-}
 
 /// A dense array is used while it costs at most this many cells per particle (plus a floor).
 constexpr double kDenseCellsPerParticle = 64.0;

@@ -9,6 +9,7 @@
 
 #include "engine/search/grid_axes.hpp"
 #include "engine/search/search_input.hpp"
+#include "engine/threads.hpp"
 
 namespace drumlab {
 
@@ -218,53 +219,72 @@ void MultiLevelGridSearch::visit_level(const Level& level, const Cells& cells,
   const double period = in.period_z.value_or(0.0);
   const double margin = in.margin + kTouchTolerance;
   const std::size_t l = static_cast<std::size_t>(&level - levels_.data());
-  for (std::size_t s = 0; s < level.order.size(); ++s) {
-    const Vec3& xi = level.position[s];
-    const double ri = level.radius[s];
-    const Index pi = level.order[s];
-    const CellCoord ci = level.cell[s];
-    std::uint32_t my_cells = 1, my_tests = 0;
-    CellRange r;
-    cells.find(ci, r);
-    my_tests += scan_slots(xi, ri, pi, level, static_cast<std::uint32_t>(s) + 1, r.end, margin,
-                           period, out);
-    if constexpr (std::is_same_v<Cells, DenseCellIndex>) {
-      for (const StencilRow& row : level.stencil.rows[level.k]) {
-        CellCoord c{0, ci.y + row.dy, ci.z + row.dz};
-        if (!wrap(level, c)) continue;
-        const std::int64_t x0 = std::max<std::int64_t>(ci.x + row.dx_lo, 0);
-        const std::int64_t x1 = std::min<std::int64_t>(ci.x + row.dx_hi, level.n[0] - 1);
-        if (x0 > x1) continue;
-        my_cells += static_cast<std::uint32_t>(x1 - x0 + 1);
-        c.x = x0;
-        const std::uint32_t begin = cells.cell(c).begin;
-        c.x = x1;
-        my_tests += scan_slots(xi, ri, pi, level, begin, cells.cell(c).end, margin, period, out);
-      }
-    } else {
-      const auto& offsets = level.stencil.offsets;
-      for (std::uint32_t o = 0; o < level.stencil.prefix_end[level.k]; ++o) {
-        CellCoord c{ci.x + offsets[o].dx, ci.y + offsets[o].dy, ci.z + offsets[o].dz};
-        if (!wrap(level, c)) continue;
-        ++my_cells;
-        if (cells.find(c, r)) {
-          my_tests += scan_slots(xi, ri, pi, level, r.begin, r.end, margin, period, out);
+  std::uint64_t cells_visited = 0, pairs_tested = 0;
+  // Each thread takes a contiguous block of slots and collects its pairs; the blocks are joined
+  // in order, so the output does not depend on the thread count. Counters per particle are
+  // written by the one thread that owns the particle.
+  slices_.resize(static_cast<std::size_t>(max_threads()));
+  const auto slots = static_cast<std::int64_t>(level.order.size());
+#pragma omp parallel num_threads(static_cast<int>(slices_.size())) \
+    reduction(+ : cells_visited, pairs_tested)
+  {
+    std::vector<IndexPair>& mine = slices_[static_cast<std::size_t>(thread_number())];
+    mine.clear();
+#pragma omp for schedule(static)
+    for (std::int64_t ss = 0; ss < slots; ++ss) {
+      const auto s = static_cast<std::size_t>(ss);
+      const Vec3& xi = level.position[s];
+      const double ri = level.radius[s];
+      const Index pi = level.order[s];
+      const CellCoord ci = level.cell[s];
+      std::uint32_t my_cells = 1, my_tests = 0;
+      CellRange r;
+      cells.find(ci, r);
+      my_tests += scan_slots(xi, ri, pi, level, static_cast<std::uint32_t>(s) + 1, r.end, margin,
+                             period, mine);
+      if constexpr (std::is_same_v<Cells, DenseCellIndex>) {
+        for (const StencilRow& row : level.stencil.rows[level.k]) {
+          CellCoord c{0, ci.y + row.dy, ci.z + row.dz};
+          if (!wrap(level, c)) continue;
+          const std::int64_t x0 = std::max<std::int64_t>(ci.x + row.dx_lo, 0);
+          const std::int64_t x1 = std::min<std::int64_t>(ci.x + row.dx_hi, level.n[0] - 1);
+          if (x0 > x1) continue;
+          my_cells += static_cast<std::uint32_t>(x1 - x0 + 1);
+          c.x = x0;
+          const std::uint32_t begin = cells.cell(c).begin;
+          c.x = x1;
+          my_tests += scan_slots(xi, ri, pi, level, begin, cells.cell(c).end, margin, period, mine);
+        }
+      } else {
+        const auto& offsets = level.stencil.offsets;
+        for (std::uint32_t o = 0; o < level.stencil.prefix_end[level.k]; ++o) {
+          CellCoord c{ci.x + offsets[o].dx, ci.y + offsets[o].dy, ci.z + offsets[o].dz};
+          if (!wrap(level, c)) continue;
+          ++my_cells;
+          if (cells.find(c, r)) {
+            my_tests += scan_slots(xi, ri, pi, level, r.begin, r.end, margin, period, mine);
+          }
         }
       }
-    }
-    cells_per_particle_[pi] = my_cells;
-    tests_per_particle_[pi] = my_tests;
-    for (std::size_t h = l + 1; h < levels_.size(); ++h) {
-      const Level& big = levels_[h];
-      if (big.hashed) {
-        visit_cross(l, s, big, big.hashed_index, in, out);
-      } else {
-        visit_cross(l, s, big, big.dense, in, out);
+      cells_per_particle_[pi] = my_cells;
+      tests_per_particle_[pi] = my_tests;
+      for (std::size_t h = l + 1; h < levels_.size(); ++h) {
+        const Level& big = levels_[h];
+        if (big.hashed) {
+          visit_cross(l, s, big, big.hashed_index, in, mine);
+        } else {
+          visit_cross(l, s, big, big.dense, in, mine);
+        }
       }
+      cells_visited += cells_per_particle_[pi];
+      pairs_tested += tests_per_particle_[pi];
     }
-    counters_.cells_visited += cells_per_particle_[pi];
-    counters_.pairs_tested += tests_per_particle_[pi];
   }
+  for (const std::vector<IndexPair>& slice : slices_) {
+    out.insert(out.end(), slice.begin(), slice.end());
+  }
+  counters_.cells_visited += cells_visited;
+  counters_.pairs_tested += pairs_tested;
 }
 
 template <class Cells>

@@ -55,6 +55,7 @@ class MultiLevelGridSearch final : public ContactSearch {
                    const SearchInput& in, std::vector<IndexPair>& out);
 
   std::vector<Level> levels_;
+  std::vector<std::vector<IndexPair>> slices_;  ///< per-thread pairs of visit_level()
   std::vector<std::uint8_t> level_of_;
   double slack_ = 0.0;
 };

@@ -6,32 +6,9 @@
 
 #include "engine/search/search_input.hpp"
 #include "engine/spatial_order.hpp"
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
+#include "engine/threads.hpp"
 
 namespace drumlab {
-
-namespace {
-
-int omp_threads() {
-#ifdef _OPENMP
-  return omp_get_max_threads();
-#else
-  return 1;
-#endif
-}
-
-int omp_thread() {
-#ifdef _OPENMP
-  return omp_get_thread_num();
-#else
-  return 0;
-#endif
-}
-
-}  // namespace
 
 VerletListSearch::VerletListSearch(std::unique_ptr<ContactSearch> builder, double skin_factor)
     : builder_(std::move(builder)), skin_factor_(skin_factor) {
@@ -50,11 +27,11 @@ void VerletListSearch::filter(const SearchInput& in, std::vector<IndexPair>& out
   // and does not depend on the thread count.
   const std::size_t m = list_.size();
   const double margin = in.margin + kTouchTolerance;
-  const int threads = omp_threads();
+  const int threads = max_threads();
   slices_.resize(static_cast<std::size_t>(threads));
 #pragma omp parallel num_threads(threads)
   {
-    const auto t = static_cast<std::size_t>(omp_thread());
+    const auto t = static_cast<std::size_t>(thread_number());
     std::vector<IndexPair>& slice = slices_[t];
     slice.clear();
     const std::size_t begin = m * t / static_cast<std::size_t>(threads);

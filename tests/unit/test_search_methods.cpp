@@ -10,6 +10,7 @@
 #include "engine/search/cell_grid.hpp"
 #include "engine/search/contact_search.hpp"
 #include "engine/search/half_stencil.hpp"
+#include "engine/threads.hpp"
 
 namespace drumlab {
 namespace {
@@ -139,6 +140,27 @@ TEST_P(SearchMethod, TinyInputs) {
   expect_same_as_brute(Cloud{{Vec3(1, 2, 3)}, {0.01}});
   expect_same_as_brute(Cloud{{Vec3(0, 0, 0), Vec3(0.02, 0, 0)}, {0.01, 0.01}});
   expect_same_as_brute(Cloud{{Vec3(0, 0, 0), Vec3(0, 0, 0)}, {0.01, 0.01}});  // coincident
+}
+
+TEST_P(SearchMethod, SameOutputAndCountersForOneAndTwoThreads) {
+  // Size ratio 3 (several mlgrid levels), a Verlet margin: the pairs, in the same order, and every
+  // counter must not depend on the thread count.
+  const Cloud c = random_box(4000, 3.0, Vec3(0, 0, 0), Vec3(0.3, 0.3, 0.1), 21);
+  const SearchInput in{c.x, c.r, 0.002, std::nullopt, std::nullopt};
+  std::vector<IndexPair> one, two;
+  auto a = make_search(GetParam());
+  auto b = make_search(GetParam());
+  const int saved = max_threads();
+  set_thread_count(1);
+  a->find_pairs(in, one);
+  set_thread_count(2);
+  b->find_pairs(in, two);
+  set_thread_count(saved);
+  EXPECT_EQ(one, two);
+  EXPECT_EQ(a->counters().pairs_tested, b->counters().pairs_tested);
+  EXPECT_EQ(a->counters().cells_visited, b->counters().cells_visited);
+  EXPECT_TRUE(std::ranges::equal(a->pairs_tested_per_particle(), b->pairs_tested_per_particle()));
+  EXPECT_TRUE(std::ranges::equal(a->cells_visited_per_particle(), b->cells_visited_per_particle()));
 }
 
 TEST_P(SearchMethod, RejectsBadInput) {
