@@ -3,6 +3,7 @@
 // between steps; never changes it.
 #include <chrono>
 #include <cstdint>
+#include <ctime>
 #include <string>
 
 #include "engine/simulation.hpp"
@@ -27,6 +28,7 @@ class ProgressBar {
 struct PhaseStats {
   std::uint64_t steps = 0;
   double wall_seconds = 0.0;
+  double cpu_seconds = 0.0;     ///< process CPU time, all threads (a VM's stolen time excluded)
   double output_seconds = 0.0;  ///< spent in observers (rendering, writers), not stepping
   StepTimers timers;
   SearchCounters search;
@@ -44,6 +46,7 @@ class PhaseMeter {
   StepTimers timers0_;
   SearchCounters search0_;
   std::chrono::steady_clock::time_point start_;
+  std::clock_t cpu_start_;
 };
 
 /// Prints the summary of a phase: throughput as "... particle-steps/s", the time split, search

@@ -58,7 +58,7 @@ TEST(CliBench, ThroughputWritesOneRowPerMethodAndAChart) {
   ASSERT_EQ(lines.size(), 5u) << r.output;
   EXPECT_EQ(lines[0],
             "scene,method,sort_every,threads,particles,steps,stepping_s,particle_steps_per_s,"
-            "speedup,"
+            "particle_steps_per_cpu_s,speedup,"
             "search_share,forces_share,walls_share,integration_share,cells_per_particle,"
             "tested_per_particle,contacts_per_particle,tested_per_contact,verlet_rebuilds,"
             "heap_bytes_per_particle");
@@ -66,6 +66,18 @@ TEST(CliBench, ThroughputWritesOneRowPerMethodAndAChart) {
   for (std::size_t k = 0; k < methods.size(); ++k) {
     EXPECT_EQ(lines[k + 1].rfind("tiny_bench," + methods[k] + ",100,1,300,5,", 0), 0u)
         << lines[k + 1];
+  }
+  for (std::size_t k = 1; k < lines.size(); ++k) {
+    // Process CPU time per row: a positive rate (a CPU-bound step loop on one thread cannot use
+    // much more CPU than wall time, so it stays near the wall-clock rate or above it).
+    std::vector<std::string> cells;
+    std::stringstream row(lines[k]);
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    ASSERT_GT(cells.size(), 8u);
+    const double wall_rate = std::stod(cells[7]);
+    const double cpu_rate = std::stod(cells[8]);
+    EXPECT_GT(cpu_rate, 0.0) << lines[k];
+    EXPECT_GT(cpu_rate, 0.5 * wall_rate) << lines[k];
   }
   if (!built_without_render(r.output)) {
     EXPECT_TRUE(is_png(out / "throughput_tiny_bench.png"));
