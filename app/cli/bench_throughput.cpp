@@ -37,8 +37,8 @@ struct ThroughputRow {
     const double s = stepping();
     return s > 0.0 ? static_cast<double>(particles) * static_cast<double>(phase.steps) / s : 0.0;
   }
-  /// Particle-steps per second of process CPU time (all threads): on a shared VM, less
-  /// sensitive to other tenants than rate(); with N threads it also counts threads waiting.
+  /// Particle-steps per second of process CPU time (all threads): with N threads, below the
+  /// 1-thread rate by the cost of parallel work and of threads waiting at barriers.
   double cpu_rate() const {
     return phase.cpu_seconds > 0.0 ? static_cast<double>(particles) *
                                          static_cast<double>(phase.steps) / phase.cpu_seconds

@@ -28,7 +28,7 @@ class ProgressBar {
 struct PhaseStats {
   std::uint64_t steps = 0;
   double wall_seconds = 0.0;
-  double cpu_seconds = 0.0;     ///< process CPU time, all threads (a VM's stolen time excluded)
+  double cpu_seconds = 0.0;     ///< process CPU time, all threads
   double output_seconds = 0.0;  ///< spent in observers (rendering, writers), not stepping
   StepTimers timers;
   SearchCounters search;
