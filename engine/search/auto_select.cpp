@@ -20,7 +20,6 @@ constexpr double kNsPerTest = 2.5;
 constexpr double kNsPerParticle = 25.0;
 // A Verlet list pays off when it is rebuilt at most every this many steps.
 constexpr double kMinStepsBetweenRebuilds = 3.0;
-constexpr double kSkinFactor = 0.3;  // as in the factory's "verlet"
 
 MethodEstimate estimate(const std::string& name, const SearchInput& in) {
   auto search = make_search(name);
@@ -82,7 +81,8 @@ SearchChoice choose_search_method(const SceneConfig& scene, double dt,
   const double rmin = *std::min_element(radius.begin(), radius.end());
   const double speed = std::max(2.0 * std::abs(scene.drum.omega) * 0.5 * scene.drum.diameter,
                                 std::sqrt(9.81 * rmin));
-  const double steps_between = dt > 0.0 ? 0.5 * kSkinFactor * rmin / (speed * dt) : 0.0;
+  const double skin_factor = scene.performance.verlet_skin;  // what the Verlet list will use
+  const double steps_between = dt > 0.0 ? 0.5 * skin_factor * rmin / (speed * dt) : 0.0;
   const bool verlet = steps_between >= kMinStepsBetweenRebuilds;
   choice.method = verlet ? "verlet:" + best->method : best->method;
   choice.reason = fmt::format(
@@ -101,7 +101,7 @@ SearchChoice choose_search_method(const SceneConfig& scene, double dt,
                        ? fmt::format(
                              "Expected rebuild interval of a Verlet list (skin {} R_min, speed <= "
                              "{:.2g} m/s): {:.1f} steps, so {}.",
-                             kSkinFactor, speed, steps_between,
+                             skin_factor, speed, steps_between,
                              verlet ? "a Verlet list is used" : "no Verlet list")
                        : "No time step given, so no Verlet list.";
   return choice;

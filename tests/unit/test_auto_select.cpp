@@ -1,6 +1,8 @@
 // `auto` picks a method that exists, says why, and states the paper's rule as the baseline.
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include "engine/fill/random_fill.hpp"
 #include "engine/search/auto_select.hpp"
 #include "engine/search/contact_search.hpp"
@@ -32,6 +34,16 @@ TEST(AutoSelect, VerletListOnlyWhenRebuildsAreRare) {
       choose_search_method(scene, 1e-5, p.position, p.radius, 0).method.starts_with("verlet:"));
   EXPECT_FALSE(
       choose_search_method(scene, 1e-2, p.position, p.radius, 0).method.starts_with("verlet"));
+  // The expected rebuild interval uses the scene's skin: a wider skin keeps the list longer.
+  SceneConfig wide = scene;
+  wide.performance.verlet_skin = 4.0 * scene.performance.verlet_skin;
+  const SearchChoice narrow_choice = choose_search_method(scene, 1e-4, p.position, p.radius, 0);
+  const SearchChoice wide_choice = choose_search_method(wide, 1e-4, p.position, p.radius, 0);
+  const auto skin_text = [](double f) { return fmt::format("skin {} R_min", f); };
+  EXPECT_NE(narrow_choice.reason.find(skin_text(scene.performance.verlet_skin)), std::string::npos)
+      << narrow_choice.reason;
+  EXPECT_NE(wide_choice.reason.find(skin_text(wide.performance.verlet_skin)), std::string::npos)
+      << wide_choice.reason;
 }
 
 }  // namespace
