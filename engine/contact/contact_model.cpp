@@ -122,6 +122,25 @@ inline bool pair_geometry(const Particles& p, std::size_t i, Index j, double per
   return true;
 }
 
+// Force on i and torques on i and j of the overlapping pair k = (i, j), advancing its history xi.
+struct PairContribution {
+  Vec3 force = Vec3::Zero();
+  Vec3 torque_i = Vec3::Zero();
+  Vec3 torque_j = Vec3::Zero();
+};
+
+template <class Kernel>
+[[gnu::always_inline]] inline PairContribution pair_contribution(const Kernel& kernel,
+                                                                 const Particles& p, std::size_t i,
+                                                                 Index j, Vec3& xi, double period,
+                                                                 double dt, double history_dt) {
+  const ContactGeometry g = overlap_geometry(p, i, j, separation(p, i, j, period), dt);
+  PairContribution c;
+  c.force = kernel(g, p.velocity[i] - p.velocity[j], p.omega[i], p.omega[j], xi, history_dt,
+                   c.torque_i, &c.torque_j);
+  return c;
+}
+
 // Visits the entries k in [begin, end) of row i: apart(k) for those that do not overlap (in any
 // order), then overlap(k) for those that do, by increasing k. Most entries of a Verlet list do not
 // overlap, in no predictable pattern; so each chunk is first split by a loop without branches,
@@ -174,15 +193,13 @@ std::size_t pair_loop_serial(const ContactLaw<Normal>& law, Particles& p, Contac
         p, col, i, row[i], row[i + 1], period, touching,
         [&](std::size_t k) {
           const Index j = col[k];
-          const ContactGeometry g = overlap_geometry(p, i, j, separation(p, i, j, period), dt);
-          Vec3 t_i = Vec3::Zero(), t_j = Vec3::Zero();
-          const Vec3 f = kernel(g, p.velocity[i] - p.velocity[j], p.omega[i], p.omega[j], hist[k],
-                                history_dt, t_i, &t_j);
-          p.force[i] += f;
-          p.force[j] -= f;
+          const PairContribution c =
+              pair_contribution(kernel, p, i, j, hist[k], period, dt, history_dt);
+          p.force[i] += c.force;
+          p.force[j] -= c.force;
           if constexpr (Tangential || Rolling) {
-            p.torque[i] += t_i;
-            p.torque[j] += t_j;
+            p.torque[i] += c.torque_i;
+            p.torque[j] += c.torque_j;
           }
         },
         [&](std::size_t k) { hist[k].setZero(); });  // no (longer) overlapping: history ends
@@ -221,14 +238,12 @@ std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& 
     split_row(
         p, col, i, row[i], row[i + 1], period, touching,
         [&](std::size_t k) {
-          const Index j = col[k];
-          const ContactGeometry g = overlap_geometry(p, i, j, separation(p, i, j, period), dt);
-          Vec3 t_i = Vec3::Zero(), t_j = Vec3::Zero();
-          buf.force[k] = kernel(g, p.velocity[i] - p.velocity[j], p.omega[i], p.omega[j], hist[k],
-                                history_dt, t_i, &t_j);
+          const PairContribution c =
+              pair_contribution(kernel, p, i, col[k], hist[k], period, dt, history_dt);
+          buf.force[k] = c.force;
           if constexpr (kTorque) {
-            buf.torque_i[k] = t_i;
-            buf.torque_j[k] = t_j;
+            buf.torque_i[k] = c.torque_i;
+            buf.torque_j[k] = c.torque_j;
           }
         },
         [&](std::size_t k) {
