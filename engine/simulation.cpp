@@ -248,8 +248,10 @@ void Simulation::compute_forces(double history_dt, bool count) {
     }
   } catch (const InputError& e) {
     if (!count) throw;  // initial state: the input is at fault
-    throw UnstableError(fmt::format("unstable at step {} (t = {:.6g} s): contact search failed: {}",
-                                    steps_ + 1, time_ + dt_, e.what()));
+    throw UnstableError(fmt::format(
+        "unstable at step {} (t = {:.6g} s): contact search failed: {}; try a smaller time.dt "
+        "(now {:.4g} s = {:.3g} Rayleigh times)",
+        steps_ + 1, time_ + dt_, e.what(), dt_, dt_ / rayleigh_time_));
   }
   const auto t1 = Clock::now();
   particles_.clear_forces();
@@ -398,8 +400,10 @@ Diagnostics Simulation::diagnostics() const {
 void Simulation::check_stability() const {
   const Diagnostics d = diagnostics();
   const auto fail = [&](const std::string& why) {
-    throw UnstableError(fmt::format("unstable at step {} (t = {:.6g} s): {}; try a smaller time.dt",
-                                    steps_, time_, why));
+    throw UnstableError(fmt::format(
+        "unstable at step {} (t = {:.6g} s): {}; try a smaller time.dt (now {:.4g} s = {:.3g} "
+        "Rayleigh times)",
+        steps_, time_, why, dt_, dt_ / rayleigh_time_));
   };
   if (d.non_finite > 0) {
     fail(fmt::format("{} particle(s) with non-finite position or velocity", d.non_finite));

@@ -57,6 +57,10 @@ TEST(CliRun, TimeStepFarAboveTheLimitStopsAsUnstable) {
   const auto r = run_cli("run " + scene.string() + " --unsafe-dt --dt-factor 20");
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("drumlab: unstable: "), std::string::npos) << r.output;
+  // Whichever check catches it first (the health check or the search), the line says what to do
+  // and what dt was.
+  EXPECT_NE(r.output.find("try a smaller time.dt (now "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("= 20 Rayleigh times)"), std::string::npos) << r.output;
 }
 
 TEST(CliInfo, EveryShippedSceneHasInfo) {
