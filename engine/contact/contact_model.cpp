@@ -207,34 +207,21 @@ std::size_t pair_loop_serial(const ContactLaw<Normal>& law, Particles& p, Contac
   return touching;
 }
 
-// Several threads: two passes, so the result does not depend on the number of threads: (1) each
-// contact's force and torques into per-contact buffers (contacts are independent; each owns its
-// history), (2) each particle sums its contacts in a fixed order: the rows where it is the
-// partner, by k, then its own row, by k.
-template <class Normal, bool Tangential, bool Rolling>
-std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts,
-                      PairForceBuffers& buf, double period, double dt, double history_dt) {
-#ifdef _OPENMP
-  if (omp_get_max_threads() == 1)
-#endif
-  {
-    return pair_loop_serial<Normal, Tangential, Rolling>(law, p, contacts, period, dt, history_dt);
-  }
-  constexpr bool kTorque = Tangential || Rolling;
-  const ContactKernel<Normal, Tangential, Rolling> kernel{law};
-  const auto row = contacts.row_start();
-  const auto col = contacts.col();
-  const auto hist = contacts.history();
-  buf.force.resize(contacts.size());
-  if constexpr (kTorque) {
-    buf.torque_i.resize(contacts.size());
-    buf.torque_j.resize(contacts.size());
-  }
-  const auto rows = static_cast<std::int64_t>(contacts.rows());
+// Pass 1 of the multi-threaded loop over rows [begin, begin + kRowsPerChunk): each contact's
+// force and torques into its buffers. Not inlined into the OpenMP region, where the shared
+// variables would be read through pointers (callgrind, 20 steps on 2 threads: 265.2 M -> 252.1 M
+// instructions in this pass).
+constexpr std::size_t kRowsPerChunk = 64;
+
+template <class Kernel, bool kTorque>
+[[gnu::noinline]] std::size_t buffer_rows(const Kernel& kernel, const Particles& p,
+                                          std::span<const std::size_t> row,
+                                          std::span<const Index> col, std::span<Vec3> hist,
+                                          PairForceBuffers& buf, std::size_t begin, double period,
+                                          double dt, double history_dt) {
+  const std::size_t end = std::min(row.size() - 1, begin + kRowsPerChunk);
   std::size_t touching = 0;
-#pragma omp parallel for schedule(dynamic, 512) reduction(+ : touching)
-  for (std::int64_t ii = 0; ii < rows; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
+  for (std::size_t i = begin; i < end; ++i) {
     split_row(
         p, col, i, row[i], row[i + 1], period, touching,
         [&](std::size_t k) {
@@ -254,6 +241,43 @@ std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& 
             buf.torque_j[k].setZero();
           }
         });
+  }
+  return touching;
+}
+
+// Several threads: two passes, so the result does not depend on the number of threads: (1) each
+// contact's force and torques into per-contact buffers (contacts are independent; each owns its
+// history), (2) each particle sums its contacts in a fixed order: the rows where it is the
+// partner, by k, then its own row, by k.
+template <class Normal, bool Tangential, bool Rolling>
+std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts,
+                      PairForceBuffers& buf, double period, double dt, double history_dt) {
+#ifdef _OPENMP
+  if (omp_get_max_threads() == 1)
+#endif
+  {
+    return pair_loop_serial<Normal, Tangential, Rolling>(law, p, contacts, period, dt, history_dt);
+  }
+  constexpr bool kTorque = Tangential || Rolling;
+  using Kernel = ContactKernel<Normal, Tangential, Rolling>;
+  const Kernel kernel{law};
+  const auto row = contacts.row_start();
+  const auto col = contacts.col();
+  const auto hist = contacts.history();
+  const auto chunks =
+      static_cast<std::int64_t>((contacts.rows() + kRowsPerChunk - 1) / kRowsPerChunk);
+  buf.force.resize(contacts.size());
+  if constexpr (kTorque) {
+    buf.torque_i.resize(contacts.size());
+    buf.torque_j.resize(contacts.size());
+  }
+  const auto rows = static_cast<std::int64_t>(contacts.rows());
+  std::size_t touching = 0;
+#pragma omp parallel for schedule(dynamic, 8) reduction(+ : touching)
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    touching += buffer_rows<Kernel, kTorque>(kernel, p, row, col, hist, buf,
+                                             static_cast<std::size_t>(c) * kRowsPerChunk, period,
+                                             dt, history_dt);
   }
   contacts.index_partners();
   const auto partner_start = contacts.partner_start();
