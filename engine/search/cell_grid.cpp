@@ -235,13 +235,11 @@ void CellGridSearch::visit_all(const Cells& cells, const SearchInput& in,
   std::uint64_t cells_visited = 0, pairs_tested = 0;
   // Each thread takes a contiguous block of slots and collects its pairs; the blocks are joined
   // in order. Counters per particle are written by the one thread that owns the particle.
-  slices_.resize(static_cast<std::size_t>(max_threads()));
+  const int threads = slices_.prepare(max_threads());
   const auto slots = static_cast<std::int64_t>(n);
-#pragma omp parallel num_threads(static_cast<int>(slices_.size())) \
-    reduction(+ : cells_visited, pairs_tested)
+#pragma omp parallel num_threads(threads) reduction(+ : cells_visited, pairs_tested)
   {
-    std::vector<IndexPair>& mine = slices_[static_cast<std::size_t>(thread_number())];
-    mine.clear();
+    std::vector<IndexPair>& mine = slices_.slice(thread_number());
 #pragma omp for schedule(static)
     for (std::int64_t ss = 0; ss < slots; ++ss) {
       const auto s = static_cast<std::size_t>(ss);
@@ -307,7 +305,7 @@ void CellGridSearch::visit_all(const Cells& cells, const SearchInput& in,
       pairs_tested += my_tests;
     }
   }
-  for (const auto& slice : slices_) out.insert(out.end(), slice.begin(), slice.end());
+  slices_.join(out);
   counters_.cells_visited = cells_visited;
   counters_.pairs_tested = pairs_tested;
 }

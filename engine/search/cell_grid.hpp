@@ -27,6 +27,7 @@
 #include "engine/search/cell_index.hpp"
 #include "engine/search/contact_search.hpp"
 #include "engine/search/half_stencil.hpp"
+#include "engine/search/search_input.hpp"
 
 namespace drumlab {
 
@@ -109,7 +110,7 @@ class CellGridSearch final : public ContactSearch {
   std::vector<Vec3> sorted_position_;
   std::vector<double> sorted_radius_;
   std::vector<std::uint32_t> scratch_;
-  std::vector<std::vector<IndexPair>> slices_;  ///< per-thread pairs of visit_all
+  PairSlices slices_;  ///< per-thread pairs of visit_all
   DenseCellIndex dense_;
   HashedCellIndex hashed_;
 };

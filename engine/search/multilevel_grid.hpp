@@ -11,6 +11,7 @@
 #include "engine/search/cell_index.hpp"
 #include "engine/search/contact_search.hpp"
 #include "engine/search/half_stencil.hpp"
+#include "engine/search/search_input.hpp"
 
 namespace drumlab {
 
@@ -55,7 +56,7 @@ class MultiLevelGridSearch final : public ContactSearch {
                    const SearchInput& in, std::vector<IndexPair>& out);
 
   std::vector<Level> levels_;
-  std::vector<std::vector<IndexPair>> slices_;  ///< per-thread pairs of visit_level()
+  PairSlices slices_;  ///< per-thread pairs of visit_level()
   std::vector<std::uint8_t> level_of_;
   double slack_ = 0.0;
 };

@@ -1,7 +1,9 @@
 #pragma once
-// Checks shared by every search method, and the periodic minimum-image distance.
+// Checks shared by every search method, the periodic minimum-image distance, and the per-thread
+// output slices of the parallel searches.
 #include <chrono>
 #include <cmath>
+#include <vector>
 
 #include "engine/search/contact_search.hpp"
 
@@ -19,6 +21,28 @@ void sort_pairs(std::vector<IndexPair>& pairs, std::size_t n, std::vector<IndexP
 using SearchClock = std::chrono::steady_clock;
 
 /// Seconds from `since` to now.
+/// Per-thread output of a parallel pair search. Each thread appends to its own slice; with each
+/// thread taking a contiguous block of the work in order (OpenMP static schedule, or an explicit
+/// split), join() gives the same sequence for any thread count.
+class PairSlices {
+ public:
+  /// One empty slice per thread of the next parallel region; returns the thread count.
+  int prepare(int threads) {
+    slices_.resize(static_cast<std::size_t>(threads));
+    for (auto& s : slices_) s.clear();
+    return threads;
+  }
+  /// The slice of thread t.
+  std::vector<IndexPair>& slice(int t) { return slices_[static_cast<std::size_t>(t)]; }
+  /// Appends the slices to `out` in thread order.
+  void join(std::vector<IndexPair>& out) const {
+    for (const auto& s : slices_) out.insert(out.end(), s.begin(), s.end());
+  }
+
+ private:
+  std::vector<std::vector<IndexPair>> slices_;
+};
+
 inline double seconds_since(SearchClock::time_point since) {
   return std::chrono::duration<double>(SearchClock::now() - since).count();
 }

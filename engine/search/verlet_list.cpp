@@ -27,13 +27,11 @@ void VerletListSearch::filter(const SearchInput& in, std::vector<IndexPair>& out
   // and does not depend on the thread count.
   const std::size_t m = list_.size();
   const double margin = in.margin + kTouchTolerance;
-  const int threads = max_threads();
-  slices_.resize(static_cast<std::size_t>(threads));
+  const int threads = slices_.prepare(max_threads());
 #pragma omp parallel num_threads(threads)
   {
     const auto t = static_cast<std::size_t>(thread_number());
-    std::vector<IndexPair>& slice = slices_[t];
-    slice.clear();
+    std::vector<IndexPair>& slice = slices_.slice(thread_number());
     const std::size_t begin = m * t / static_cast<std::size_t>(threads);
     const std::size_t end = m * (t + 1) / static_cast<std::size_t>(threads);
     for (std::size_t k = begin; k < end; ++k) {
@@ -45,7 +43,7 @@ void VerletListSearch::filter(const SearchInput& in, std::vector<IndexPair>& out
     }
   }
   out.clear();
-  for (const auto& slice : slices_) out.insert(out.end(), slice.begin(), slice.end());
+  slices_.join(out);
 }
 
 bool VerletListSearch::needs_rebuild(const SearchInput& in) const {

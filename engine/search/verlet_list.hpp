@@ -15,6 +15,7 @@
 #include <string>
 
 #include "engine/search/contact_search.hpp"
+#include "engine/search/search_input.hpp"
 
 namespace drumlab {
 
@@ -59,7 +60,7 @@ class VerletListSearch final : public ContactSearch {
   double skin_ = 0.0;
   std::string name_, description_;
   std::vector<IndexPair> list_;  ///< pairs within margin + skin at the last build, sorted
-  std::vector<std::vector<IndexPair>> slices_;      ///< per-thread output of filter()
+  PairSlices slices_;            ///< per-thread output of filter()
   std::vector<std::uint32_t> listed_per_particle_;  ///< list entries with first index i
   std::vector<IndexPair> scratch_pairs_;
   std::vector<std::uint32_t> scratch_counts_;
