@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <string_view>
 #include <utility>
 
 #include <fmt/format.h>
@@ -28,6 +29,15 @@ constexpr double kMaxOverlapRatio = 0.5;
 
 double seconds_between(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
+}
+
+// The one-line error of a run that went unstable, with what to do about it.
+UnstableError unstable_error(std::uint64_t step, double t, std::string_view why, double dt,
+                             double rayleigh_time) {
+  return UnstableError(fmt::format(
+      "unstable at step {} (t = {:.6g} s): {}; try a smaller time.dt (now {:.4g} s = {:.3g} "
+      "Rayleigh times)",
+      step, t, why, dt, dt / rayleigh_time));
 }
 
 std::string scene_label(const SceneConfig& s) {
@@ -248,10 +258,8 @@ void Simulation::compute_forces(double history_dt, bool count) {
     }
   } catch (const InputError& e) {
     if (!count) throw;  // initial state: the input is at fault
-    throw UnstableError(fmt::format(
-        "unstable at step {} (t = {:.6g} s): contact search failed: {}; try a smaller time.dt "
-        "(now {:.4g} s = {:.3g} Rayleigh times)",
-        steps_ + 1, time_ + dt_, e.what(), dt_, dt_ / rayleigh_time_));
+    throw unstable_error(steps_ + 1, time_ + dt_,
+                         fmt::format("contact search failed: {}", e.what()), dt_, rayleigh_time_);
   }
   const auto t1 = Clock::now();
   particles_.clear_forces();
@@ -400,10 +408,7 @@ Diagnostics Simulation::diagnostics() const {
 void Simulation::check_stability() const {
   const Diagnostics d = diagnostics();
   const auto fail = [&](const std::string& why) {
-    throw UnstableError(fmt::format(
-        "unstable at step {} (t = {:.6g} s): {}; try a smaller time.dt (now {:.4g} s = {:.3g} "
-        "Rayleigh times)",
-        steps_, time_, why, dt_, dt_ / rayleigh_time_));
+    throw unstable_error(steps_, time_, why, dt_, rayleigh_time_);
   };
   if (d.non_finite > 0) {
     fail(fmt::format("{} particle(s) with non-finite position or velocity", d.non_finite));
