@@ -1,8 +1,11 @@
 #include "engine/contact/contact_model.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cmath>
 
-#include <fmt/format.h>
+#include "engine/contact/contact_kernel.hpp"
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -27,58 +30,6 @@ void check_material(const Material& m, const char* what) {
   }
 }
 
-// One contact at one instant. n: unit normal towards i; delta: overlap; a_i, a_j: branch lengths
-// from the centres to the contact point (0 on a wall's side); stop_rate: see RollingResistance.
-struct ContactGeometry {
-  Vec3 n;
-  double delta;
-  double r_eff;
-  double m_eff;
-  double a_i;
-  double a_j;
-  double stop_rate;
-};
-
-// Force of one contact, shared by the pair and the wall loop. v: velocity of i relative to the
-// other body's surface, without the spins w_i, w_j; xi: the contact's tangential history,
-// incremented over history_dt. Returns the force on i and adds the torques to t_i and, for a
-// pair, *t_j (null for a wall).
-template <class Normal, bool Tangential, bool Rolling>
-struct ContactKernel {
-  const ContactLaw<Normal>& law;
-
-  [[gnu::always_inline]] inline Vec3 operator()(const ContactGeometry& g, Vec3 v, const Vec3& w_i,
-                                                const Vec3& w_j, Vec3& xi, double history_dt,
-                                                Vec3& t_i, Vec3* t_j) const {
-    if constexpr (Tangential) v -= (g.a_i * w_i + g.a_j * w_j).cross(g.n);
-    const double vn = v.dot(g.n);
-    double fn = 0.0;
-    TangentialCoefficients c;
-    if constexpr (Tangential) {
-      const ContactResponse r = law.normal.respond(g.delta, vn, g.r_eff, g.m_eff);
-      fn = r.normal_force;
-      c = r.tangential;
-    } else {
-      fn = law.normal.force(g.delta, vn, g.r_eff, g.m_eff);
-    }
-    Vec3 f = fn * g.n;
-    if constexpr (Tangential) {
-      const Vec3 vt = v - vn * g.n;
-      const Vec3 ft = law.tangential.force(xi, g.n, vt, c, std::abs(fn), history_dt);
-      f += ft;
-      const Vec3 nxft = g.n.cross(ft);
-      t_i -= g.a_i * nxft;
-      if (t_j) *t_j -= g.a_j * nxft;
-    }
-    if constexpr (Rolling) {
-      const Vec3 m = law.rolling.torque(w_i - w_j, std::abs(fn), g.r_eff, g.stop_rate);
-      t_i += m;
-      if (t_j) *t_j -= m;
-    }
-    return f;
-  }
-};
-
 // Separation of i from j (m); with period > 0 the nearest image along z.
 [[gnu::always_inline]] inline Vec3 separation(const Particles& p, std::size_t i, Index j,
                                               double period) {
@@ -90,63 +41,12 @@ struct ContactKernel {
   return d;
 }
 
-// Geometry of the overlapping pair (i, j) at separation d (0 < |d| < r_i + r_j).
-[[gnu::always_inline]] inline ContactGeometry overlap_geometry(const Particles& p, std::size_t i,
-                                                               Index j, const Vec3& d, double dt) {
-  const double sum_r = p.radius[i] + p.radius[j];
-  const double dist = std::sqrt(d.squaredNorm());
-  const double delta = sum_r - dist;
-  return ContactGeometry{d / dist,
-                         delta,
-                         p.radius[i] * p.radius[j] / sum_r,
-                         1.0 / (p.inv_mass[i] + p.inv_mass[j]),
-                         p.radius[i] - 0.5 * delta,
-                         p.radius[j] - 0.5 * delta,
-                         dt * (p.inv_inertia[i] + p.inv_inertia[j])};
-}
-
-// Geometry of contact k = (i, j); false if the spheres do not overlap. `touching` counts the
-// pairs within the search's touching tolerance (the pairs a search with margin 0 finds).
-inline bool pair_geometry(const Particles& p, std::size_t i, Index j, double period, double dt,
-                          ContactGeometry& g, std::size_t& touching) {
-  const Vec3 d = separation(p, i, j, period);
-  const double sum_r = p.radius[i] + p.radius[j];
-  const double dist2 = d.squaredNorm();
-  if (dist2 >= sum_r * sum_r || dist2 == 0.0) {
-    const double cut = sum_r + kTouchTolerance;
-    if (dist2 <= cut * cut) ++touching;
-    return false;
-  }
-  ++touching;
-  g = overlap_geometry(p, i, j, d, dt);
-  return true;
-}
-
-// Force on i and torques on i and j of the overlapping pair k = (i, j), advancing its history xi.
-struct PairContribution {
-  Vec3 force = Vec3::Zero();
-  Vec3 torque_i = Vec3::Zero();
-  Vec3 torque_j = Vec3::Zero();
-};
-
-template <class Kernel>
-[[gnu::always_inline]] inline PairContribution pair_contribution(const Kernel& kernel,
-                                                                 const Particles& p, std::size_t i,
-                                                                 Index j, Vec3& xi, double period,
-                                                                 double dt, double history_dt) {
-  const ContactGeometry g = overlap_geometry(p, i, j, separation(p, i, j, period), dt);
-  PairContribution c;
-  c.force = kernel(g, p.velocity[i] - p.velocity[j], p.omega[i], p.omega[j], xi, history_dt,
-                   c.torque_i, &c.torque_j);
-  return c;
-}
-
 // Visits the entries k in [begin, end) of row i: apart(k) for those that do not overlap (in any
 // order), then overlap(k) for those that do, by increasing k. Most entries of a Verlet list do not
 // overlap, in no predictable pattern; so each chunk is first split by a loop without branches,
 // the overlapping entries from the front of `sel`, the others from its back, and the force
 // kernel then runs without a mispredicted branch per entry (measured +10 % p-steps/s).
-// `touching` counts the entries within the touching tolerance, as pair_geometry does.
+// `touching` counts the entries within the touching tolerance (what a search with margin 0 finds).
 template <class Overlap, class Apart>
 [[gnu::always_inline]] inline void split_row(const Particles& p, std::span<const Index> col,
                                              std::size_t i, std::size_t begin, std::size_t end,
@@ -177,72 +77,92 @@ template <class Overlap, class Apart>
   }
 }
 
-// One thread: accumulate directly. Every particle receives its contributions in the order the
-// two-pass loop below sums them (rows where it is the partner by k, then its own row by k), each
-// contact's torques first summed from zero, so both give bit-identical results.
-template <class Normal, bool Tangential, bool Rolling>
-std::size_t pair_loop_serial(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts,
-                             double period, double dt, double history_dt) {
-  const ContactKernel<Normal, Tangential, Rolling> kernel{law};
+// Calls overlap(k) for every overlapping entry k of rows [begin, end), by increasing k, each
+// with its force and torques in `batch` lane l, and resets the history of the others. Returns the
+// entries within the touching tolerance.
+template <class Normal, bool Tangential, bool Rolling, class Sink>
+[[gnu::always_inline]] inline std::size_t batched_rows(const ContactLaw<Normal>& law,
+                                                       const Particles& p, ContactList& contacts,
+                                                       std::size_t begin, std::size_t end,
+                                                       double period, double dt, double history_dt,
+                                                       PairBatch& batch, Sink&& sink) {
   const auto row = contacts.row_start();
   const auto col = contacts.col();
   const auto hist = contacts.history();
-  std::size_t touching = 0;
-  for (std::size_t i = 0; i < contacts.rows(); ++i) {
-    split_row(
-        p, col, i, row[i], row[i + 1], period, touching,
-        [&](std::size_t k) {
-          const Index j = col[k];
-          const PairContribution c =
-              pair_contribution(kernel, p, i, j, hist[k], period, dt, history_dt);
-          p.force[i] += c.force;
-          p.force[j] -= c.force;
-          if constexpr (Tangential || Rolling) {
-            p.torque[i] += c.torque_i;
-            p.torque[j] += c.torque_j;
-          }
-        },
-        [&](std::size_t k) { hist[k].setZero(); });  // no (longer) overlapping: history ends
-  }
-  return touching;
-}
-
-// Pass 1 of the multi-threaded loop over rows [begin, begin + kRowsPerChunk): each contact's
-// force and torques into its buffers. Not inlined into the OpenMP region, where the shared
-// variables would be read through pointers (callgrind, 20 steps on 2 threads: 265.2 M -> 252.1 M
-// instructions in this pass).
-constexpr std::size_t kRowsPerChunk = 64;
-
-template <class Kernel, bool kTorque>
-[[gnu::noinline]] std::size_t buffer_rows(const Kernel& kernel, const Particles& p,
-                                          std::span<const std::size_t> row,
-                                          std::span<const Index> col, std::span<Vec3> hist,
-                                          PairForceBuffers& buf, std::size_t begin, double period,
-                                          double dt, double history_dt) {
-  const std::size_t end = std::min(row.size() - 1, begin + kRowsPerChunk);
+  const auto flush = [&] {
+    batch.evaluate<Normal, Tangential, Rolling>(law, dt, history_dt);
+    for (std::size_t l = 0; l < batch.count; ++l) {
+      hist[batch.k[l]] = batch.xi.vec3(l);
+      sink(batch, l);
+    }
+    batch.count = 0;
+  };
   std::size_t touching = 0;
   for (std::size_t i = begin; i < end; ++i) {
     split_row(
         p, col, i, row[i], row[i + 1], period, touching,
         [&](std::size_t k) {
-          const PairContribution c =
-              pair_contribution(kernel, p, i, col[k], hist[k], period, dt, history_dt);
-          buf.force[k] = c.force;
-          if constexpr (kTorque) {
-            buf.torque_i[k] = c.torque_i;
-            buf.torque_j[k] = c.torque_j;
-          }
+          batch.add(p, i, col[k], separation(p, i, col[k], period), hist[k], k);
+          if (batch.full()) flush();
         },
-        [&](std::size_t k) {
-          hist[k].setZero();  // not (or no longer) overlapping: the history ends
-          buf.force[k].setZero();
-          if constexpr (kTorque) {
-            buf.torque_i[k].setZero();
-            buf.torque_j[k].setZero();
-          }
-        });
+        [&](std::size_t k) { hist[k].setZero(); });  // not (or no longer) overlapping
   }
+  if (batch.count > 0) flush();
   return touching;
+}
+
+// One thread: accumulate directly. Every particle receives its contributions in the order the
+// two-pass loop below sums them (rows where it is the partner by k, then its own row by k), each
+// contact's torques computed from zero, so both give bit-identical results.
+template <class Normal, bool Tangential, bool Rolling>
+std::size_t pair_loop_serial(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts,
+                             double period, double dt, double history_dt) {
+  PairBatch batch;
+  return batched_rows<Normal, Tangential, Rolling>(law, p, contacts, 0, contacts.rows(), period, dt,
+                                                   history_dt, batch,
+                                                   [&](const PairBatch& b, std::size_t l) {
+                                                     const Vec3 f = b.force.vec3(l);
+                                                     p.force[b.i[l]] += f;
+                                                     p.force[b.j[l]] -= f;
+                                                     if constexpr (Tangential || Rolling) {
+                                                       p.torque[b.i[l]] += b.torque_i.vec3(l);
+                                                       p.torque[b.j[l]] += b.torque_j.vec3(l);
+                                                     }
+                                                   });
+}
+
+// Pass 1 of the multi-threaded loop over rows [begin, begin + kRowsPerChunk): each contact's
+// force and torques into its buffers (the entries that do not overlap into zeros). Not inlined
+// into the OpenMP region, where the shared variables would be read through pointers (callgrind,
+// 20 steps on 2 threads: 265.2 M -> 252.1 M instructions in this pass).
+constexpr std::size_t kRowsPerChunk = 64;
+
+template <class Normal, bool Tangential, bool Rolling>
+[[gnu::noinline]] std::size_t buffer_rows(const ContactLaw<Normal>& law, const Particles& p,
+                                          ContactList& contacts, PairForceBuffers& buf,
+                                          std::size_t begin, double period, double dt,
+                                          double history_dt) {
+  constexpr bool kTorque = Tangential || Rolling;
+  const std::size_t end = std::min(contacts.rows(), begin + kRowsPerChunk);
+  const auto row = contacts.row_start();
+  const auto first = static_cast<std::ptrdiff_t>(row[begin]);
+  const auto last = static_cast<std::ptrdiff_t>(row[end]);
+  std::fill(buf.force.begin() + first, buf.force.begin() + last, Vec3::Zero());
+  if constexpr (kTorque) {
+    std::fill(buf.torque_i.begin() + first, buf.torque_i.begin() + last, Vec3::Zero());
+    std::fill(buf.torque_j.begin() + first, buf.torque_j.begin() + last, Vec3::Zero());
+  }
+  PairBatch batch;
+  return batched_rows<Normal, Tangential, Rolling>(law, p, contacts, begin, end, period, dt,
+                                                   history_dt, batch,
+                                                   [&](const PairBatch& b, std::size_t l) {
+                                                     const std::size_t k = b.k[l];
+                                                     buf.force[k] = b.force.vec3(l);
+                                                     if constexpr (kTorque) {
+                                                       buf.torque_i[k] = b.torque_i.vec3(l);
+                                                       buf.torque_j[k] = b.torque_j.vec3(l);
+                                                     }
+                                                   });
 }
 
 // Several threads: two passes, so the result does not depend on the number of threads: (1) each
@@ -259,11 +179,7 @@ std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& 
     return pair_loop_serial<Normal, Tangential, Rolling>(law, p, contacts, period, dt, history_dt);
   }
   constexpr bool kTorque = Tangential || Rolling;
-  using Kernel = ContactKernel<Normal, Tangential, Rolling>;
-  const Kernel kernel{law};
   const auto row = contacts.row_start();
-  const auto col = contacts.col();
-  const auto hist = contacts.history();
   const auto chunks =
       static_cast<std::int64_t>((contacts.rows() + kRowsPerChunk - 1) / kRowsPerChunk);
   buf.force.resize(contacts.size());
@@ -275,9 +191,8 @@ std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& 
   std::size_t touching = 0;
 #pragma omp parallel for schedule(dynamic, 8) reduction(+ : touching)
   for (std::int64_t c = 0; c < chunks; ++c) {
-    touching += buffer_rows<Kernel, kTorque>(kernel, p, row, col, hist, buf,
-                                             static_cast<std::size_t>(c) * kRowsPerChunk, period,
-                                             dt, history_dt);
+    touching += buffer_rows<Normal, Tangential, Rolling>(
+        law, p, contacts, buf, static_cast<std::size_t>(c) * kRowsPerChunk, period, dt, history_dt);
   }
   contacts.index_partners();
   const auto partner_start = contacts.partner_start();
@@ -305,54 +220,84 @@ std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& 
 template <class Normal, bool Tangential, bool Rolling>
 void pair_force_loop(const ContactLaw<Normal>& law, const Particles& p, const ContactList& contacts,
                      double period, double dt, std::vector<ContactForce>& out) {
-  const ContactKernel<Normal, Tangential, Rolling> kernel{law};
   const auto row = contacts.row_start();
   const auto col = contacts.col();
   const auto hist = contacts.history();
+  PairBatch batch;
+  const auto flush = [&] {
+    batch.evaluate<Normal, Tangential, Rolling>(law, dt, 0.0);
+    for (std::size_t l = 0; l < batch.count; ++l) {
+      out.push_back(ContactForce{batch.i[l], batch.j[l], batch.force.vec3(l)});
+    }
+    batch.count = 0;
+  };
   out.clear();
   for (std::size_t i = 0; i < contacts.rows(); ++i) {
     for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
       const Index j = col[k];
-      ContactGeometry g;
-      std::size_t touching = 0;
-      if (!pair_geometry(p, i, j, period, dt, g, touching)) continue;
-      Vec3 xi = hist[k];
-      Vec3 t_i = Vec3::Zero();
-      Vec3 t_j = Vec3::Zero();
-      const Vec3 f =
-          kernel(g, p.velocity[i] - p.velocity[j], p.omega[i], p.omega[j], xi, 0.0, t_i, &t_j);
-      out.push_back(ContactForce{static_cast<Index>(i), j, f});
+      const Vec3 d = separation(p, i, j, period);
+      const double sum_r = p.radius[i] + p.radius[j];
+      const double dist2 = d.squaredNorm();
+      if (dist2 >= sum_r * sum_r || dist2 == 0.0) continue;
+      batch.add(p, i, j, d, hist[k], k);
+      if (batch.full()) flush();
     }
   }
+  if (batch.count > 0) flush();
+}
+
+// The wall contacts of the particles candidates[begin, end), by particle, then wall part.
+template <class Normal, bool Tangential, bool Rolling>
+void wall_rows(const ContactLaw<Normal>& law, Particles& p, std::span<const Index> candidates,
+               std::size_t begin, std::size_t end, const Drum& drum, double omega,
+               WallHistory& history, double dt, double history_dt, WallBatch& batch) {
+  const Vec3 wall_spin(0.0, 0.0, omega);
+  const std::size_t parts = drum.periodic() ? 1 : kWallParts;
+  const auto flush = [&] {
+    batch.evaluate<Normal, Tangential, Rolling>(law, wall_spin, history_dt);
+    for (std::size_t l = 0; l < batch.count; ++l) {
+      const Index i = batch.i[l];
+      history[i][batch.part[l]] = batch.xi.vec3(l);
+      p.force[i] += batch.force.vec3(l);
+      if constexpr (Tangential || Rolling) p.torque[i] += batch.torque_i.vec3(l);
+    }
+    batch.count = 0;
+  };
+  for (std::size_t q = begin; q < end; ++q) {
+    const Index i = candidates[q];
+    const Vec3& x = p.position[i];
+    const double r = p.radius[i];
+    for (std::size_t part = 0; part < parts; ++part) {
+      const WallContact c = drum.contact(static_cast<WallPart>(part), x, r);
+      if (c.overlap <= 0.0) {
+        history[i][part].setZero();
+        continue;
+      }
+      // The wall's spin enters through its surface velocity (branch length 0 on its side) and
+      // through the relative rotation rate seen by rolling resistance.
+      const Vec3 point = x - (r - 0.5 * c.overlap) * c.normal;
+      batch.add(i, part, c.normal, c.overlap, r, p.mass[i], dt * p.inv_inertia[i],
+                p.velocity[i] - Drum::wall_velocity(point, omega), p.omega[i], history[i][part]);
+      if (batch.full()) flush();
+    }
+  }
+  if (batch.count > 0) flush();
 }
 
 template <class Normal, bool Tangential, bool Rolling>
 void wall_loop(const ContactLaw<Normal>& law, Particles& p, std::span<const Index> candidates,
                const Drum& drum, double omega, WallHistory& history, double dt, double history_dt) {
-  const ContactKernel<Normal, Tangential, Rolling> kernel{law};
-  const Vec3 wall_spin(0.0, 0.0, omega);
-  const std::size_t parts = drum.periodic() ? 1 : kWallParts;
-  const auto n = static_cast<std::int64_t>(candidates.size());
-#pragma omp parallel for schedule(static)
-  for (std::int64_t q = 0; q < n; ++q) {
-    const std::size_t i = candidates[static_cast<std::size_t>(q)];
-    const Vec3& x = p.position[i];
-    const double r = p.radius[i];
-    for (std::size_t part = 0; part < parts; ++part) {
-      const WallContact c = drum.contact(static_cast<WallPart>(part), x, r);
-      Vec3& xi = history[i][part];
-      if (c.overlap <= 0.0) {
-        xi.setZero();
-        continue;
-      }
-      const double a = r - 0.5 * c.overlap;
-      const Vec3 point = x - a * c.normal;
-      const ContactGeometry g{c.normal, c.overlap, r, p.mass[i], a, 0.0, dt * p.inv_inertia[i]};
-      // The wall's spin enters through its surface velocity (branch length 0 on its side) and
-      // through the relative rotation rate seen by rolling resistance.
-      const Vec3 f = kernel(g, p.velocity[i] - Drum::wall_velocity(point, omega), p.omega[i],
-                            wall_spin, xi, history_dt, p.torque[i], nullptr);
-      p.force[i] += f;
+  constexpr std::size_t kPerTask = 256;
+  const auto tasks = static_cast<std::int64_t>((candidates.size() + kPerTask - 1) / kPerTask);
+#pragma omp parallel
+  {
+    WallBatch batch;
+#pragma omp for schedule(static)
+    for (std::int64_t t = 0; t < tasks; ++t) {
+      const std::size_t begin = static_cast<std::size_t>(t) * kPerTask;
+      wall_rows<Normal, Tangential, Rolling>(law, p, candidates, begin,
+                                             std::min(candidates.size(), begin + kPerTask), drum,
+                                             omega, history, dt, history_dt, batch);
     }
   }
 }

@@ -30,6 +30,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "engine/contact/lane_vec.hpp"
 #include "engine/scene/scene_config.hpp"
 #include "engine/types.hpp"
 
@@ -132,29 +133,38 @@ struct MindlinTangential {
   [[gnu::always_inline]] Vec3 force(Vec3& xi, const Vec3& n, const Vec3& vt,
                                     const TangentialCoefficients& c, double fn_abs,
                                     double dt) const {
-    // Rotate the history into the current tangent plane, keeping its length.
+    return force_of<Vec3>(xi, n, vt, c, fn_abs, dt);
+  }
+  /// The same for the vectorized kernel (contact_kernel.hpp).
+  [[gnu::always_inline]] LaneVec force(LaneVec& xi, const LaneVec& n, const LaneVec& vt,
+                                       const TangentialCoefficients& c, double fn_abs,
+                                       double dt) const {
+    return force_of<LaneVec>(xi, n, vt, c, fn_abs, dt);
+  }
+
+ private:
+  template <class V>
+  [[gnu::always_inline]] V force_of(V& xi, const V& n, const V& vt, const TangentialCoefficients& c,
+                                    double fn_abs, double dt) const {
+    // Rotate the history into the current tangent plane, keeping its length (zero if it was
+    // zero or normal to the plane). Written with selects instead of branches, so that a loop over
+    // contacts vectorizes (see contact_kernel.hpp); the values not selected may be inf or NaN.
     const double old_len2 = xi.squaredNorm();
-    if (old_len2 > 0.0) {
-      xi -= xi.dot(n) * n;
-      const double new_len2 = xi.squaredNorm();
-      if (new_len2 > 1e-24 * old_len2) {
-        xi *= std::sqrt(old_len2 / new_len2);
-      } else {
-        xi.setZero();
-      }
-    }
-    xi += vt * dt;
-    Vec3 ft = -c.stiffness * xi - c.damping * vt;
+    const V in_plane = xi - xi.dot(n) * n;
+    const double new_len2 = in_plane.squaredNorm();
+    const double rescale = std::sqrt(old_len2 / new_len2);
+    const double keep = new_len2 > 1e-24 * old_len2 ? rescale : 0.0;
+    xi = in_plane * keep + vt * dt;
+    V ft = -c.stiffness * xi - c.damping * vt;
     const double limit = friction * fn_abs;
     const double ft2 = ft.squaredNorm();
-    if (ft2 > limit * limit) {  // sliding: F_t on the Coulomb cone, spring rescaled to match
-      ft *= limit / std::sqrt(ft2);
-      if (c.stiffness > 0.0) {
-        xi = -(ft + c.damping * vt) / c.stiffness;
-      } else {
-        xi.setZero();
-      }
-    }
+    // Sliding: F_t on the Coulomb cone, the spring rescaled to match.
+    const bool sliding = ft2 > limit * limit;
+    const double cap = limit / std::sqrt(ft2);
+    ft *= sliding ? cap : 1.0;
+    const V xi_slide = -(ft + c.damping * vt) / c.stiffness;
+    const V zero = V::Zero();
+    xi = select(sliding, select(c.stiffness > 0.0, xi_slide, zero), xi);
     return ft;
   }
 };

@@ -10,6 +10,7 @@
 //     M_i = -omega_rel / (dt (1/I_i + 1/I_j)),
 // which brings omega_rel to zero in one step instead of overshooting. The two branches meet at
 // omega_0, so |M| <= M_max always.
+#include "engine/contact/lane_vec.hpp"
 #include "engine/types.hpp"
 
 namespace drumlab {
@@ -19,10 +20,24 @@ struct RollingResistance {
 
   /// Torque on i (N m). stop_rate = dt (1/I_i + 1/I_j) (s / (kg m^2)); for a wall 1/I_j = 0.
   Vec3 torque(const Vec3& omega_rel, double fn_abs, double r_eff, double stop_rate) const {
+    return torque_of<Vec3>(omega_rel, fn_abs, r_eff, stop_rate);
+  }
+  /// The same for the vectorized kernel (contact_kernel.hpp).
+  LaneVec torque(const LaneVec& omega_rel, double fn_abs, double r_eff, double stop_rate) const {
+    return torque_of<LaneVec>(omega_rel, fn_abs, r_eff, stop_rate);
+  }
+
+ private:
+  template <class V>
+  [[gnu::always_inline]] V torque_of(const V& omega_rel, double fn_abs, double r_eff,
+                                     double stop_rate) const {
     const double m_max = rolling_friction * r_eff * fn_abs;
     const double w = omega_rel.norm();
-    if (w > m_max * stop_rate) return (-m_max / w) * omega_rel;
-    return (-1.0 / stop_rate) * omega_rel;
+    // A select, not a branch, so that a loop over contacts vectorizes (see contact_kernel.hpp);
+    // both quotients are computed (the one not selected may be inf).
+    const double full = -m_max / w;
+    const double linear = -1.0 / stop_rate;
+    return (w > m_max * stop_rate ? full : linear) * omega_rel;
   }
 };
 

@@ -1,0 +1,257 @@
+#pragma once
+// The force of one contact, and batches that evaluate it on many contacts at once.
+//
+// A contact's force is a chain of square roots and divisions (distance, normal, Hertz stiffness,
+// damping, history rotation, Coulomb limit); one contact at a time, each waits for the last, and
+// the kernel took about half the step (measured by evaluating it twice). The batches gather up to
+// kSize contacts into arrays of each input (structure of arrays) and run the kernel in a loop the
+// compiler turns into SIMD code (4 contacts per instruction with AVX2), which is why the laws are
+// written without branches (selects instead). Every contact is computed by the vector loop, its
+// count padded to a multiple of kLanes, so a contact's result does not depend on where in a batch
+// it falls: the same bits for any number of threads.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+#include "engine/contact/contact_model.hpp"
+#include "engine/contact/lane_vec.hpp"
+#include "engine/types.hpp"
+
+namespace drumlab {
+
+/// One contact at one instant. n: unit normal towards i; delta: overlap; a_i, a_j: branch lengths
+/// from the centres to the contact point (0 on a wall's side); stop_rate: see RollingResistance.
+struct ContactGeometry {
+  LaneVec n;
+  double delta;
+  double r_eff;
+  double m_eff;
+  double a_i;
+  double a_j;
+  double stop_rate;
+};
+
+/// Force on i and torques on i and j of one contact.
+struct ContactOutput {
+  LaneVec force;
+  LaneVec torque_i;
+  LaneVec torque_j;
+};
+
+/// Force of one contact, shared by the pair and the wall loop. v: velocity of i relative to the
+/// other body's surface, without the spins w_i, w_j; xi: the contact's tangential history,
+/// incremented over history_dt.
+template <class Normal, bool Tangential, bool Rolling>
+[[gnu::always_inline]] inline ContactOutput contact_response(const ContactLaw<Normal>& law,
+                                                             const ContactGeometry& g, LaneVec v,
+                                                             const LaneVec& w_i, const LaneVec& w_j,
+                                                             LaneVec& xi, double history_dt) {
+  if constexpr (Tangential) v -= (g.a_i * w_i + g.a_j * w_j).cross(g.n);
+  const double vn = v.dot(g.n);
+  ContactOutput out;
+  double fn = 0.0;
+  if constexpr (Tangential) {
+    const ContactResponse r = law.normal.respond(g.delta, vn, g.r_eff, g.m_eff);
+    fn = r.normal_force;
+    const LaneVec vt = v - vn * g.n;
+    const LaneVec ft = law.tangential.force(xi, g.n, vt, r.tangential, std::abs(fn), history_dt);
+    const LaneVec nxft = g.n.cross(ft);
+    out.force = fn * g.n + ft;
+    out.torque_i = -g.a_i * nxft;
+    out.torque_j = -g.a_j * nxft;
+  } else {
+    fn = law.normal.force(g.delta, vn, g.r_eff, g.m_eff);
+    out.force = fn * g.n;
+  }
+  if constexpr (Rolling) {
+    const LaneVec m = law.rolling.torque(w_i - w_j, std::abs(fn), g.r_eff, g.stop_rate);
+    out.torque_i += m;
+    out.torque_j -= m;
+  }
+  return out;
+}
+
+/// kSize values of each component of a vector, one per contact.
+template <std::size_t kSize>
+struct Lanes3 {
+  alignas(64) double x[kSize];
+  alignas(64) double y[kSize];
+  alignas(64) double z[kSize];
+
+  [[gnu::always_inline]] LaneVec get(std::size_t l) const { return {x[l], y[l], z[l]}; }
+  [[gnu::always_inline]] Vec3 vec3(std::size_t l) const { return {x[l], y[l], z[l]}; }
+  [[gnu::always_inline]] void set(std::size_t l, const LaneVec& v) {
+    x[l] = v.x;
+    y[l] = v.y;
+    z[l] = v.z;
+  }
+  [[gnu::always_inline]] void set(std::size_t l, const Vec3& v) {
+    x[l] = v.x();
+    y[l] = v.y();
+    z[l] = v.z();
+  }
+};
+
+/// Lanes per SIMD loop iteration that every batch is padded to (8 doubles: AVX-512; AVX2 and SSE2
+/// divide it).
+inline constexpr std::size_t kLanes = 8;
+
+/// Up to kSize particle pairs: their inputs, then (after evaluate) their force, torques and
+/// advanced history. add() gathers a pair's state; evaluate() runs the kernel on all of them.
+struct PairBatch {
+  static constexpr std::size_t kSize = 64;
+  std::size_t count = 0;
+  std::size_t k[kSize];  ///< the caller's contact index of each lane
+  Index i[kSize];
+  Index j[kSize];
+  Lanes3<kSize> d;  ///< separation x_i - x_j
+  alignas(64) double r_i[kSize];
+  alignas(64) double r_j[kSize];
+  alignas(64) double inv_mass_sum[kSize];
+  alignas(64) double inv_inertia_sum[kSize];
+  Lanes3<kSize> v;  ///< v_i - v_j
+  Lanes3<kSize> w_i;
+  Lanes3<kSize> w_j;
+  Lanes3<kSize> xi;  ///< history: in, then advanced
+  Lanes3<kSize> force;
+  Lanes3<kSize> torque_i;
+  Lanes3<kSize> torque_j;
+
+  bool full() const { return count == kSize; }
+
+  /// Adds the overlapping pair (i, j) at separation d (0 < |d| < r_i + r_j), history xi, as
+  /// contact k.
+  [[gnu::always_inline]] void add(const Particles& p, std::size_t pi, Index pj, const Vec3& dij,
+                                  const Vec3& history, std::size_t contact) {
+    const std::size_t l = count++;
+    k[l] = contact;
+    i[l] = static_cast<Index>(pi);
+    j[l] = pj;
+    d.set(l, dij);
+    r_i[l] = p.radius[pi];
+    r_j[l] = p.radius[pj];
+    inv_mass_sum[l] = p.inv_mass[pi] + p.inv_mass[pj];
+    inv_inertia_sum[l] = p.inv_inertia[pi] + p.inv_inertia[pj];
+    v.set(l, p.velocity[pi] - p.velocity[pj]);
+    w_i.set(l, p.omega[pi]);
+    w_j.set(l, p.omega[pj]);
+    xi.set(l, history);
+  }
+
+  /// Computes force, torques and the advanced history xi of every lane.
+  template <class Normal, bool Tangential, bool Rolling>
+  void evaluate(const ContactLaw<Normal>& law, double dt, double history_dt) {
+    const std::size_t n = pad();
+    for (std::size_t l = 0; l < n; ++l) {
+      const LaneVec dl = d.get(l);
+      const double sum_r = r_i[l] + r_j[l];
+      const double dist = std::sqrt(dl.squaredNorm());
+      const double delta = sum_r - dist;
+      const ContactGeometry g{dl / dist,
+                              delta,
+                              r_i[l] * r_j[l] / sum_r,
+                              1.0 / inv_mass_sum[l],
+                              r_i[l] - 0.5 * delta,
+                              r_j[l] - 0.5 * delta,
+                              dt * inv_inertia_sum[l]};
+      LaneVec x = xi.get(l);
+      const ContactOutput o = contact_response<Normal, Tangential, Rolling>(
+          law, g, v.get(l), w_i.get(l), w_j.get(l), x, history_dt);
+      xi.set(l, x);
+      force.set(l, o.force);
+      torque_i.set(l, o.torque_i);
+      torque_j.set(l, o.torque_j);
+    }
+  }
+
+ private:
+  // Fills the lanes after `count` up to a multiple of kLanes with copies of the last one (results
+  // discarded) and returns that multiple.
+  std::size_t pad() {
+    const std::size_t n = std::min(kSize, (count + kLanes - 1) / kLanes * kLanes);
+    for (std::size_t l = count; l < n; ++l) {
+      const std::size_t s = count - 1;
+      d.set(l, d.get(s));
+      r_i[l] = r_i[s];
+      r_j[l] = r_j[s];
+      inv_mass_sum[l] = inv_mass_sum[s];
+      inv_inertia_sum[l] = inv_inertia_sum[s];
+      v.set(l, v.get(s));
+      w_i.set(l, w_i.get(s));
+      w_j.set(l, w_j.get(s));
+      xi.set(l, xi.get(s));
+    }
+    return n;
+  }
+};
+
+/// Up to kSize particle-wall contacts, their geometry given (drum.contact); as PairBatch.
+struct WallBatch {
+  static constexpr std::size_t kSize = 32;
+  std::size_t count = 0;
+  Index i[kSize];
+  std::size_t part[kSize];
+  Lanes3<kSize> n;
+  alignas(64) double delta[kSize];
+  alignas(64) double radius[kSize];
+  alignas(64) double mass[kSize];
+  alignas(64) double stop_rate[kSize];
+  Lanes3<kSize> v;  ///< v_i - wall surface velocity at the contact point
+  Lanes3<kSize> w_i;
+  Lanes3<kSize> xi;
+  Lanes3<kSize> force;
+  Lanes3<kSize> torque_i;
+
+  bool full() const { return count == kSize; }
+
+  void add(Index pi, std::size_t wall_part, const Vec3& normal, double overlap, double r, double m,
+           double stop, const Vec3& v_rel, const Vec3& w, const Vec3& history) {
+    const std::size_t l = count++;
+    i[l] = pi;
+    part[l] = wall_part;
+    n.set(l, normal);
+    delta[l] = overlap;
+    radius[l] = r;
+    mass[l] = m;
+    stop_rate[l] = stop;
+    v.set(l, v_rel);
+    w_i.set(l, w);
+    xi.set(l, history);
+  }
+
+  /// As PairBatch::evaluate; wall_spin: the wall's angular velocity.
+  template <class Normal, bool Tangential, bool Rolling>
+  void evaluate(const ContactLaw<Normal>& law, const Vec3& wall_spin, double history_dt) {
+    const std::size_t cnt = pad();
+    const LaneVec spin{wall_spin.x(), wall_spin.y(), wall_spin.z()};
+    for (std::size_t l = 0; l < cnt; ++l) {
+      const ContactGeometry g{n.get(l), delta[l],    radius[l], mass[l], radius[l] - 0.5 * delta[l],
+                              0.0,      stop_rate[l]};
+      LaneVec x = xi.get(l);
+      const ContactOutput o = contact_response<Normal, Tangential, Rolling>(
+          law, g, v.get(l), w_i.get(l), spin, x, history_dt);
+      xi.set(l, x);
+      force.set(l, o.force);
+      torque_i.set(l, o.torque_i);
+    }
+  }
+
+ private:
+  std::size_t pad() {
+    const std::size_t cnt = std::min(kSize, (count + kLanes - 1) / kLanes * kLanes);
+    for (std::size_t l = count; l < cnt; ++l) {
+      const std::size_t s = count - 1;
+      n.set(l, n.get(s));
+      delta[l] = delta[s];
+      radius[l] = radius[s];
+      mass[l] = mass[s];
+      stop_rate[l] = stop_rate[s];
+      v.set(l, v.get(s));
+      w_i.set(l, w_i.get(s));
+      xi.set(l, xi.get(s));
+    }
+    return cnt;
+  }
+};
+
+}  // namespace drumlab
