@@ -111,36 +111,63 @@ template <class Normal, bool Tangential, bool Rolling, class Sink>
   return touching;
 }
 
-// One thread: accumulate directly. Every particle receives its contributions in the order the
-// two-pass loop below sums them (rows where it is the partner by k, then its own row by k), each
-// contact's torques computed from zero, so both give bit-identical results.
+// The contributions of one row (particle i's own contacts), summed from zero and added to
+// p.force[i], p.torque[i] when the row ends. Both force loops give every particle (its
+// contributions as a partner, summed by k) + (its own row's, summed by k), so they agree to the
+// bit; the multi-threaded one needs no buffers for the own side.
+template <bool kTorque>
+struct RowSum {
+  static constexpr std::size_t kNone = ~std::size_t{0};
+  std::size_t row = kNone;
+  Vec3 force = Vec3::Zero();
+  Vec3 torque = Vec3::Zero();
+
+  [[gnu::always_inline]] void add(Particles& p, std::size_t i, const PairBatch& b, std::size_t l) {
+    if (i != row) finish(p);
+    row = i;
+    force += b.force.vec3(l);
+    if constexpr (kTorque) torque += b.torque_i.vec3(l);
+  }
+  void finish(Particles& p) {
+    if (row == kNone) return;
+    p.force[row] += force;
+    if constexpr (kTorque) p.torque[row] += torque;
+    row = kNone;
+    force.setZero();
+    torque.setZero();
+  }
+};
+
+// One thread: accumulate directly. A particle's partner contributions come from the rows before
+// its own (the partner j > i), by k, then its own row's sum: as the two-pass loop below.
 template <class Normal, bool Tangential, bool Rolling>
 std::size_t pair_loop_serial(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts,
                              double period, double dt, double history_dt) {
+  constexpr bool kTorque = Tangential || Rolling;
   PairBatch batch;
-  return batched_rows<Normal, Tangential, Rolling>(law, p, contacts, 0, contacts.rows(), period, dt,
-                                                   history_dt, batch,
-                                                   [&](const PairBatch& b, std::size_t l) {
-                                                     const Vec3 f = b.force.vec3(l);
-                                                     p.force[b.i[l]] += f;
-                                                     p.force[b.j[l]] -= f;
-                                                     if constexpr (Tangential || Rolling) {
-                                                       p.torque[b.i[l]] += b.torque_i.vec3(l);
-                                                       p.torque[b.j[l]] += b.torque_j.vec3(l);
-                                                     }
-                                                   });
+  RowSum<kTorque> own;
+  const std::size_t touching = batched_rows<Normal, Tangential, Rolling>(
+      law, p, contacts, 0, contacts.rows(), period, dt, history_dt, batch,
+      [&](const PairBatch& b, std::size_t l) {
+        own.add(p, b.i[l], b, l);
+        p.force[b.j[l]] -= b.force.vec3(l);
+        if constexpr (kTorque) p.torque[b.j[l]] += b.torque_j.vec3(l);
+      });
+  own.finish(p);
+  return touching;
 }
 
-// Pass 1 of the multi-threaded loop over rows [begin, begin + kRowsPerChunk): the force and
-// torques of each overlapping contact into the next free slot of the block's range of slots
-// [row[begin], row[end]), and each listed pair's slot into buf.slot (`zero` for those that do not
-// overlap). Only the overlapping contacts (about one in 3.5 listed pairs) are written and read
+// Pass 1 of the multi-threaded loop over rows [begin, begin + kRowsPerChunk): each row's own sum
+// into p.force / p.torque (the row's particle is this block's alone), and the partner's share of
+// each overlapping contact (force, torque_j) into the next free slot of the block's range of
+// slots [row[begin], row[end]), with each listed pair's slot in buf.slot (`zero` for those that do
+// not overlap). Only the overlapping contacts (about one in 2 listed pairs) are written and read
 // back: writing every listed pair's buffers made the 2-thread loop memory-bound. Not inlined into
 // the OpenMP region, where the shared variables would be read through pointers.
 constexpr std::size_t kRowsPerChunk = 64;
 
 template <class Normal, bool Tangential, bool Rolling>
-[[gnu::noinline]] std::size_t buffer_rows(const ContactLaw<Normal>& law, const Particles& p,
+[[gnu::noinline]] std::size_t buffer_rows(const ContactLaw<Normal>& law, Particles& p,
                                           ContactList& contacts, PairForceBuffers& buf,
                                           std::size_t begin, double period, double dt,
                                           double history_dt) {
@@ -152,23 +179,23 @@ template <class Normal, bool Tangential, bool Rolling>
             buf.slot.begin() + static_cast<std::ptrdiff_t>(row[end]), zero);
   auto next = static_cast<std::uint32_t>(row[begin]);
   PairBatch batch;
-  return batched_rows<Normal, Tangential, Rolling>(law, p, contacts, begin, end, period, dt,
-                                                   history_dt, batch,
-                                                   [&](const PairBatch& b, std::size_t l) {
-                                                     const std::uint32_t s = next++;
-                                                     buf.slot[b.k[l]] = s;
-                                                     buf.force[s] = b.force.vec3(l);
-                                                     if constexpr (kTorque) {
-                                                       buf.torque_i[s] = b.torque_i.vec3(l);
-                                                       buf.torque_j[s] = b.torque_j.vec3(l);
-                                                     }
-                                                   });
+  RowSum<kTorque> own;
+  const std::size_t touching = batched_rows<Normal, Tangential, Rolling>(
+      law, p, contacts, begin, end, period, dt, history_dt, batch,
+      [&](const PairBatch& b, std::size_t l) {
+        own.add(p, b.i[l], b, l);
+        const std::uint32_t s = next++;
+        buf.slot[b.k[l]] = s;
+        buf.force[s] = b.force.vec3(l);
+        if constexpr (kTorque) buf.torque_j[s] = b.torque_j.vec3(l);
+      });
+  own.finish(p);
+  return touching;
 }
 
 // Several threads: two passes, so the result does not depend on the number of threads: (1) each
-// contact's force and torques into buffers (contacts are independent; each owns its history),
-// (2) each particle sums its contacts in a fixed order: the rows where it is the partner, by k,
-// then its own row, by k.
+// row's own sum, and the partner's share of each contact into buffers (contacts are independent;
+// each owns its history), (2) each particle adds its shares as a partner, by k.
 template <class Normal, bool Tangential, bool Rolling>
 std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts,
                       PairForceBuffers& buf, double period, double dt, double history_dt) {
@@ -179,7 +206,6 @@ std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& 
     return pair_loop_serial<Normal, Tangential, Rolling>(law, p, contacts, period, dt, history_dt);
   }
   constexpr bool kTorque = Tangential || Rolling;
-  const auto row = contacts.row_start();
   const auto chunks =
       static_cast<std::int64_t>((contacts.rows() + kRowsPerChunk - 1) / kRowsPerChunk);
   const std::size_t zero = contacts.size();  // the slot of the pairs that do not overlap
@@ -187,9 +213,7 @@ std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& 
   buf.force.resize(contacts.size() + 1);
   buf.force[zero].setZero();
   if constexpr (kTorque) {
-    buf.torque_i.resize(contacts.size() + 1);
     buf.torque_j.resize(contacts.size() + 1);
-    buf.torque_i[zero].setZero();
     buf.torque_j[zero].setZero();
   }
   const auto rows = static_cast<std::int64_t>(contacts.rows());
@@ -205,16 +229,12 @@ std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& 
 #pragma omp parallel for schedule(static)
   for (std::int64_t ii = 0; ii < rows; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
+    if (partner_start[i] == partner_start[i + 1]) continue;
     Vec3 f = Vec3::Zero(), t = Vec3::Zero();
     for (std::size_t q = partner_start[i]; q < partner_start[i + 1]; ++q) {
       const std::uint32_t s = buf.slot[partner_k[q]];
       f -= buf.force[s];
       if constexpr (kTorque) t += buf.torque_j[s];
-    }
-    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
-      const std::uint32_t s = buf.slot[k];
-      f += buf.force[s];
-      if constexpr (kTorque) t += buf.torque_i[s];
     }
     p.force[i] += f;
     if constexpr (kTorque) p.torque[i] += t;

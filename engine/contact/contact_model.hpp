@@ -42,13 +42,12 @@ struct ContactForce {
 using WallHistory = std::vector<std::array<Vec3, kWallParts>>;
 
 /// Per-contact scratch of the pair loop (force on i, torques on i and j), reused every step.
-/// Scratch of the multi-threaded pair loop: the force and torques of each overlapping contact,
-/// packed per block of rows, and for each listed pair k the slot that holds its contribution
-/// (the last slot, zeros, for a pair that does not overlap).
+/// Scratch of the multi-threaded pair loop: the partner's share (force on i, torque on j) of each
+/// overlapping contact, packed per block of rows, and for each listed pair k the slot that holds
+/// it (the last slot, zeros, for a pair that does not overlap).
 struct PairForceBuffers {
   std::vector<std::uint32_t> slot;
   std::vector<Vec3> force;
-  std::vector<Vec3> torque_i;
   std::vector<Vec3> torque_j;
 };
 
