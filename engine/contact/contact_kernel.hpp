@@ -96,6 +96,16 @@ struct Lanes3 {
 /// divide it).
 inline constexpr std::size_t kLanes = 8;
 
+/// Copies the last filled lane of `batch` into the lanes after it, up to a multiple of kLanes
+/// (their results are discarded), so that every contact goes through the vector loop and not a
+/// scalar remainder loop; returns that multiple.
+template <class Batch>
+std::size_t pad_lanes(Batch& batch) {
+  const std::size_t n = std::min(Batch::kSize, (batch.count + kLanes - 1) / kLanes * kLanes);
+  for (std::size_t l = batch.count; l < n; ++l) batch.copy_lane(batch.count - 1, l);
+  return n;
+}
+
 /// Up to kSize particle pairs: their inputs, then (after evaluate) their force, torques and
 /// advanced history. add() gathers a pair's state; evaluate() runs the kernel on all of them.
 struct PairBatch {
@@ -141,7 +151,7 @@ struct PairBatch {
   /// Computes force, torques and the advanced history xi of every lane.
   template <class Normal, bool Tangential, bool Rolling>
   void evaluate(const ContactLaw<Normal>& law, double dt, double history_dt) {
-    const std::size_t n = pad();
+    const std::size_t n = pad_lanes(*this);
     for (std::size_t l = 0; l < n; ++l) {
       const LaneVec dl = d.get(l);
       const double sum_r = r_i[l] + r_j[l];
@@ -165,23 +175,17 @@ struct PairBatch {
   }
 
  private:
-  // Fills the lanes after `count` up to a multiple of kLanes with copies of the last one (results
-  // discarded) and returns that multiple.
-  std::size_t pad() {
-    const std::size_t n = std::min(kSize, (count + kLanes - 1) / kLanes * kLanes);
-    for (std::size_t l = count; l < n; ++l) {
-      const std::size_t s = count - 1;
-      d.set(l, d.get(s));
-      r_i[l] = r_i[s];
-      r_j[l] = r_j[s];
-      inv_mass_sum[l] = inv_mass_sum[s];
-      inv_inertia_sum[l] = inv_inertia_sum[s];
-      v.set(l, v.get(s));
-      w_i.set(l, w_i.get(s));
-      w_j.set(l, w_j.get(s));
-      xi.set(l, xi.get(s));
-    }
-    return n;
+  friend std::size_t pad_lanes<PairBatch>(PairBatch&);
+  void copy_lane(std::size_t from, std::size_t to) {
+    d.set(to, d.get(from));
+    r_i[to] = r_i[from];
+    r_j[to] = r_j[from];
+    inv_mass_sum[to] = inv_mass_sum[from];
+    inv_inertia_sum[to] = inv_inertia_sum[from];
+    v.set(to, v.get(from));
+    w_i.set(to, w_i.get(from));
+    w_j.set(to, w_j.get(from));
+    xi.set(to, xi.get(from));
   }
 };
 
@@ -222,7 +226,7 @@ struct WallBatch {
   /// As PairBatch::evaluate; wall_spin: the wall's angular velocity.
   template <class Normal, bool Tangential, bool Rolling>
   void evaluate(const ContactLaw<Normal>& law, const Vec3& wall_spin, double history_dt) {
-    const std::size_t cnt = pad();
+    const std::size_t cnt = pad_lanes(*this);
     const LaneVec spin{wall_spin.x(), wall_spin.y(), wall_spin.z()};
     for (std::size_t l = 0; l < cnt; ++l) {
       const ContactGeometry g{n.get(l), delta[l],    radius[l], mass[l], radius[l] - 0.5 * delta[l],
@@ -237,20 +241,16 @@ struct WallBatch {
   }
 
  private:
-  std::size_t pad() {
-    const std::size_t cnt = std::min(kSize, (count + kLanes - 1) / kLanes * kLanes);
-    for (std::size_t l = count; l < cnt; ++l) {
-      const std::size_t s = count - 1;
-      n.set(l, n.get(s));
-      delta[l] = delta[s];
-      radius[l] = radius[s];
-      mass[l] = mass[s];
-      stop_rate[l] = stop_rate[s];
-      v.set(l, v.get(s));
-      w_i.set(l, w_i.get(s));
-      xi.set(l, xi.get(s));
-    }
-    return cnt;
+  friend std::size_t pad_lanes<WallBatch>(WallBatch&);
+  void copy_lane(std::size_t from, std::size_t to) {
+    n.set(to, n.get(from));
+    delta[to] = delta[from];
+    radius[to] = radius[from];
+    mass[to] = mass[from];
+    stop_rate[to] = stop_rate[from];
+    v.set(to, v.get(from));
+    w_i.set(to, w_i.get(from));
+    xi.set(to, xi.get(from));
   }
 };
 
