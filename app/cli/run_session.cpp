@@ -24,7 +24,7 @@ namespace {
 
 /// Steps of the turning phase: --steps, --revolutions, or the scene's duration/revolutions.
 std::uint64_t turning_steps(const RunOptions& opt, const SceneConfig& scene, double dt) {
-  if (opt.steps > 0) return opt.steps;
+  if (opt.steps) return *opt.steps;  // 0 too: fill and settle only, as LAMMPS's `run 0`
   const double omega = std::abs(scene.drum.omega);
   double seconds = 0.0;
   if (opt.revolutions > 0.0 || scene.time.revolutions) {
@@ -76,9 +76,12 @@ double advance_phase(Simulation& sim, std::uint64_t steps, const std::string& la
 }  // namespace
 
 void add_run_options(CLI::App* cmd, RunOptions& opt) {
-  cmd->add_option("--method", opt.method,
-                  "contact search method (overrides the scene): brute, m1..m5");
-  auto* steps = cmd->add_option("--steps", opt.steps, "turning steps after settling");
+  cmd->add_option(
+      "--method", opt.method,
+      "contact search method (overrides the scene): brute, m1..m5, mlgrid, verlet[:BUILDER], auto");
+  auto* steps = cmd->add_option(
+      "--steps", opt.steps,
+      "turning steps after settling (0: only fill and settle, e.g. for --checkpoint)");
   cmd->add_option("--revolutions", opt.revolutions, "drum revolutions after settling")
       ->check(CLI::PositiveNumber)
       ->excludes(steps);

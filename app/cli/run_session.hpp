@@ -3,6 +3,7 @@
 // rest, turn the drum, and call scheduled observers (writers, renderers) between steps — never
 // inside the step loop.
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 
@@ -15,7 +16,7 @@ namespace drumlab::cli {
 struct RunOptions {
   std::string scene;
   std::string method;
-  std::uint64_t steps = 0;
+  std::optional<std::uint64_t> steps;  ///< --steps (0: fill and settle only)
   double revolutions = 0.0;
   double dt_factor = 0.0;
   int threads = 1;

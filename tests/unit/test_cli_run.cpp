@@ -63,6 +63,22 @@ TEST(CliRun, TimeStepFarAboveTheLimitStopsAsUnstable) {
   EXPECT_NE(r.output.find("= 20 Rayleigh times)"), std::string::npos) << r.output;
 }
 
+// `--steps 0` fills and settles only (LAMMPS's `run 0`): it must not fall back to the scene's
+// duration, and a checkpoint written then restarts at step 0 of the turning phase.
+TEST(CliRun, ZeroStepsOnlyFillsAndSettles) {
+  TempDir dir("run-zero");
+  const auto scene = dir.write("small.toml", small_drum_scene());
+  const auto file = dir.path() / "filled.h5";
+  const auto r = run_cli("run " + scene.string() + " --steps 0 --checkpoint " + file.string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("then turn 0 steps"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("checkpoint        " + file.string()), std::string::npos) << r.output;
+  const auto again =
+      run_cli("run " + scene.string() + " --restart " + file.string() + " --steps 5");
+  EXPECT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("particle-steps/s"), std::string::npos) << again.output;
+}
+
 TEST(CliInfo, EveryShippedSceneHasInfo) {
   for (const char* scene : {"drum_demo", "drum_paper", "paper_table1", "paper_table2",
                             "teach_stencil", "tilted_drum", "mono_periodic"}) {
