@@ -77,9 +77,10 @@ template <class Overlap, class Apart>
   }
 }
 
-// Calls overlap(k) for every overlapping entry k of rows [begin, end), by increasing k, each
-// with its force and torques in `batch` lane l, and resets the history of the others. Returns the
-// entries within the touching tolerance.
+// Evaluates the overlapping entries of rows [begin, end) in batches; for each, by increasing k,
+// stores its advanced history and calls sink(batch, l) with its force and torques in lane l.
+// Resets the history of the entries that do not overlap. Returns the entries within the touching
+// tolerance.
 template <class Normal, bool Tangential, bool Rolling, class Sink>
 [[gnu::always_inline]] inline std::size_t batched_rows(const ContactLaw<Normal>& law,
                                                        const Particles& p, ContactList& contacts,
