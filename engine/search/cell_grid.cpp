@@ -232,6 +232,7 @@ void CellGridSearch::visit_all(const Cells& cells, const SearchInput& in,
   const double period = in.period_z.value_or(0.0);
   const double margin = in.margin + kTouchTolerance;
   const std::vector<CellOffset>& offsets = stencil_.offsets;
+  const SortedParticles sorted{sorted_position_.data(), sorted_radius_.data(), order_.data()};
   std::uint64_t cells_visited = 0, pairs_tested = 0;
   // Each thread takes a contiguous block of slots and collects its pairs; the blocks are joined
   // in order. Counters per particle are written by the one thread that owns the particle.
@@ -250,14 +251,7 @@ void CellGridSearch::visit_all(const Cells& cells, const SearchInput& in,
       std::uint32_t my_cells = 1, my_tests = 0;
 
       auto scan = [&](std::uint32_t begin, std::uint32_t end) {
-        my_tests += end - begin;
-        for (std::uint32_t t = begin; t < end; ++t) {
-          const double cut = ri + sorted_radius_[t] + margin;
-          if (distance_squared(xi, sorted_position_[t], period) <= cut * cut) {
-            const Index pj = order_[t];
-            mine.push_back(pi < pj ? IndexPair{pi, pj} : IndexPair{pj, pi});
-          }
-        }
+        my_tests += scan_slots(sorted, xi, ri, pi, begin, end, margin, period, mine);
       };
 
       CellRange r;

@@ -20,21 +20,6 @@ constexpr std::size_t kMaxExactLevels = 8;
 constexpr double kDenseCellsPerParticle = 64.0;
 constexpr double kDenseCellFloor = 1048576.0;  // 2^20
 
-/// Tests particle (xi, ri, pi) against slots [begin, end) of a level; returns the tests made.
-template <class Level>
-std::uint32_t scan_slots(const Vec3& xi, double ri, Index pi, const Level& level,
-                         std::uint32_t begin, std::uint32_t end, double margin, double period,
-                         std::vector<IndexPair>& out) {
-  for (std::uint32_t t = begin; t < end; ++t) {
-    const double cut = ri + level.radius[t] + margin;
-    if (distance_squared(xi, level.position[t], period) <= cut * cut) {
-      const Index pj = level.order[t];
-      out.push_back(pi < pj ? IndexPair{pi, pj} : IndexPair{pj, pi});
-    }
-  }
-  return end > begin ? end - begin : 0;
-}
-
 }  // namespace
 
 void MultiLevelGridSearch::find_pairs(const SearchInput& in, std::vector<IndexPair>& out) {
@@ -46,9 +31,10 @@ void MultiLevelGridSearch::find_pairs(const SearchInput& in, std::vector<IndexPa
   timings_ = {};
   if (n == 0) return;
   assign_levels(in);
+  const Box bounds = search_bounds(in);
   std::uint64_t cells_total = 0;
   for (Level& level : levels_) {
-    lay_level(level, in);
+    lay_level(level, in, bounds);
     cells_total += static_cast<std::uint64_t>(level.n[0] * level.n[1] * level.n[2]);
   }
   timings_.build = seconds_since(t0);
@@ -67,18 +53,28 @@ void MultiLevelGridSearch::find_pairs(const SearchInput& in, std::vector<IndexPa
 
 void MultiLevelGridSearch::assign_levels(const SearchInput& in) {
   const std::size_t n = in.position.size();
-  std::vector<double> distinct(in.radius.begin(), in.radius.end());
-  std::sort(distinct.begin(), distinct.end());
-  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
-  const double rmin = distinct.front();
-  std::vector<int> raw(n);
+  // The distinct radii, by a scan that gives up after kMaxExactLevels of them: beds have a few
+  // size classes, and sorting every radius cost more than the rest of the level assignment.
+  distinct_.clear();
+  bool exact = true;
+  for (const double r : in.radius) {
+    if (std::find(distinct_.begin(), distinct_.end(), r) != distinct_.end()) continue;
+    if (distinct_.size() == kMaxExactLevels) {
+      exact = false;
+      break;
+    }
+    distinct_.push_back(r);
+  }
+  std::sort(distinct_.begin(), distinct_.end());
+  const double rmin = *std::min_element(in.radius.begin(), in.radius.end());
+  std::vector<int>& raw = raw_;
+  raw.resize(n);
   int top = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const double r = in.radius[i];
-    raw[i] = distinct.size() <= kMaxExactLevels
-                 ? static_cast<int>(std::lower_bound(distinct.begin(), distinct.end(), r) -
-                                    distinct.begin())
-                 : std::min(200, static_cast<int>(std::floor(std::log2(r / rmin))));
+    raw[i] = exact ? static_cast<int>(std::lower_bound(distinct_.begin(), distinct_.end(), r) -
+                                      distinct_.begin())
+                   : std::min(200, static_cast<int>(std::floor(std::log2(r / rmin))));
     top = std::max(top, raw[i]);
   }
   // Keep only occupied levels, smallest first.
@@ -93,17 +89,14 @@ void MultiLevelGridSearch::assign_levels(const SearchInput& in) {
     level.order.clear();
     level.rmax = 0.0;
   }
-  level_of_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     Level& level = levels_[compact[raw[i]]];
-    level_of_[i] = static_cast<std::uint8_t>(compact[raw[i]]);
     level.order.push_back(static_cast<Index>(i));
     level.rmax = std::max(level.rmax, in.radius[i]);
   }
 }
 
-void MultiLevelGridSearch::lay_level(Level& level, const SearchInput& in) {
-  const Box bounds = search_bounds(in);
+void MultiLevelGridSearch::lay_level(Level& level, const SearchInput& in, const Box& bounds) {
   const double reach = 2.0 * level.rmax + in.margin + kTouchTolerance;
   // Cells a hair wider than the reach, so that the round-off allowance of reach_cells() does not
   // push the stencil from 1 to 2 cells each way (5^3 instead of 3^3 cells visited).
@@ -135,7 +128,8 @@ void MultiLevelGridSearch::lay_level(Level& level, const SearchInput& in) {
   level.hashed = total > kDenseCellsPerParticle * m + kDenseCellFloor;
 
   // Cells of the members, then sort them by cell.
-  std::vector<CellCoord> cell_of(level.order.size());
+  std::vector<CellCoord>& cell_of = level.scratch_cell;
+  cell_of.resize(level.order.size());
   for (std::size_t s = 0; s < level.order.size(); ++s) {
     const Vec3& x = in.position[level.order[s]];
     CellCoord c{axes.coord(x.x(), 0), axes.coord(x.y(), 1), 0};
@@ -147,7 +141,8 @@ void MultiLevelGridSearch::lay_level(Level& level, const SearchInput& in) {
     }
     cell_of[s] = c;
   }
-  std::vector<std::size_t> perm(level.order.size());
+  std::vector<std::size_t>& perm = level.scratch_perm;
+  perm.resize(level.order.size());
   if (level.hashed) {
     std::iota(perm.begin(), perm.end(), std::size_t{0});
     std::sort(perm.begin(), perm.end(), [&](std::size_t a, std::size_t b) {
@@ -173,7 +168,8 @@ void MultiLevelGridSearch::lay_level(Level& level, const SearchInput& in) {
       perm[level.dense.at(level.dense.linear(cell_of[s])).end++] = s;
     }
   }
-  const std::vector<Index> members = level.order;
+  std::vector<Index>& members = level.scratch_order;
+  members.assign(level.order.begin(), level.order.end());
   const std::size_t count = members.size();
   level.position.resize(count);
   level.radius.resize(count);
@@ -235,10 +231,11 @@ void MultiLevelGridSearch::visit_level(const Level& level, const Cells& cells,
       const double ri = level.radius[s];
       const Index pi = level.order[s];
       const CellCoord ci = level.cell[s];
+      const SortedParticles sp = level.sorted();
       std::uint32_t my_cells = 1, my_tests = 0;
       CellRange r;
       cells.find(ci, r);
-      my_tests += scan_slots(xi, ri, pi, level, static_cast<std::uint32_t>(s) + 1, r.end, margin,
+      my_tests += scan_slots(sp, xi, ri, pi, static_cast<std::uint32_t>(s) + 1, r.end, margin,
                              period, mine);
       if constexpr (std::is_same_v<Cells, DenseCellIndex>) {
         for (const StencilRow& row : level.stencil.rows[level.k]) {
@@ -251,7 +248,7 @@ void MultiLevelGridSearch::visit_level(const Level& level, const Cells& cells,
           c.x = x0;
           const std::uint32_t begin = cells.cell(c).begin;
           c.x = x1;
-          my_tests += scan_slots(xi, ri, pi, level, begin, cells.cell(c).end, margin, period, mine);
+          my_tests += scan_slots(sp, xi, ri, pi, begin, cells.cell(c).end, margin, period, mine);
         }
       } else {
         const auto& offsets = level.stencil.offsets;
@@ -260,18 +257,18 @@ void MultiLevelGridSearch::visit_level(const Level& level, const Cells& cells,
           if (!wrap(level, c)) continue;
           ++my_cells;
           if (cells.find(c, r)) {
-            my_tests += scan_slots(xi, ri, pi, level, r.begin, r.end, margin, period, mine);
+            my_tests += scan_slots(sp, xi, ri, pi, r.begin, r.end, margin, period, mine);
           }
         }
       }
       cells_per_particle_[pi] = my_cells;
       tests_per_particle_[pi] = my_tests;
-      for (std::size_t h = l + 1; h < levels_.size(); ++h) {
-        const Level& big = levels_[h];
-        if (big.hashed) {
-          visit_cross(l, s, big, big.hashed_index, in, mine);
+      for (std::size_t h = 0; h < l; ++h) {
+        const Level& small = levels_[h];
+        if (small.hashed) {
+          visit_cross(level, s, small, small.hashed_index, in, mine);
         } else {
-          visit_cross(l, s, big, big.dense, in, mine);
+          visit_cross(level, s, small, small.dense, in, mine);
         }
       }
       cells_visited += cells_per_particle_[pi];
@@ -284,49 +281,77 @@ void MultiLevelGridSearch::visit_level(const Level& level, const Cells& cells,
 }
 
 template <class Cells>
-void MultiLevelGridSearch::visit_cross(std::size_t small_level, std::size_t slot, const Level& big,
+void MultiLevelGridSearch::visit_cross(const Level& level, std::size_t slot, const Level& small,
                                        const Cells& cells, const SearchInput& in,
                                        std::vector<IndexPair>& out) {
-  const Level& level = levels_[small_level];
   const Vec3& xi = level.position[slot];
   const double ri = level.radius[slot];
   const Index pi = level.order[slot];
+  const SortedParticles sp = small.sorted();
   const double period = in.period_z.value_or(0.0);
   const double margin = in.margin + kTouchTolerance;
-  const double half = ri + big.rmax + margin;
-  // Cell range of the box [x - half, x + half] per axis, widened by the round-off slack.
+  // Every partner in the smaller level lies within `half` of x_i (widened against round-off).
+  const double half = (ri + small.rmax + margin) * (1.0 + 1e-9);
+  // x_i in cell units of the smaller level, and the cell range of the box [x - half, x + half].
+  double u[3];
   std::int64_t lo[3], hi[3];
   for (int a = 0; a < 3; ++a) {
-    const double side = a == 2 ? big.bz : big.b;
-    const double origin = (a == 2 && big.periodic) ? 0.0 : big.origin[a];
-    lo[a] = static_cast<std::int64_t>(std::floor((xi[a] - half - origin) / side - slack_));
-    hi[a] = static_cast<std::int64_t>(std::floor((xi[a] + half - origin) / side + slack_));
+    const double side = a == 2 ? small.bz : small.b;
+    const double origin = (a == 2 && small.periodic) ? 0.0 : small.origin[a];
+    u[a] = (xi[a] - origin) / side;
+    lo[a] = static_cast<std::int64_t>(std::floor(u[a] - half / side - slack_));
+    hi[a] = static_cast<std::int64_t>(std::floor(u[a] + half / side + slack_));
   }
-  const bool wrap_z = big.periodic && big.n[2] > 1 && hi[2] - lo[2] + 1 < big.n[2];
-  if (!wrap_z) {
+  const bool wrap_z = small.periodic && small.n[2] > 1 && hi[2] - lo[2] + 1 < small.n[2];
+  // Periodic, and the box spans the whole period: every layer once (clamping the range instead
+  // would drop the layers that wrap). The layers' distances along z then cannot prune.
+  const bool whole_period = small.periodic && !wrap_z;
+  if (whole_period) {
+    lo[2] = 0;
+    hi[2] = small.n[2] - 1;
+  } else if (!wrap_z) {
     lo[2] = std::max<std::int64_t>(lo[2], 0);
-    hi[2] = std::min<std::int64_t>(hi[2], big.n[2] - 1);
+    hi[2] = std::min<std::int64_t>(hi[2], small.n[2] - 1);
   }
   lo[0] = std::max<std::int64_t>(lo[0], 0);
-  hi[0] = std::min<std::int64_t>(hi[0], big.n[0] - 1);
+  hi[0] = std::min<std::int64_t>(hi[0], small.n[0] - 1);
   lo[1] = std::max<std::int64_t>(lo[1], 0);
-  hi[1] = std::min<std::int64_t>(hi[1], big.n[1] - 1);
+  hi[1] = std::min<std::int64_t>(hi[1], small.n[1] - 1);
   if (lo[0] > hi[0] || lo[1] > hi[1]) return;
+  // Gap from x_i to the slab of cells [c, c + 1) along one axis, in cells, less the round-off
+  // slack: a row of cells whose gap exceeds `half` holds no partner.
+  const auto gap = [this](double uc, std::int64_t c) {
+    const double g = std::max(static_cast<double>(c) - uc, uc - static_cast<double>(c + 1));
+    return std::max(0.0, g - slack_);
+  };
+  const double half2 = half * half;
   std::uint32_t my_cells = 0, my_tests = 0;
   for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
-    const std::int64_t cz = wrap_z ? ((z % big.n[2]) + big.n[2]) % big.n[2] : z;
+    const double gz = whole_period ? 0.0 : gap(u[2], z) * small.bz;
+    if (gz * gz > half2) continue;
+    const std::int64_t cz = wrap_z ? ((z % small.n[2]) + small.n[2]) % small.n[2] : z;
     for (std::int64_t cy = lo[1]; cy <= hi[1]; ++cy) {
+      const double gy = gap(u[1], cy) * small.b;
+      const double rest = half2 - gy * gy - gz * gz;
+      if (rest < 0.0) continue;
+      // The sphere's chord along this row of cells.
+      const double w = std::sqrt(rest) / small.b;
+      const std::int64_t x0 =
+          std::max(lo[0], static_cast<std::int64_t>(std::floor(u[0] - w - slack_)));
+      const std::int64_t x1 =
+          std::min(hi[0], static_cast<std::int64_t>(std::floor(u[0] + w + slack_)));
+      if (x0 > x1) continue;
       if constexpr (std::is_same_v<Cells, DenseCellIndex>) {
-        my_cells += static_cast<std::uint32_t>(hi[0] - lo[0] + 1);
-        const std::uint32_t begin = cells.cell(CellCoord{lo[0], cy, cz}).begin;
-        const std::uint32_t end = cells.cell(CellCoord{hi[0], cy, cz}).end;
-        my_tests += scan_slots(xi, ri, pi, big, begin, end, margin, period, out);
+        my_cells += static_cast<std::uint32_t>(x1 - x0 + 1);
+        const std::uint32_t begin = cells.cell(CellCoord{x0, cy, cz}).begin;
+        const std::uint32_t end = cells.cell(CellCoord{x1, cy, cz}).end;
+        my_tests += scan_slots(sp, xi, ri, pi, begin, end, margin, period, out);
       } else {
-        for (std::int64_t cx = lo[0]; cx <= hi[0]; ++cx) {
+        for (std::int64_t cx = x0; cx <= x1; ++cx) {
           ++my_cells;
           CellRange r;
           if (cells.find(CellCoord{cx, cy, cz}, r)) {
-            my_tests += scan_slots(xi, ri, pi, big, r.begin, r.end, margin, period, out);
+            my_tests += scan_slots(sp, xi, ri, pi, r.begin, r.end, margin, period, out);
           }
         }
       }

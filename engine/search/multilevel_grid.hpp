@@ -3,8 +3,11 @@
 // Phys. Commun. 183): particles are split into size levels, each level has its own 3D grid with
 // cells as wide as the level's largest contact distance, so every particle meets few partners per
 // cell whatever the size ratio. Pairs within a level are found with a half shell of reach 1 (one
-// test per pair); pairs across levels are found from the smaller particle's side, by visiting only
-// the cells of the larger level that overlap a box around it of half-width r_i + R_level + margin.
+// test per pair). Pairs across levels are found from the larger particle's side: it visits the
+// cells of each smaller level within r_i + R_level + margin of it, row by row, each row cut to the
+// chord of that sphere. From the larger side there are fewer particles to search from (600 large
+// against 16,200 small in the demo drum) and longer rows each: measured, the rows visited per
+// build fell about fourfold and the pairs tested stayed about the same.
 #include <string>
 #include <vector>
 
@@ -19,7 +22,7 @@ class MultiLevelGridSearch final : public ContactSearch {
  public:
   std::string_view name() const override { return "mlgrid"; }
   std::string_view description() const override {
-    return "multi-level grid: a 3D grid per size level, cross-level boxes from the smaller side";
+    return "multi-level grid: a 3D grid per size level, cross-level spheres from the larger side";
   }
   void find_pairs(const SearchInput& in, std::vector<IndexPair>& out) override;
   std::string report() const override;
@@ -42,22 +45,27 @@ class MultiLevelGridSearch final : public ContactSearch {
     std::vector<Index> order;  ///< slot -> particle
     std::vector<Vec3> position;
     std::vector<double> radius;
-    std::vector<CellCoord> cell;  ///< per slot
+    std::vector<CellCoord> cell;          ///< per slot
+    std::vector<CellCoord> scratch_cell;  ///< lay_level's buffers, kept between calls
+    std::vector<std::size_t> scratch_perm;
+    std::vector<Index> scratch_order;
+    SortedParticles sorted() const { return {position.data(), radius.data(), order.data()}; }
   };
 
   void assign_levels(const SearchInput& in);
-  void lay_level(Level& level, const SearchInput& in);
+  void lay_level(Level& level, const SearchInput& in, const Box& bounds);
   bool wrap(const Level& level, CellCoord& c) const;
   template <class Cells>
   void visit_level(const Level& level, const Cells& cells, const SearchInput& in,
                    std::vector<IndexPair>& out);
   template <class Cells>
-  void visit_cross(std::size_t s_level, std::size_t slot, const Level& big, const Cells& cells,
+  void visit_cross(const Level& level, std::size_t slot, const Level& small, const Cells& cells,
                    const SearchInput& in, std::vector<IndexPair>& out);
 
   std::vector<Level> levels_;
-  PairSlices slices_;  ///< per-thread pairs of visit_level()
-  std::vector<std::uint8_t> level_of_;
+  PairSlices slices_;             ///< per-thread pairs of visit_level()
+  std::vector<double> distinct_;  ///< assign_levels' buffers
+  std::vector<int> raw_;
   double slack_ = 0.0;
 };
 

@@ -62,6 +62,43 @@ inline double distance_squared(const Vec3& a, const Vec3& b, double period) {
   return dx * dx + dy * dy + dz * dz;
 }
 
+/// A grid's particles in cell-sorted order: slot t holds original particle order[t].
+struct SortedParticles {
+  const Vec3* position;
+  const double* radius;
+  const Index* order;
+};
+
+/// The hot loop of every grid search: tests particle pi (at xi, radius ri) against the slots
+/// [begin, end) of `s` and appends each pair within ri + r_t + margin as (min, max) of the
+/// original indices. Returns the tests made. Every pointer and coordinate is read once before the
+/// loop (through references the compiler would re-read them after each append), and the periodic
+/// image is a separate loop.
+[[gnu::always_inline]] inline std::uint32_t scan_slots(const SortedParticles& s, const Vec3& xi,
+                                                       double ri, Index pi, std::uint32_t begin,
+                                                       std::uint32_t end, double margin,
+                                                       double period, std::vector<IndexPair>& out) {
+  const Vec3 x = xi;
+  const Vec3* const position = s.position;
+  const double* const radius = s.radius;
+  const Index* const order = s.order;
+  const auto scan = [&](auto distance2) {
+    for (std::uint32_t t = begin; t < end; ++t) {
+      const double cut = ri + radius[t] + margin;
+      if (distance2(position[t]) <= cut * cut) {
+        const Index pj = order[t];
+        out.push_back(pi < pj ? IndexPair{pi, pj} : IndexPair{pj, pi});
+      }
+    }
+  };
+  if (period > 0.0) {
+    scan([&](const Vec3& y) { return distance_squared(x, y, period); });
+  } else {
+    scan([&](const Vec3& y) { return distance_squared(x, y, 0.0); });
+  }
+  return end > begin ? end - begin : 0;
+}
+
 /// Cut-off distance for a pair: r_i + r_j + margin + the touching tolerance.
 inline double pair_cutoff(double ri, double rj, double margin) {
   return ri + rj + margin + kTouchTolerance;
