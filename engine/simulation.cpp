@@ -74,6 +74,10 @@ struct Simulation::Impl {
   WallHistory wall_scratch;
   WallCandidates walls;
   double wall_reach = -1.0;  ///< m; set on the first force evaluation (radii do not change)
+  /// Bound on how far any particle moved (nearest image along periodic ends) since the last
+  /// force evaluation, m; infinite when not known. Lets the Verlet and wall lists skip their
+  /// per-particle displacement checks.
+  double moved = std::numeric_limits<double>::infinity();
 };
 
 Simulation::Simulation(const SceneConfig& scene, Particles particles, SimulationOptions options)
@@ -251,7 +255,9 @@ void Simulation::compute_forces(double history_dt, bool count) {
   try {
     if (impl_->verlet != nullptr) {
       // The contact list is the Verlet list itself: it changes only when the list is rebuilt.
-      if (impl_->verlet->refresh(in)) contacts.update(impl_->verlet->list(), particles_.size());
+      if (impl_->verlet->refresh(in, impl_->moved)) {
+        contacts.update(impl_->verlet->list(), particles_.size());
+      }
     } else {
       search_->find_pairs(in, impl_->pairs);
       contacts.update(impl_->pairs, particles_.size());
@@ -272,7 +278,9 @@ void Simulation::compute_forces(double history_dt, bool count) {
   if (impl_->wall_reach < 0.0) {
     impl_->wall_reach = scene_.performance.verlet_skin * particles_.min_radius();
   }
-  impl_->walls.refresh(particles_, impl_->drum, impl_->wall_reach, impl_->wall_history);
+  impl_->walls.refresh(particles_, impl_->drum, impl_->wall_reach, impl_->wall_history,
+                       impl_->moved);
+  impl_->moved = 0.0;
   impl_->model.add_wall_forces(particles_, impl_->walls.list(), impl_->drum, omega_,
                                impl_->wall_history, dt_, history_dt);
   const auto t3 = Clock::now();
@@ -303,11 +311,25 @@ void Simulation::drift() {
   Particles& p = particles_;
   const auto n = static_cast<std::int64_t>(p.size());
   const bool periodic = impl_->drum.periodic();
-#pragma omp parallel for schedule(static)
+  // The largest speed and coordinate, for the bound on this drift's displacements.
+  double v2max = 0.0, xmax = 0.0;
+  int non_finite = 0;
+#pragma omp parallel for schedule(static) reduction(max : v2max, xmax) reduction(| : non_finite)
   for (std::int64_t i = 0; i < n; ++i) {
+    const double v2 = p.velocity[i].squaredNorm();
     p.position[i] += dt_ * p.velocity[i];
     if (periodic) p.position[i].z() = impl_->drum.wrap_z(p.position[i].z());
+    non_finite |= !std::isfinite(v2);
+    v2max = std::max(v2max, v2);
+    xmax = std::max(xmax, p.position[i].cwiseAbs().maxCoeff());
   }
+  // |x_new - x_old| <= dt |v|, plus the round-off of the sum (a few ulps of the coordinates) and
+  // of the periodic wrap (of the period).
+  const double period = periodic ? impl_->drum.depth() : 0.0;
+  const double bound = dt_ * std::sqrt(v2max) * (1.0 + 1e-12) +
+                       8.0 * std::numeric_limits<double>::epsilon() * (xmax + period);
+  impl_->moved +=
+      non_finite != 0 || !std::isfinite(xmax) ? std::numeric_limits<double>::infinity() : bound;
 }
 
 void Simulation::reorder_particles() {

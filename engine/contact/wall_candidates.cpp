@@ -1,29 +1,36 @@
 #include "engine/contact/wall_candidates.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "engine/spatial_order.hpp"
 
 namespace drumlab {
 
-bool WallCandidates::needs_rebuild(const Particles& p, const Drum& drum, double reach) const {
+bool WallCandidates::needs_rebuild(const Particles& p, const Drum& drum, double reach) {
   const std::size_t n = p.size();
   if (reference_.size() != n || reach != reach_) return true;
-  const double limit = 0.25 * reach * reach;  // (reach / 2)^2
+  if (moved_ <= reach) return false;  // no particle can have closed its gap of more than reach
+  ++checks_;
   const bool planar = drum.periodic();
-  int moved = 0;
+  double largest = 0.0;
+  int non_finite = 0;
   const auto count = static_cast<std::int64_t>(n);
-#pragma omp parallel for reduction(| : moved) schedule(static)
+#pragma omp parallel for reduction(max : largest) reduction(| : non_finite) schedule(static)
   for (std::int64_t i = 0; i < count; ++i) {
     Vec3 d = p.position[i] - reference_[i];
     if (planar) d.z() = 0.0;
-    moved |= !(d.squaredNorm() <= limit);  // a non-finite position rebuilds too
+    const double d2 = d.squaredNorm();
+    non_finite |= !std::isfinite(d2);  // a non-finite position rebuilds
+    largest = std::max(largest, d2);
   }
-  return moved != 0;
+  moved_ = non_finite != 0 ? std::numeric_limits<double>::infinity() : std::sqrt(largest);
+  return !(moved_ <= reach);
 }
 
 bool WallCandidates::refresh(const Particles& p, const Drum& drum, double reach,
-                             WallHistory& history) {
+                             WallHistory& history, double moved) {
+  moved_ += moved >= 0.0 ? moved : std::numeric_limits<double>::infinity();  // NaN: unknown
   if (!needs_rebuild(p, drum, reach)) return false;
   const std::size_t n = p.size();
   list_.reserve(n);  // once: later builds never allocate
@@ -38,6 +45,7 @@ bool WallCandidates::refresh(const Particles& p, const Drum& drum, double reach,
   }
   reference_.assign(p.position.begin(), p.position.end());
   reach_ = reach;
+  moved_ = 0.0;
   ++rebuilds_;
   return true;
 }

@@ -1,6 +1,8 @@
 #include "engine/search/verlet_list.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -46,21 +48,49 @@ void VerletListSearch::filter(const SearchInput& in, std::vector<IndexPair>& out
   slices_.join(out);
 }
 
-bool VerletListSearch::needs_rebuild(const SearchInput& in) const {
+namespace {
+
+/// The two largest of a set of squared displacements; NaN counts as infinite.
+struct TopTwo {
+  double first = 0.0, second = 0.0;
+  void add(double d2) {
+    if (std::isnan(d2)) d2 = std::numeric_limits<double>::infinity();
+    if (d2 > first) {
+      second = first;
+      first = d2;
+    } else if (d2 > second) {
+      second = d2;
+    }
+  }
+  void merge(const TopTwo& o) {
+    add(o.first);
+    add(o.second);
+  }
+};
+#pragma omp declare reduction(top_two:TopTwo : omp_out.merge(omp_in))
+
+}  // namespace
+
+bool VerletListSearch::needs_rebuild(const SearchInput& in) {
   const std::size_t n = in.position.size();
   if (n != reference_.size() || in.margin != margin_ || in.period_z.value_or(0.0) != period_ ||
       !std::equal(radius_.begin(), radius_.end(), in.radius.begin())) {
     return true;
   }
-  const double limit = 0.25 * skin_ * skin_;  // (skin / 2)^2
-  // A non-finite position fails the test too: the rebuild's input check then reports it.
-  int moved = 0;
+  // No particle moved more than half the skin: no pair can have closed it.
+  if (moved_ <= 0.5 * skin_) return false;
+  ++checks_;
+  TopTwo top;
   const auto count = static_cast<std::int64_t>(n);
-#pragma omp parallel for reduction(| : moved) schedule(static)
+#pragma omp parallel for reduction(top_two : top) schedule(static)
   for (std::int64_t i = 0; i < count; ++i) {
-    moved |= !(distance_squared(in.position[i], reference_[i], period_) <= limit);
+    top.add(distance_squared(in.position[i], reference_[i], period_));
   }
-  return moved != 0;
+  // A pair left out of the list was more than cut-off + skin apart at the build; it has closed by
+  // at most d_i + d_j <= (largest + second largest displacement). A non-finite position gives an
+  // infinite displacement: the rebuild's input check then reports it.
+  moved_ = std::sqrt(top.first);
+  return !(std::sqrt(top.first) + std::sqrt(top.second) <= skin_);
 }
 
 void VerletListSearch::rebuild(const SearchInput& in) {
@@ -79,6 +109,7 @@ void VerletListSearch::rebuild(const SearchInput& in) {
   radius_.assign(in.radius.begin(), in.radius.end());
   margin_ = in.margin;
   period_ = in.period_z.value_or(0.0);
+  moved_ = 0.0;
   ++rebuilds_;
 }
 
@@ -100,10 +131,11 @@ void VerletListSearch::renumber(std::span<const Index> order, std::span<const In
   for (const IndexPair& p : list_) ++listed_per_particle_[p.i];
 }
 
-bool VerletListSearch::refresh(const SearchInput& in) {
+bool VerletListSearch::refresh(const SearchInput& in, double moved) {
   const auto t0 = SearchClock::now();
   if (in.position.size() != in.radius.size()) validate_search_input(in);  // throws
   ++calls_;
+  moved_ += moved >= 0.0 ? moved : kUnknownMotion;  // NaN or negative: unknown
   // The full input check runs with every rebuild (in the builder); between rebuilds the listed
   // pairs stay exact, and a non-finite position forces a rebuild (see needs_rebuild).
   const bool rebuilt = needs_rebuild(in);
@@ -135,9 +167,10 @@ void VerletListSearch::find_pairs(const SearchInput& in, std::vector<IndexPair>&
 std::string VerletListSearch::report() const {
   const double n = std::max<double>(1.0, static_cast<double>(reference_.size()));
   return fmt::format(
-      "Verlet list: {} rebuilds in {} calls (every {:.1f} calls), {:.2f} listed pairs/particle",
+      "Verlet list: {} rebuilds in {} calls (every {:.1f} calls), displacements checked in {} "
+      "calls, {:.2f} listed pairs/particle",
       rebuilds_, calls_,
-      rebuilds_ > 0 ? static_cast<double>(calls_) / static_cast<double>(rebuilds_) : 0.0,
+      rebuilds_ > 0 ? static_cast<double>(calls_) / static_cast<double>(rebuilds_) : 0.0, checks_,
       static_cast<double>(list_.size()) / n);
 }
 

@@ -3,13 +3,19 @@
 // listed once, and every call only re-tests the listed pairs. The list is rebuilt when a particle
 // has moved more than half the skin since the last build (then no pair outside the list can have
 // come within the margin), or when the particle count, radii, margin or period changed.
-// The check runs on every call, so a contact can never be missed ("dangerous" builds: none).
+// Exactly: the list is kept while the two largest displacements sum to at most the skin (no pair
+// can then have closed the skin), which is never later than LAMMPS's "one particle moved more
+// than half the skin". A caller that knows a bound on the motion since its last call (the
+// simulation: time step x the fastest speed) passes it, and the per-particle check is skipped
+// while the summed bounds prove that no particle moved more than half the skin. Otherwise the
+// check runs on every call, so a contact can never be missed ("dangerous" builds: none).
 //
 // Two ways to use it: find_pairs() filters the list down to the pairs within the margin (any
 // consumer of the ContactSearch interface); a simulation that keeps contact history on the listed
 // pairs itself calls refresh() every step and re-reads list() only after a rebuild: its force loop
 // then tests the listed pairs once (the filter is fused into the force loop, as in LAMMPS's
 // granular pair styles), and it reports the pairs it found with record_found().
+#include <limits>
 #include <memory>
 #include <span>
 #include <string>
@@ -28,8 +34,11 @@ class VerletListSearch final : public ContactSearch {
   std::string_view description() const override { return description_; }
   void find_pairs(const SearchInput& in, std::vector<IndexPair>& out) override;
   /// Rebuilds the list if needed and counts one call's work (the listed pairs are the pairs
-  /// tested); returns true if the list was rebuilt. Does not filter.
-  bool refresh(const SearchInput& in);
+  /// tested); returns true if the list was rebuilt. Does not filter. `moved`: an upper bound on
+  /// how far any particle moved (nearest image along a periodic z) since the previous call, m;
+  /// infinite if not known.
+  bool refresh(const SearchInput& in, double moved = kUnknownMotion);
+  static constexpr double kUnknownMotion = std::numeric_limits<double>::infinity();
   /// Pairs within margin + skin at the last build, sorted by (i, j).
   std::span<const IndexPair> list() const { return list_; }
   /// Sets the pairs found in the last refresh() (by the caller's own test of the list).
@@ -47,11 +56,13 @@ class VerletListSearch final : public ContactSearch {
   /// Rebuilds and calls so far (a rebuild happens on the first call too).
   std::uint64_t rebuilds() const { return rebuilds_; }
   std::uint64_t calls() const { return calls_; }
+  /// Calls that measured every particle's displacement (the others were settled by the bound).
+  std::uint64_t checks() const { return checks_; }
   /// Pairs in the current list.
   std::size_t list_size() const { return list_.size(); }
 
  private:
-  bool needs_rebuild(const SearchInput& in) const;
+  bool needs_rebuild(const SearchInput& in);
   void rebuild(const SearchInput& in);
   void filter(const SearchInput& in, std::vector<IndexPair>& out);
 
@@ -70,7 +81,10 @@ class VerletListSearch final : public ContactSearch {
   std::vector<double> radius_;  ///< radii at the last build
   double margin_ = -1.0;
   double period_ = 0.0;
-  std::uint64_t rebuilds_ = 0, calls_ = 0;
+  /// Bound on the largest displacement since the last build (m): the measured one after a check,
+  /// plus the callers' bounds since.
+  double moved_ = kUnknownMotion;
+  std::uint64_t rebuilds_ = 0, calls_ = 0, checks_ = 0;
 };
 
 }  // namespace drumlab

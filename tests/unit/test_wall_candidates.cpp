@@ -1,9 +1,10 @@
 // WallCandidates, the wall's Verlet list: checked against a full scan of every particle and
-// wall part (the oracle), through random moves below and above half the reach, re-ordering and
-// periodic ends.
+// wall part (the oracle), through random moves below and above the reach, motion bounds,
+// re-ordering and periodic ends.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <random>
 
 #include "engine/contact/wall_candidates.hpp"
@@ -77,7 +78,7 @@ TEST(WallCandidates, ListIsExactlyTheParticlesWithinReachAtABuild) {
   EXPECT_LT(near, p.size() / 2) << "the list should leave out the interior";
 }
 
-TEST(WallCandidates, EveryTouchingParticleIsListedWhileMovesStayBelowHalfTheReach) {
+TEST(WallCandidates, EveryTouchingParticleIsListedWhileMovesStayWithinTheReach) {
   std::mt19937 rng(11);
   const Drum drum(DrumConfig{0.2, 0.06, 1.0, 0.0, DrumEnds::caps});
   Particles p = random_particles(drum, 4000, rng);
@@ -85,21 +86,46 @@ TEST(WallCandidates, EveryTouchingParticleIsListedWhileMovesStayBelowHalfTheReac
   WallCandidates w;
   w.refresh(p, drum, kReach, history);
   const std::vector<Vec3> start = p.position;
-  // Many small moves that add up to just under reach / 2 from the build: no rebuild, and the
-  // oracle's touching particles are all candidates.
-  for (int round = 0; round < 5; ++round) {
-    move_all(p, 0.09 * kReach, rng);
+  // Many small moves that add up to just under the reach from the build: no rebuild, and the
+  // oracle's touching particles are all candidates (a particle's gap to the wall changes by no
+  // more than it moves).
+  for (int round = 0; round < 10; ++round) {
+    move_all(p, 0.099 * kReach, rng);
     ASSERT_FALSE(w.refresh(p, drum, kReach, history)) << "round " << round;
     for (const Index i : touching_wall(p, drum)) {
       EXPECT_TRUE(listed(w, i)) << "particle " << i << " touches the wall but is not listed";
     }
   }
-  // One particle beyond half the reach: rebuild.
-  p.position[17] = start[17] + Vec3(0.51 * kReach, 0.0, 0.0);
+  EXPECT_EQ(w.checks(), 10u);
+  // One particle beyond the reach: rebuild.
+  p.position[17] = start[17] + Vec3(1.01 * kReach, 0.0, 0.0);
   EXPECT_TRUE(w.refresh(p, drum, kReach, history));
   EXPECT_EQ(w.rebuilds(), 2u);
   // A different reach or particle count rebuilds too.
   EXPECT_TRUE(w.refresh(p, drum, 2.0 * kReach, history));
+}
+
+TEST(WallCandidates, AMotionBoundSkipsTheCheckWhileItProvesNoParticleCanTouch) {
+  std::mt19937 rng(13);
+  const Drum drum(DrumConfig{0.2, 0.06, 1.0, 0.0, DrumEnds::caps});
+  Particles p = random_particles(drum, 4000, rng);
+  WallHistory history(p.size());
+  WallCandidates w;
+  w.refresh(p, drum, kReach, history);
+  const double step = 0.099 * kReach;  // each round moves every particle by less than this
+  for (int round = 0; round < 10; ++round) {
+    move_all(p, step, rng);
+    ASSERT_FALSE(w.refresh(p, drum, kReach, history, step)) << "round " << round;
+    for (const Index i : touching_wall(p, drum)) EXPECT_TRUE(listed(w, i)) << "particle " << i;
+  }
+  EXPECT_EQ(w.checks(), 0u) << "10 bounds of 0.099 reach sum to less than the reach";
+  move_all(p, step, rng);
+  w.refresh(p, drum, kReach, history, step);
+  EXPECT_EQ(w.checks(), 1u) << "the bounds now exceed the reach: measure";
+  for (const Index i : touching_wall(p, drum)) EXPECT_TRUE(listed(w, i)) << "particle " << i;
+  // An unknown bound (infinite or NaN) always measures.
+  w.refresh(p, drum, kReach, history, std::numeric_limits<double>::quiet_NaN());
+  EXPECT_EQ(w.checks(), 2u);
 }
 
 TEST(WallCandidates, FollowsAReorderingWithoutARebuild) {
