@@ -129,6 +129,7 @@ void VerletListSearch::renumber(std::span<const Index> order, std::span<const In
   apply_order(radius_, order, scratch_radii_);
   listed_per_particle_.assign(n, 0);
   for (const IndexPair& p : list_) ++listed_per_particle_[p.i];
+  listed_only_ = false;  // the per-particle counters follow at the next call
 }
 
 bool VerletListSearch::refresh(const SearchInput& in, double moved) {
@@ -140,16 +141,26 @@ bool VerletListSearch::refresh(const SearchInput& in, double moved) {
   // pairs stay exact, and a non-finite position forces a rebuild (see needs_rebuild).
   const bool rebuilt = needs_rebuild(in);
   if (rebuilt) rebuild(in);
-  const std::size_t n = in.position.size();
-  reset_counters(n);
+  // Per particle, a call tests its listed pairs, plus the builder's work on a rebuild. Between
+  // rebuilds that does not change: the arrays are rewritten once, not on every call.
   if (rebuilt) {
     counters_ = builder_->counters();
-    std::copy(builder_->cells_visited_per_particle().begin(),
-              builder_->cells_visited_per_particle().end(), cells_per_particle_.begin());
-    std::copy(builder_->pairs_tested_per_particle().begin(),
-              builder_->pairs_tested_per_particle().end(), tests_per_particle_.begin());
+    const auto cells = builder_->cells_visited_per_particle();
+    const auto tests = builder_->pairs_tested_per_particle();
+    cells_per_particle_.assign(cells.begin(), cells.end());
+    tests_per_particle_.assign(tests.begin(), tests.end());
+    for (std::size_t i = 0; i < tests_per_particle_.size(); ++i) {
+      tests_per_particle_[i] += listed_per_particle_[i];
+    }
+    listed_only_ = false;
+  } else {
+    counters_ = SearchCounters{};
+    if (!listed_only_) {
+      cells_per_particle_.assign(in.position.size(), 0);
+      tests_per_particle_.assign(listed_per_particle_.begin(), listed_per_particle_.end());
+      listed_only_ = true;
+    }
   }
-  for (std::size_t i = 0; i < n; ++i) tests_per_particle_[i] += listed_per_particle_[i];
   counters_.pairs_tested += list_.size();
   counters_.pairs_found = 0;
   timings_ = {seconds_since(t0), 0.0};

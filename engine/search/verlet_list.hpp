@@ -84,6 +84,7 @@ class VerletListSearch final : public ContactSearch {
   /// Bound on the largest displacement since the last build (m): the measured one after a check,
   /// plus the callers' bounds since.
   double moved_ = kUnknownMotion;
+  bool listed_only_ = false;  ///< the per-particle counters hold the listed pairs alone
   std::uint64_t rebuilds_ = 0, calls_ = 0, checks_ = 0;
 };
 

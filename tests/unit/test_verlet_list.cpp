@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <numeric>
 #include <random>
 #include <span>
 
@@ -107,6 +108,54 @@ TEST(VerletList, AMotionBoundSkipsTheCheckAndNoContactIsLeftOut) {
   // that, and the list, rebuilt when the measured moves demand it, never misses a contact.
   EXPECT_LT(list->checks(), list->calls() - 12);
   EXPECT_GE(list->checks(), 1u);
+}
+
+TEST(VerletList, PerParticleCountersAddUpOnEveryCallAndFollowAReordering) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Vec3> x, v;
+  std::vector<double> r;
+  for (int i = 0; i < 800; ++i) {
+    x.emplace_back(0.2 * u(rng), 0.2 * u(rng), 0.05 * u(rng));
+    v.emplace_back(6e-4 * (u(rng) - 0.5), 6e-4 * (u(rng) - 0.5), 0.0);  // m per call
+    r.push_back(i % 2 == 0 ? 0.01 : 0.005);
+  }
+  auto verlet = make_search("verlet:m2");
+  auto* list = dynamic_cast<VerletListSearch*>(verlet.get());
+  std::vector<IndexPair> out;
+  std::uint64_t rebuilds = 0;
+  for (int call = 0; call < 30; ++call) {
+    if (call == 15) {  // reverse the numbering, as a re-ordering would
+      std::vector<Index> order(x.size()), new_index(x.size());
+      for (std::size_t k = 0; k < x.size(); ++k) order[k] = static_cast<Index>(x.size() - 1 - k);
+      for (std::size_t k = 0; k < x.size(); ++k) new_index[order[k]] = static_cast<Index>(k);
+      std::reverse(x.begin(), x.end());
+      std::reverse(v.begin(), v.end());
+      std::reverse(r.begin(), r.end());
+      list->renumber(order, new_index);
+    }
+    verlet->find_pairs({x, r, 0.0, std::nullopt, std::nullopt}, out);
+    const auto tests = verlet->pairs_tested_per_particle();
+    const auto cells = verlet->cells_visited_per_particle();
+    EXPECT_EQ(std::accumulate(tests.begin(), tests.end(), std::uint64_t{0}),
+              verlet->counters().pairs_tested)
+        << "call " << call;
+    EXPECT_EQ(std::accumulate(cells.begin(), cells.end(), std::uint64_t{0}),
+              verlet->counters().cells_visited)
+        << "call " << call;
+    if (list->rebuilds() == rebuilds) {  // no rebuild: each particle tested its listed pairs
+      std::vector<std::uint32_t> listed(x.size(), 0);
+      for (const IndexPair& p : list->list()) ++listed[p.i];
+      EXPECT_TRUE(std::ranges::equal(tests, listed)) << "call " << call;
+    }
+    rebuilds = list->rebuilds();
+    // Still from call 12 to 17: the re-ordering at call 15 is followed by calls without a rebuild.
+    if (call < 12 || call > 17) {
+      for (std::size_t i = 0; i < x.size(); ++i) x[i] += v[i];
+    }
+  }
+  EXPECT_GT(list->rebuilds(), 1u);
+  EXPECT_LT(list->rebuilds(), 25u);
 }
 
 TEST(VerletList, RebuildsWhenTheInputChanges) {
