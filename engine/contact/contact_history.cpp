@@ -10,9 +10,10 @@ void ContactList::clear() {
   row_start_.clear();
   col_.clear();
   history_.clear();
-  partner_start_.clear();
-  partner_k_.clear();
-  partners_current_ = false;
+  cross_receivers_.clear();
+  cross_start_.clear();
+  cross_k_.clear();
+  cross_block_rows_ = 0;
 }
 
 void ContactList::assign(std::span<const std::size_t> row_start, std::span<const Index> col,
@@ -36,7 +37,7 @@ void ContactList::assign(std::span<const std::size_t> row_start, std::span<const
   row_start_.assign(row_start.begin(), row_start.end());
   col_.assign(col.begin(), col.end());
   history_.assign(history.begin(), history.end());
-  partners_current_ = false;
+  cross_block_rows_ = 0;
 }
 
 void ContactList::renumber(std::span<const Index> new_index) {
@@ -91,7 +92,7 @@ void ContactList::renumber(std::span<const Index> new_index) {
       history_[q] = old_history_[by_pair_[q]];
     }
   }
-  partners_current_ = false;
+  cross_block_rows_ = 0;
 }
 
 void ContactList::update(std::span<const IndexPair> pairs, std::size_t n_particles) {
@@ -100,23 +101,40 @@ void ContactList::update(std::span<const IndexPair> pairs, std::size_t n_particl
   history_.swap(old_history_);
   build_rows(pairs, n_particles);
   transfer_history();
-  partners_current_ = false;
+  cross_block_rows_ = 0;
 }
 
-void ContactList::index_partners() {
-  if (partners_current_) return;
-  build_partners();
-  partners_current_ = true;
+void ContactList::index_cross_block(std::size_t block_rows) {
+  if (cross_block_rows_ == block_rows) return;
+  build_cross_block(block_rows);
+  cross_block_rows_ = block_rows;
 }
 
-void ContactList::build_partners() {
+void ContactList::build_cross_block(std::size_t block_rows) {
   const std::size_t n = rows();
-  partner_start_.assign(n + 1, 0);
-  for (const Index j : col_) ++partner_start_[j + 1];
-  for (std::size_t j = 0; j < n; ++j) partner_start_[j + 1] += partner_start_[j];
-  fill_.assign(partner_start_.begin(), partner_start_.end() - 1);
-  partner_k_.resize(col_.size());
-  for (std::size_t k = 0; k < col_.size(); ++k) partner_k_[fill_[col_[k]]++] = k;
+  // Count per partner, then the receivers in increasing order, then the contacts by k.
+  fill_.assign(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t block_end = (i / block_rows + 1) * block_rows;
+    for (std::size_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {
+      if (col_[k] >= block_end) ++fill_[col_[k]];
+    }
+  }
+  cross_receivers_.clear();
+  cross_start_.assign(1, 0);
+  for (std::size_t j = 0; j < n; ++j) {
+    if (fill_[j] == 0) continue;
+    cross_receivers_.push_back(static_cast<Index>(j));
+    cross_start_.push_back(cross_start_.back() + fill_[j]);
+    fill_[j] = cross_start_[cross_start_.size() - 2];  // next free place of receiver j
+  }
+  cross_k_.resize(cross_start_.back());
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t block_end = (i / block_rows + 1) * block_rows;
+    for (std::size_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {
+      if (col_[k] >= block_end) cross_k_[fill_[col_[k]]++] = k;
+    }
+  }
 }
 
 void ContactList::build_rows(std::span<const IndexPair> pairs, std::size_t n) {

@@ -35,13 +35,16 @@ class ContactList {
   /// Contacts of particle i are k in [row_start()[i], row_start()[i + 1]), partner col()[k] > i.
   std::span<const std::size_t> row_start() const { return row_start_; }
   std::span<const Index> col() const { return col_; }
-  /// Builds the partner index below if the list changed since it was last built (only the
-  /// multi-threaded force loop needs it, so one thread skips the work).
-  void index_partners();
-  /// Contacts in which particle j is the partner: k = partner_contacts()[q] for q in
-  /// [partner_start()[j], partner_start()[j + 1]), increasing k. Valid after index_partners().
-  std::span<const std::size_t> partner_start() const { return partner_start_; }
-  std::span<const std::size_t> partner_contacts() const { return partner_k_; }
+  /// Builds the cross-block index below if the list or `block_rows` changed since it was last
+  /// built. Rows are grouped in blocks of `block_rows` (particles i / block_rows); a contact is
+  /// "cross-block" if its partner j lies in another block than i (always a later one).
+  void index_cross_block(std::size_t block_rows);
+  /// The particles that are the partner of some cross-block contact, increasing; for the r-th,
+  /// its cross-block contacts are k = cross_contacts()[q] for q in [cross_start()[r],
+  /// cross_start()[r + 1]), increasing k. Valid after index_cross_block().
+  std::span<const Index> cross_receivers() const { return cross_receivers_; }
+  std::span<const std::size_t> cross_start() const { return cross_start_; }
+  std::span<const std::size_t> cross_contacts() const { return cross_k_; }
   std::span<Vec3> history() { return history_; }
   std::span<const Vec3> history() const { return history_; }
   /// History of pair (i, j), i < j, or nullptr if it is not a contact (tests, diagnostics).
@@ -50,7 +53,7 @@ class ContactList {
  private:
   void build_rows(std::span<const IndexPair> pairs, std::size_t n);
   void transfer_history();
-  void build_partners();
+  void build_cross_block(std::size_t block_rows);
 
   std::vector<std::size_t> row_start_;
   std::vector<Index> col_;
@@ -59,9 +62,10 @@ class ContactList {
   std::vector<Index> old_col_;
   std::vector<Vec3> old_history_;
   std::vector<std::size_t> fill_;  // scratch: next free slot per row
-  std::vector<std::size_t> partner_start_;
-  std::vector<std::size_t> partner_k_;
-  bool partners_current_ = false;      ///< partner_start_, partner_k_ match the list
+  std::vector<Index> cross_receivers_;
+  std::vector<std::size_t> cross_start_;
+  std::vector<std::size_t> cross_k_;
+  std::size_t cross_block_rows_ = 0;   ///< block size of the cross-block index; 0: out of date
   std::vector<IndexPair> renumbered_;  // scratch of renumber()
   std::vector<std::size_t> by_pair_;
 };

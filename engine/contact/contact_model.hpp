@@ -41,11 +41,17 @@ struct ContactForce {
 /// Tangential displacement of each particle against each wall part (cylinder, low cap, high cap).
 using WallHistory = std::vector<std::array<Vec3, kWallParts>>;
 
-/// Per-contact scratch of the pair loop (force on i, torques on i and j), reused every step.
-/// Scratch of the multi-threaded pair loop: the partner's share (force on i, torque on j) of each
-/// overlapping contact, packed per block of rows, and for each listed pair k the slot that holds
+/// Scratch of the pair loop, reused every step, for the contacts whose partner lies in another
+/// block of rows (see the pair loop). One thread: their partner shares summed per particle
+/// (cross_force, cross_torque). Several threads: the partner's share (force on i, torque on j) of
+/// each such overlapping contact, packed per block, and for each listed pair k the slot that holds
 /// it (the last slot, zeros, for a pair that does not overlap).
+/// The pair loop's fixed blocks of rows (particles i / kPairBlockRows): see contact_model.cpp.
+inline constexpr std::size_t kPairBlockRows = 512;
+
 struct PairForceBuffers {
+  std::vector<Vec3> cross_force;
+  std::vector<Vec3> cross_torque;
   std::vector<std::uint32_t> slot;
   std::vector<Vec3> force;
   std::vector<Vec3> torque_j;

@@ -88,24 +88,50 @@ TEST(SearchMethodsInADrum, SwitchingMethodMidRunChangesNothing) {
 namespace drumlab {
 namespace {
 
-TEST(Threads, ResultsAreIdenticalForOneAndTwoThreads) {
-  // Pair forces are summed per particle in a fixed order, so the thread count changes nothing.
-  SceneConfig scene = load_scene(std::string(DRUMLAB_SCENES_DIR) + "/teach_stencil.toml");
-  scene.search_method = "verlet:m2";
+// Runs `steps` steps with 1, 2 and 3 threads from the same start; the positions must agree to
+// the bit.
+// Returns the 1-thread run's overlapping contacts whose partner lies in another block of rows of
+// the pair loop.
+std::size_t expect_same_for_any_thread_count(const SceneConfig& scene, std::uint64_t steps) {
   const Particles start = random_fill(scene);
   std::vector<Vec3> reference;
+  std::size_t cross_block = 0;
   const int saved = omp_get_max_threads();
   for (int threads : {1, 2, 3}) {
     omp_set_num_threads(threads);
     Simulation sim(scene, start);
-    sim.advance(1500);
+    sim.advance(steps);
     if (reference.empty()) {
       reference = sim.particles().position;
+      std::vector<ContactForce> contacts;
+      sim.contact_forces(contacts);
+      for (const ContactForce& c : contacts) {
+        cross_block += c.i / kPairBlockRows != c.j / kPairBlockRows;
+      }
     } else {
       EXPECT_EQ(sim.particles().position, reference) << threads << " threads";
     }
   }
   omp_set_num_threads(saved);
+  return cross_block;
+}
+
+TEST(Threads, ResultsAreIdenticalForOneAndTwoThreads) {
+  // Pair forces are summed per particle in a fixed order, so the thread count changes nothing.
+  SceneConfig scene = load_scene(std::string(DRUMLAB_SCENES_DIR) + "/teach_stencil.toml");
+  scene.search_method = "verlet:m2";
+  expect_same_for_any_thread_count(scene, 1500);
+}
+
+TEST(Threads, ResultsAreIdenticalWithContactsAcrossRowBlocks) {
+  // 6000 particles: 12 blocks of 512 rows, so many contacts join two blocks (their partner's
+  // share goes through the cross-block buffers) and the blocks are shared out between threads.
+  SceneConfig scene = load_scene(std::string(DRUMLAB_SCENES_DIR) + "/drum_demo.toml");
+  scene.fill.count = 6000;
+  scene.fill.volume_fraction = 0.55;  // dense: contacts from the first steps
+  scene.search_method = "verlet:mlgrid";
+  scene.performance.sort_every = 50;
+  EXPECT_GT(expect_same_for_any_thread_count(scene, 1000), 200u);
 }
 
 }  // namespace
