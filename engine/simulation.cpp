@@ -78,6 +78,7 @@ struct Simulation::Impl {
   /// force evaluation, m; infinite when not known. Lets the Verlet and wall lists skip their
   /// per-particle displacement checks.
   double moved = std::numeric_limits<double>::infinity();
+  bool forces_cleared = false;  ///< by kick_drift(), for the force evaluation that follows
 };
 
 Simulation::Simulation(const SceneConfig& scene, Particles particles, SimulationOptions options)
@@ -268,7 +269,8 @@ void Simulation::compute_forces(double history_dt, bool count) {
                          fmt::format("contact search failed: {}", e.what()), dt_, rayleigh_time_);
   }
   const auto t1 = Clock::now();
-  particles_.clear_forces();
+  if (!impl_->forces_cleared) particles_.clear_forces();
+  impl_->forces_cleared = false;
   const double period = impl_->drum.periodic() ? impl_->drum.depth() : 0.0;
   const std::size_t touching = impl_->model.add_pair_forces(
       particles_, contacts, impl_->pair_buffers, period, dt_, history_dt);
@@ -307,15 +309,22 @@ void Simulation::kick(double h) {
   }
 }
 
-void Simulation::drift() {
+void Simulation::kick_drift(double h) {
+  // The half kick and the drift in one pass over the particles (each particle's update reads only
+  // its own data), which also clears the forces for the coming evaluation: three passes in one.
   Particles& p = particles_;
   const auto n = static_cast<std::int64_t>(p.size());
+  const bool rotation = impl_->model.uses_rotation();
   const bool periodic = impl_->drum.periodic();
   // The largest speed and coordinate, for the bound on this drift's displacements.
   double v2max = 0.0, xmax = 0.0;
   int non_finite = 0;
 #pragma omp parallel for schedule(static) reduction(max : v2max, xmax) reduction(| : non_finite)
   for (std::int64_t i = 0; i < n; ++i) {
+    p.velocity[i] += h * (p.inv_mass[i] * p.force[i] + gravity_);
+    if (rotation) p.omega[i] += (h * p.inv_inertia[i]) * p.torque[i];
+    p.force[i].setZero();
+    p.torque[i].setZero();
     const double v2 = p.velocity[i].squaredNorm();
     p.position[i] += dt_ * p.velocity[i];
     if (periodic) p.position[i].z() = impl_->drum.wrap_z(p.position[i].z());
@@ -323,6 +332,7 @@ void Simulation::drift() {
     v2max = std::max(v2max, v2);
     xmax = std::max(xmax, p.position[i].cwiseAbs().maxCoeff());
   }
+  impl_->forces_cleared = true;
   // |x_new - x_old| <= dt |v|, plus the round-off of the sum (a few ulps of the coordinates) and
   // of the periodic wrap (of the period).
   const double period = periodic ? impl_->drum.depth() : 0.0;
@@ -349,8 +359,7 @@ void Simulation::step() {
   const auto t0 = Clock::now();
   const std::uint64_t sort_every = scene_.performance.sort_every;
   if (sort_every > 0 && steps_ > 0 && steps_ % sort_every == 0) reorder_particles();
-  kick(0.5 * dt_);
-  drift();
+  kick_drift(0.5 * dt_);
   const auto t1 = Clock::now();
   compute_forces(dt_, true);
   const auto t2 = Clock::now();

@@ -109,7 +109,8 @@ class Simulation {
   /// Makes `search` the active method (and notes whether it is a Verlet list).
   void use_search(std::unique_ptr<ContactSearch> search);
   void kick(double h);
-  void drift();
+  /// kick(h), then positions advanced by dt (the forces are cleared on the way).
+  void kick_drift(double h);
 
   SceneConfig scene_;
   Particles particles_;

@@ -253,7 +253,7 @@ std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& 
   }
   contacts.index_cross_block(kBlockRows);
   std::size_t touching = 0;
-#pragma omp parallel for schedule(dynamic, 1) reduction(+ : touching)
+#pragma omp parallel for schedule(static) reduction(+ : touching)
   for (std::int64_t b = 0; b < blocks; ++b) {
     touching += block_rows<Normal, Tangential, Rolling>(
         law, p, contacts, buf, static_cast<std::size_t>(b), period, dt, history_dt);
