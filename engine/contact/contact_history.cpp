@@ -138,16 +138,33 @@ void ContactList::build_cross_block(std::size_t block_rows) {
 }
 
 void ContactList::build_rows(std::span<const IndexPair> pairs, std::size_t n) {
+  // Sorted input (a Verlet list): the row starts and partners in one parallel pass; pair k
+  // starts the rows after the previous pair's row up to its own.
+  const std::size_t m = pairs.size();
+  row_start_.resize(n + 1);
+  col_.resize(m);
+  int unsorted = 0;
+#pragma omp parallel for schedule(static) reduction(| : unsorted)
+  for (std::int64_t kk = 0; kk < static_cast<std::int64_t>(m); ++kk) {
+    const auto k = static_cast<std::size_t>(kk);
+    const IndexPair& p = pairs[k];
+    std::size_t first_row = 0;
+    if (k > 0) {
+      unsorted |= !(pairs[k - 1] < p);
+      first_row = static_cast<std::size_t>(pairs[k - 1].i) + 1;
+    }
+    if (unsorted == 0) {
+      for (std::size_t r = first_row; r <= p.i; ++r) row_start_[r] = k;
+    }
+    col_[k] = p.j;
+  }
+  if (unsorted == 0) {
+    for (std::size_t r = m == 0 ? 0 : pairs[m - 1].i + 1; r <= n; ++r) row_start_[r] = m;
+    return;
+  }
   row_start_.assign(n + 1, 0);
   for (const IndexPair& p : pairs) ++row_start_[p.i + 1];
   for (std::size_t i = 0; i < n; ++i) row_start_[i + 1] += row_start_[i];
-  if (std::is_sorted(pairs.begin(), pairs.end())) {  // e.g. from a Verlet list: copy
-    col_.resize(pairs.size());
-    const auto m = static_cast<std::int64_t>(pairs.size());
-#pragma omp parallel for schedule(static)
-    for (std::int64_t k = 0; k < m; ++k) col_[k] = pairs[k].j;
-    return;
-  }
   // Counting sort by i.
   fill_.assign(row_start_.begin(), row_start_.end() - 1);
   col_.resize(pairs.size());

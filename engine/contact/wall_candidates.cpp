@@ -33,15 +33,18 @@ bool WallCandidates::refresh(const Particles& p, const Drum& drum, double reach,
   moved_ += moved >= 0.0 ? moved : std::numeric_limits<double>::infinity();  // NaN: unknown
   if (!needs_rebuild(p, drum, reach)) return false;
   const std::size_t n = p.size();
+  keep_.resize(n);
+  const auto count = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < count; ++i) {
+    // Not `gap > reach`: a NaN gap keeps the particle, so the wall loop sees it.
+    keep_[i] = !(drum.gap(p.position[i], p.radius[i]) > reach);
+    if (keep_[i] == 0) history[i].fill(Vec3::Zero());
+  }
   list_.reserve(n);  // once: later builds never allocate
   list_.clear();
   for (std::size_t i = 0; i < n; ++i) {
-    // Not `gap > reach`: a NaN gap keeps the particle, so the wall loop sees it.
-    if (!(drum.gap(p.position[i], p.radius[i]) > reach)) {
-      list_.push_back(static_cast<Index>(i));
-    } else {
-      history[i].fill(Vec3::Zero());
-    }
+    if (keep_[i] != 0) list_.push_back(static_cast<Index>(i));
   }
   reference_.assign(p.position.begin(), p.position.end());
   reach_ = reach;

@@ -41,7 +41,8 @@ class WallCandidates {
   bool needs_rebuild(const Particles& p, const Drum& drum, double reach);
 
   std::vector<Index> list_;
-  std::vector<Vec3> reference_;  ///< positions at the last build
+  std::vector<std::uint8_t> keep_;  ///< scratch of a rebuild: particle i is a candidate
+  std::vector<Vec3> reference_;     ///< positions at the last build
   std::vector<Vec3> scratch_;
   double reach_ = 0.0;
   /// Bound on the largest displacement since the last build (m): the measured one after a check,

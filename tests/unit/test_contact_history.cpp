@@ -1,6 +1,7 @@
 // CSR contact list and the transfer of tangential history between steps.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "engine/contact/contact_history.hpp"
@@ -31,6 +32,19 @@ TEST(ContactList, BuildsRowsSortedByIAndJ) {
   EXPECT_EQ(c.find(0, 3), nullptr);
   EXPECT_EQ(c.find(7, 3), nullptr);
   EXPECT_EQ(c.find(20, 21), nullptr);
+  // The same pairs already sorted (as a Verlet list gives them; empty first, middle and last
+  // rows): the same rows.
+  std::vector<IndexPair> sorted = pairs;
+  std::sort(sorted.begin(), sorted.end());
+  ContactList d;
+  d.update(std::vector<IndexPair>{{2, 4}}, 8);  // a different list before
+  d.update(sorted, 8);
+  EXPECT_EQ(std::vector<std::size_t>(d.row_start().begin(), d.row_start().end()), rows);
+  EXPECT_EQ(std::vector<Index>(d.col().begin(), d.col().end()), cols);
+  const std::vector<IndexPair> late{{5, 6}, {5, 7}};  // rows 0-4 empty
+  d.update(late, 8);
+  EXPECT_EQ(std::vector<std::size_t>(d.row_start().begin(), d.row_start().end()),
+            (std::vector<std::size_t>{0, 0, 0, 0, 0, 0, 2, 2, 2}));
 }
 
 TEST(ContactList, HistoryFollowsPersistingContactsOnly) {
