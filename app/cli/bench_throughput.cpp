@@ -212,15 +212,19 @@ void run_bench_throughput(const ThroughputOptions& opt) {
     for (const std::uint64_t k : sorts) {
       const std::string label = sorts.size() > 1 ? fmt::format("{} sort {}", m, k) : m;
       labels.push_back(label);
-      double base_rate = 0.0;
-      for (const int t : threads) {
-        ThroughputRow row;
-        for (int rep = 0; rep < std::max(1, opt.repeats); ++rep) {
-          ThroughputRow run = measure(rolling, m, k, t, steps, m == "brute" ? 1 : opt.warmup);
-          if (rep == 0 || run.rate() > row.rate()) row = std::move(run);
+      // The thread counts take turns within each repeat, so that the speed-up compares runs
+      // made in the same minutes of a machine whose speed drifts.
+      std::vector<ThroughputRow> best(threads.size());
+      for (int rep = 0; rep < std::max(1, opt.repeats); ++rep) {
+        for (std::size_t q = 0; q < threads.size(); ++q) {
+          ThroughputRow run =
+              measure(rolling, m, k, threads[q], steps, m == "brute" ? 1 : opt.warmup);
+          if (rep == 0 || run.rate() > best[q].rate()) best[q] = std::move(run);
         }
+      }
+      const double base_rate = best.front().rate();
+      for (ThroughputRow& row : best) {
         row.label = label;
-        if (t == 1) base_rate = row.rate();
         row.speedup = base_rate > 0.0 ? row.rate() / base_rate : 0.0;
         print_row(row);
         std::fflush(stdout);  // rows as they come, also into a pipe or file
