@@ -19,9 +19,9 @@ VerletListSearch::VerletListSearch(std::unique_ptr<ContactSearch> builder, doubl
   }
   name_ =
       builder_->name() == "m5" ? std::string("verlet") : fmt::format("verlet:{}", builder_->name());
-  description_ =
-      fmt::format("Verlet list, skin {} R_min, rebuilt by {} when a particle moved > skin/2",
-                  skin_factor_, builder_->name());
+  description_ = fmt::format(
+      "Verlet list, skin {} R_min, rebuilt by {} when the two largest moves sum to > skin",
+      skin_factor_, builder_->name());
 }
 
 void VerletListSearch::filter(const SearchInput& in, std::vector<IndexPair>& out) {

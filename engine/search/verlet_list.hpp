@@ -1,11 +1,10 @@
 #pragma once
 // Verlet (neighbour) lists with a skin, built by any other method: pairs within margin + skin are
-// listed once, and every call only re-tests the listed pairs. The list is rebuilt when a particle
-// has moved more than half the skin since the last build (then no pair outside the list can have
-// come within the margin), or when the particle count, radii, margin or period changed.
-// Exactly: the list is kept while the two largest displacements sum to at most the skin (no pair
-// can then have closed the skin), which is never later than LAMMPS's "one particle moved more
-// than half the skin". A caller that knows a bound on the motion since its last call (the
+// listed once, and every call only re-tests the listed pairs. The list is rebuilt when the two
+// largest displacements since the last build sum to more than the skin (until then no pair
+// outside the list can have come within the margin; this is never later than LAMMPS's "one
+// particle moved more than half the skin"), or when the particle count, radii, margin or period
+// changed. A caller that knows a bound on the motion since its last call (the
 // simulation: time step x the fastest speed) passes it, and the per-particle check is skipped
 // while the summed bounds prove that no particle moved more than half the skin. Otherwise the
 // check runs on every call, so a contact can never be missed ("dangerous" builds: none).
