@@ -55,7 +55,16 @@ SearchChoice choose_search_method(const SceneConfig& scene, double dt,
   const double depth_ratio = scene.drum.depth / scene.drum.diameter;
   const bool shallow = depth_ratio < 0.5 && scene.drum.tilt == 0.0;
   choice.paper_rule = shallow ? "m2" : "m5";
-  SearchInput in{position, radius, 0.0, std::nullopt, std::nullopt};
+  // Verlet list: particles move at most ~2 omega R per second in a turning drum (the wall speed
+  // and the avalanche on top of the bed), so a rebuild is needed every skin / 2 / (v dt) steps.
+  const double rmin = *std::min_element(radius.begin(), radius.end());
+  const double speed = std::max(2.0 * std::abs(scene.drum.omega) * 0.5 * scene.drum.diameter,
+                                std::sqrt(9.81 * rmin));
+  const double skin_factor = scene.performance.verlet_skin;  // what the Verlet list will use
+  const double steps_between = dt > 0.0 ? 0.5 * skin_factor * rmin / (speed * dt) : 0.0;
+  const bool verlet = steps_between >= kMinStepsBetweenRebuilds;
+  // With a Verlet list the grid's work is building the list: pairs within the skin.
+  SearchInput in{position, radius, verlet ? skin_factor * rmin : 0.0, std::nullopt, std::nullopt};
   if (scene.drum.ends == DrumEnds::periodic) in.period_z = scene.drum.depth;
 
   for (const char* name : {"m1", "m2", "m3", "m4", "m5", "mlgrid"}) {
@@ -76,18 +85,11 @@ SearchChoice choose_search_method(const SceneConfig& scene, double dt,
                                      return a.measured_ns_per_particle < b.measured_ns_per_particle;
                                    })
                 : choice.candidates.begin();
-  // Verlet list: particles move at most ~2 omega R per second in a turning drum (the wall speed
-  // and the avalanche on top of the bed), so a rebuild is needed every skin / 2 / (v dt) steps.
-  const double rmin = *std::min_element(radius.begin(), radius.end());
-  const double speed = std::max(2.0 * std::abs(scene.drum.omega) * 0.5 * scene.drum.diameter,
-                                std::sqrt(9.81 * rmin));
-  const double skin_factor = scene.performance.verlet_skin;  // what the Verlet list will use
-  const double steps_between = dt > 0.0 ? 0.5 * skin_factor * rmin / (speed * dt) : 0.0;
-  const bool verlet = steps_between >= kMinStepsBetweenRebuilds;
   choice.method = verlet ? "verlet:" + best->method : best->method;
   choice.reason = fmt::format(
-      "depth/diameter = {:.2f} ({}), so the paper's rule picks {}. Counted on {} particles: ",
-      depth_ratio, shallow ? "shallow" : "deep or tilted", choice.paper_rule, position.size());
+      "depth/diameter = {:.2f} ({}), so the paper's rule picks {}. Counted on {} particles{}: ",
+      depth_ratio, shallow ? "shallow" : "deep or tilted", choice.paper_rule, position.size(),
+      verlet ? " with the Verlet skin as margin (the grid builds the list)" : "");
   for (const MethodEstimate& e : choice.candidates) {
     choice.reason +=
         fmt::format("{} {:.1f} cells + {:.1f} tests/particle{}; ", e.method, e.cells_per_particle,
@@ -96,7 +98,7 @@ SearchChoice choose_search_method(const SceneConfig& scene, double dt,
                         ? fmt::format(" ({:.0f} ns measured)", e.measured_ns_per_particle)
                         : std::string());
   }
-  choice.reason += fmt::format("fastest grid: {}. ", best->method);
+  choice.reason += fmt::format("fastest grid{}: {}. ", verlet ? " for the list" : "", best->method);
   choice.reason += dt > 0.0
                        ? fmt::format(
                              "Expected rebuild interval of a Verlet list (skin {} R_min, speed <= "

@@ -46,5 +46,27 @@ TEST(AutoSelect, VerletListOnlyWhenRebuildsAreRare) {
       << wide_choice.reason;
 }
 
+TEST(AutoSelect, GridsAreRankedOnTheVerletListTheyWouldBuild) {
+  // With a Verlet list, the grid's work is building the list: it is counted with the skin as the
+  // margin, so each grid tests more pairs than as a plain contact search.
+  const SceneConfig scene = load_scene(std::string(DRUMLAB_SCENES_DIR) + "/teach_stencil.toml");
+  const Particles p = random_fill(scene);
+  const SearchChoice list = choose_search_method(scene, 1e-5, p.position, p.radius, 0);
+  const SearchChoice plain = choose_search_method(scene, 1e-2, p.position, p.radius, 0);
+  ASSERT_TRUE(list.method.starts_with("verlet:"));
+  ASSERT_FALSE(plain.method.starts_with("verlet"));
+  const auto tests_of = [](const SearchChoice& c, const std::string& method) {
+    for (const MethodEstimate& e : c.candidates) {
+      if (e.method == method) return e.tests_per_particle;
+    }
+    return -1.0;
+  };
+  for (const char* method : {"m2", "m5", "mlgrid"}) {
+    EXPECT_GT(tests_of(list, method), tests_of(plain, method)) << method;
+  }
+  EXPECT_NE(list.reason.find("Verlet skin as margin"), std::string::npos) << list.reason;
+  EXPECT_EQ(plain.reason.find("Verlet skin as margin"), std::string::npos) << plain.reason;
+}
+
 }  // namespace
 }  // namespace drumlab
