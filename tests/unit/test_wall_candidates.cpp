@@ -46,6 +46,28 @@ bool listed(const WallCandidates& w, Index i) {
   return std::binary_search(w.list().begin(), w.list().end(), i);
 }
 
+// Every particle that touches the wall now is a candidate.
+void expect_touching_listed(const WallCandidates& w, const Particles& p, const Drum& drum) {
+  for (const Index i : touching_wall(p, drum)) {
+    EXPECT_TRUE(listed(w, i)) << "particle " << i << " touches the wall but is not listed";
+  }
+}
+
+// A drum, particles in it and their wall list, built.
+struct Bed {
+  Bed(std::uint32_t seed, DrumEnds ends, std::size_t n)
+      : rng(seed), drum(DrumConfig{0.2, 0.06, 1.0, 0.0, ends}) {
+    p = random_particles(drum, n, rng);
+    history.resize(p.size());
+    w.refresh(p, drum, kReach, history);
+  }
+  std::mt19937 rng;
+  Drum drum;
+  Particles p;
+  WallHistory history;
+  WallCandidates w;
+};
+
 void move_all(Particles& p, double step, std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (Vec3& x : p.position) {
@@ -79,12 +101,8 @@ TEST(WallCandidates, ListIsExactlyTheParticlesWithinReachAtABuild) {
 }
 
 TEST(WallCandidates, EveryTouchingParticleIsListedWhileMovesStayWithinTheReach) {
-  std::mt19937 rng(11);
-  const Drum drum(DrumConfig{0.2, 0.06, 1.0, 0.0, DrumEnds::caps});
-  Particles p = random_particles(drum, 4000, rng);
-  WallHistory history(p.size());
-  WallCandidates w;
-  w.refresh(p, drum, kReach, history);
+  Bed bed(11, DrumEnds::caps, 4000);
+  auto& [rng, drum, p, history, w] = bed;
   const std::vector<Vec3> start = p.position;
   // Many small moves that add up to just under the reach from the build: no rebuild, and the
   // oracle's touching particles are all candidates (a particle's gap to the wall changes by no
@@ -92,9 +110,7 @@ TEST(WallCandidates, EveryTouchingParticleIsListedWhileMovesStayWithinTheReach) 
   for (int round = 0; round < 10; ++round) {
     move_all(p, 0.099 * kReach, rng);
     ASSERT_FALSE(w.refresh(p, drum, kReach, history)) << "round " << round;
-    for (const Index i : touching_wall(p, drum)) {
-      EXPECT_TRUE(listed(w, i)) << "particle " << i << " touches the wall but is not listed";
-    }
+    expect_touching_listed(w, p, drum);
   }
   EXPECT_EQ(w.checks(), 10u);
   // One particle beyond the reach: rebuild.
@@ -106,23 +122,19 @@ TEST(WallCandidates, EveryTouchingParticleIsListedWhileMovesStayWithinTheReach) 
 }
 
 TEST(WallCandidates, AMotionBoundSkipsTheCheckWhileItProvesNoParticleCanTouch) {
-  std::mt19937 rng(13);
-  const Drum drum(DrumConfig{0.2, 0.06, 1.0, 0.0, DrumEnds::caps});
-  Particles p = random_particles(drum, 4000, rng);
-  WallHistory history(p.size());
-  WallCandidates w;
-  w.refresh(p, drum, kReach, history);
+  Bed bed(13, DrumEnds::caps, 4000);
+  auto& [rng, drum, p, history, w] = bed;
   const double step = 0.099 * kReach;  // each round moves every particle by less than this
   for (int round = 0; round < 10; ++round) {
     move_all(p, step, rng);
     ASSERT_FALSE(w.refresh(p, drum, kReach, history, step)) << "round " << round;
-    for (const Index i : touching_wall(p, drum)) EXPECT_TRUE(listed(w, i)) << "particle " << i;
+    expect_touching_listed(w, p, drum);
   }
   EXPECT_EQ(w.checks(), 0u) << "10 bounds of 0.099 reach sum to less than the reach";
   move_all(p, step, rng);
   w.refresh(p, drum, kReach, history, step);
   EXPECT_EQ(w.checks(), 1u) << "the bounds now exceed the reach: measure";
-  for (const Index i : touching_wall(p, drum)) EXPECT_TRUE(listed(w, i)) << "particle " << i;
+  expect_touching_listed(w, p, drum);
   // An unknown bound (infinite or NaN) always measures.
   w.refresh(p, drum, kReach, history, std::numeric_limits<double>::quiet_NaN());
   EXPECT_EQ(w.checks(), 2u);
