@@ -1,4 +1,4 @@
-#include "app/cli/bench_accuracy.hpp"
+#include "app/bench/bench_accuracy.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "app/cli/bench_accuracy_cases.hpp"
+#include "app/bench/bench_accuracy_cases.hpp"
 #include "app/cli/scene_setup.hpp"
 #include "engine/analysis/flow_regime.hpp"
 #include "engine/io/atomic_file.hpp"
@@ -16,7 +16,11 @@
 #include "render/xy_chart.hpp"
 #endif
 
-namespace drumlab::cli {
+namespace drumlab::bench {
+
+using cli::froude_number;
+using cli::regime_for_froude;
+using cli::shipped_scene;
 
 namespace {
 
@@ -383,4 +387,4 @@ void run_bench_accuracy(AccuracyOptions opt) {
               ref.drum.failure.empty() ? drum_noise_floor(ref.drum, drum_radius) : kNaN);
 }
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

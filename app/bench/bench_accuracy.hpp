@@ -15,9 +15,9 @@
 // time, log-log, one curve per knob, the Pareto front over all settings marked).
 #include <string>
 
-#include "app/cli/bench_state.hpp"
+#include "app/bench/bench_state.hpp"
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 struct AccuracyOptions {
   std::string scene;  ///< default: scenes/accuracy_drum.toml (--quick: scenes/accuracy_quick.toml)
@@ -32,4 +32,4 @@ void run_bench_accuracy(AccuracyOptions opt);
 /// Brute force is swept only on scenes with at most this many particles (O(N^2) per step).
 inline constexpr std::size_t kAccuracyBruteMaxParticles = 1000;
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

@@ -1,4 +1,4 @@
-#include "app/cli/bench_regimes.hpp"
+#include "app/bench/bench_regimes.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -17,7 +17,10 @@
 #include "render/xy_chart.hpp"
 #endif
 
-namespace drumlab::cli {
+namespace drumlab::bench {
+
+using cli::froude_number;
+using cli::regime_for_froude;
 
 namespace {
 
@@ -283,4 +286,4 @@ void run_bench_regimes(const RegimesBenchOptions& opt) {
              std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count());
 }
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

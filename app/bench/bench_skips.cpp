@@ -1,4 +1,4 @@
-#include "app/cli/bench_skips.hpp"
+#include "app/bench/bench_skips.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -20,7 +20,11 @@
 #include "render/bench_chart.hpp"
 #endif
 
-namespace drumlab::cli {
+namespace drumlab::bench {
+
+using cli::FrameObserver;
+using cli::make_output_observers;
+using cli::RunOptions;
 
 namespace {
 
@@ -305,4 +309,4 @@ void run_bench_skips(const SkipsBenchOptions& opt) {
   write_chart(out / fmt::format("skips_{}.png", name), name, cases);
 }
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

@@ -1,4 +1,4 @@
-#include "app/cli/bench_state.hpp"
+#include "app/bench/bench_state.hpp"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -22,7 +22,9 @@
 #include "engine/io/checkpoint.hpp"
 #include "engine/simulation.hpp"
 
-namespace drumlab::cli {
+namespace drumlab::bench {
+
+using cli::load_dynamic_scene;
 
 namespace {
 
@@ -121,4 +123,4 @@ void set_threads(int threads) {
 #endif
 }
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

@@ -9,7 +9,7 @@
 #include "engine/scene/scene_config.hpp"
 #include "engine/simulation_state.hpp"
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 struct RollingPlan {
   double settle_time = -1.0;      ///< s with the drum at rest; < 0: the scene's fill.settle_time
@@ -42,4 +42,4 @@ void set_threads(int threads);
 /// Creates `dir` (and parents) or throws InputError naming it.
 void make_output_dir(const std::filesystem::path& dir);
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

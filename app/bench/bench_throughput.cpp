@@ -1,4 +1,4 @@
-#include "app/cli/bench_throughput.hpp"
+#include "app/bench/bench_throughput.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -17,7 +17,10 @@
 #include "render/bench_chart.hpp"
 #endif
 
-namespace drumlab::cli {
+namespace drumlab::bench {
+
+using cli::PhaseMeter;
+using cli::PhaseStats;
 
 namespace {
 
@@ -253,4 +256,4 @@ void run_bench_throughput(const ThroughputOptions& opt) {
   write_chart(out / fmt::format("throughput_{}.png", name), name, labels, threads, rows);
 }
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

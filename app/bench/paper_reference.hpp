@@ -3,7 +3,7 @@
 // printed beside drumlab's counts. -1 marks an empty cell of the paper's table.
 #include <array>
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 struct PaperColumn {
   double cell_side;  ///< m
@@ -37,4 +37,4 @@ inline constexpr std::array<PaperTable, 2> kPaperTables{{
        {0.015, 1973333, 1.31, {65, 65, 65}, {85, 85, 85}, 4137}}}},
 }};
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

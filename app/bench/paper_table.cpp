@@ -1,5 +1,7 @@
-// drumlab paper-table --table 1|2 [--csv FILE]
-// The paper's operation-count estimates beside what drumlab counts on the paper's packing.
+// `drumlab paper-table`: the paper's operation-count estimates beside what drumlab counts on the
+// paper's packing.
+#include "app/bench/paper_table.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <sstream>
@@ -7,13 +9,12 @@
 
 #include <fmt/format.h>
 
-#include "app/cli/commands.hpp"
-#include "app/cli/paper_reference.hpp"
+#include "app/bench/paper_reference.hpp"
 #include "engine/fill/paper_packing.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/search/contact_search.hpp"
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 namespace {
 
@@ -68,6 +69,8 @@ std::string number(double v) {
     return fmt::format("{}", static_cast<long long>(v));
   return fmt::format("{:.4g}", v);
 }
+
+}  // namespace
 
 void run_paper_table(int table, const std::string& csv_path) {
   const PaperTable& ref = kPaperTables.at(static_cast<std::size_t>(table - 1));
@@ -176,19 +179,4 @@ void run_paper_table(int table, const std::string& csv_path) {
   if (!identical) throw std::runtime_error("the five methods disagree on the contact set");
 }
 
-}  // namespace
-
-void add_paper_table_command(CLI::App& app) {
-  auto table = std::make_shared<int>(1);
-  auto csv = std::make_shared<std::string>();
-  CLI::App* cmd = app.add_subcommand(
-      "paper-table",
-      "The paper's operation-count estimates beside drumlab's counts on its packing");
-  cmd->add_option("--table", *table, "1: depth 0.15 m (193k particles), 2: depth 2 m (2.6M)")
-      ->check(CLI::IsMember({1, 2}))
-      ->capture_default_str();
-  cmd->add_option("--csv", *csv, "also write the table as CSV (long format)");
-  cmd->callback([table, csv] { run_paper_table(*table, *csv); });
-}
-
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

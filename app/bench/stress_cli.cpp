@@ -7,15 +7,15 @@
 
 #include <fmt/format.h>
 
-#include "app/cli/stress_process.hpp"
-#include "app/cli/stress_scene.hpp"
-#include "app/cli/stress_suite.hpp"
+#include "app/bench/stress_process.hpp"
+#include "app/bench/stress_scene.hpp"
+#include "app/bench/stress_suite.hpp"
 #include "engine/drum.hpp"
 #include "engine/io/checkpoint.hpp"
 #include "engine/io/h5_file.hpp"
 #include "engine/io/h5_series.hpp"
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 namespace {
 
@@ -281,4 +281,4 @@ std::vector<StressCase> cli_stress_cases(const StressContext& ctx) {
   return cases;
 }
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

@@ -7,12 +7,12 @@
 
 #include <fmt/format.h>
 
-#include "app/cli/stress_scene.hpp"
-#include "app/cli/stress_suite.hpp"
+#include "app/bench/stress_scene.hpp"
+#include "app/bench/stress_suite.hpp"
 #include "engine/fill/file_fill.hpp"
 #include "engine/simulation.hpp"
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 namespace {
 
@@ -268,4 +268,4 @@ std::vector<StressCase> physics_stress_cases(const StressContext& ctx) {
   return cases;
 }
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 struct StressOutcome {
   std::string observed;
@@ -32,4 +32,4 @@ std::vector<StressCase> physics_stress_cases(const StressContext& ctx);
 /// executable itself, asserting exit codes, one-line messages and the files left behind.
 std::vector<StressCase> cli_stress_cases(const StressContext& ctx);
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

@@ -12,8 +12,8 @@
 #include <omp.h>
 #endif
 
+#include "app/bench/stress_suite.hpp"
 #include "app/cli/commands.hpp"
-#include "app/cli/stress_suite.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/types.hpp"
 
@@ -25,7 +25,7 @@ struct StressRow {
   std::string name;
   std::string setup;
   std::string expected;
-  StressOutcome outcome;
+  bench::StressOutcome outcome;
   double seconds = 0.0;
 };
 
@@ -65,15 +65,15 @@ void run_stress(const StressArgs& a) {
   // machine slow a run down many times.
   omp_set_num_threads(a.threads);
 #endif
-  StressContext ctx;
+  bench::StressContext ctx;
   ctx.work = std::filesystem::absolute(out / "work");
   ctx.quick = a.quick;
-  std::vector<StressCase> cases = physics_stress_cases(ctx);
-  for (StressCase& c : cli_stress_cases(ctx)) cases.push_back(std::move(c));
+  std::vector<bench::StressCase> cases = bench::physics_stress_cases(ctx);
+  for (bench::StressCase& c : bench::cli_stress_cases(ctx)) cases.push_back(std::move(c));
   fmt::print("drumlab stress ({} suite)\n", a.quick ? "quick" : "full");
   fmt::print("| case | used | expected | observed | result | s |\n|---|---|---|---|---|---|\n");
   std::vector<StressRow> rows;
-  for (StressCase& c : cases) {
+  for (bench::StressCase& c : cases) {
     if (!a.only.empty() && c.name.find(a.only) == std::string::npos) continue;
     const auto t0 = std::chrono::steady_clock::now();
     StressRow row{c.name, c.setup, c.expected, c.run(), 0.0};
