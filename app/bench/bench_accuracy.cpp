@@ -12,6 +12,7 @@
 #include "engine/analysis/flow_regime.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/simulation.hpp"
+#include "engine/threads.hpp"
 #ifdef DRUMLAB_WITH_RENDER
 #include "render/xy_chart.hpp"
 #endif
@@ -297,7 +298,7 @@ void run_bench_accuracy(AccuracyOptions opt) {
   }
   Protocol pr;
   if (opt.quick) pr = Protocol{0.05, 0.1, 5, 0.1};
-  set_threads(1);  // run times comparable between settings and with bench throughput
+  set_thread_count(1);  // run times comparable between settings and with bench throughput
   const std::filesystem::path out = opt.out;
   make_output_dir(out);
   const RollingState rolling = rolling_state(opt.scene, opt.plan);

@@ -13,6 +13,7 @@
 #include "engine/analysis/flow_regime.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/simulation.hpp"
+#include "engine/threads.hpp"
 #ifdef DRUMLAB_WITH_RENDER
 #include "render/xy_chart.hpp"
 #endif
@@ -232,7 +233,7 @@ void run_bench_regimes(const RegimesBenchOptions& opt) {
   }
   const std::filesystem::path out = opt.out;
   make_output_dir(out);
-  set_threads(1);  // small drums: one thread; 2 threads on a busy 2-core VM crawl
+  set_thread_count(1);  // small drums: one thread; 2 threads on a busy 2-core VM crawl
   const auto t_start = std::chrono::steady_clock::now();
   RollingPlan plan = opt.plan;
   plan.turn_revolutions = 0.0;  // settled at rest; each Froude number turns it from there

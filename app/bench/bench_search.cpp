@@ -22,9 +22,6 @@
 
 namespace drumlab::bench {
 
-using cli::PhaseMeter;
-using cli::PhaseStats;
-
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();

@@ -16,13 +16,13 @@
 #include "engine/io/atomic_file.hpp"
 #include "engine/scene/scene_features.hpp"
 #include "engine/simulation.hpp"
+#include "engine/threads.hpp"
 #ifdef DRUMLAB_WITH_RENDER
 #include "render/bench_chart.hpp"
 #endif
 
 namespace drumlab::bench {
 
-using cli::FrameObserver;
 using cli::make_output_observers;
 using cli::RunOptions;
 
@@ -252,7 +252,7 @@ void run_bench_skips(const SkipsBenchOptions& opt) {
   }
   const std::filesystem::path out = opt.out;
   make_output_dir(out);
-  set_threads(1);  // also for preparing the state: 2 threads on a busy 2-core VM crawl
+  set_thread_count(1);  // also for preparing the state: 2 threads on a busy 2-core VM crawl
   const RollingState rolling = rolling_state(opt.scene, opt.plan);
   const std::string& name = rolling.scene.name;
   const std::string method = rolling.state.search_method;

@@ -13,14 +13,12 @@
 #include "engine/io/atomic_file.hpp"
 #include "engine/search/verlet_list.hpp"
 #include "engine/simulation.hpp"
+#include "engine/threads.hpp"
 #ifdef DRUMLAB_WITH_RENDER
 #include "render/bench_chart.hpp"
 #endif
 
 namespace drumlab::bench {
-
-using cli::PhaseMeter;
-using cli::PhaseStats;
 
 namespace {
 
@@ -71,7 +69,10 @@ std::uint64_t verlet_rebuilds(const Simulation& sim) {
 ThroughputRow measure(const RollingState& rolling, const std::string& method,
                       std::uint64_t sort_every, int threads, std::uint64_t steps,
                       std::uint64_t warmup) {
-  set_threads(threads);
+  set_thread_count(threads);
+  if (threads > max_threads()) {
+    fmt::print("note: built without OpenMP: {} threads asked, 1 runs\n", threads);
+  }
   ThroughputRow row;
   row.method = method;
   row.sort_every = sort_every;

@@ -9,7 +9,7 @@
 
 #include "app/bench/stress_scene.hpp"
 #include "app/bench/stress_suite.hpp"
-#include "engine/fill/file_fill.hpp"
+#include "engine/session/run_session.hpp"
 #include "engine/simulation.hpp"
 
 namespace drumlab::bench {
@@ -42,13 +42,16 @@ struct FlowPlan {
   std::uint64_t min_particle_steps = 0;  ///< lengthen the turning phase to reach this
 };
 
-/// Runs `scene` from `particles` and checks every `diagnostics_every` steps: finite, nobody
+/// Runs `scene` from its fill and checks every `diagnostics_every` steps: finite, nobody
 /// outside the drum, count and ids conserved, kinetic + rotational energy below a bound
 /// 2 (E0 + 0.7 M ((omega R)^2 + 2 g D)): the initial mechanical energy plus, per unit mass, a
 /// particle moving with the wall after falling the whole diameter (rolling adds 2/5).
-StressOutcome run_flow(const SceneConfig& scene, Particles particles, const FlowPlan& plan) {
+StressOutcome run_flow(const SceneConfig& scene, const FlowPlan& plan) {
   try {
-    Simulation sim(scene, std::move(particles));
+    SessionOptions options;
+    options.settle_time = plan.settle_time;
+    RunSession session(scene, options);  // the scene's fill, random or from a file
+    const Simulation& sim = session.simulation();
     const std::size_t n0 = sim.particles().size();
     const Diagnostics d0 = sim.diagnostics();
     const double r_drum = 0.5 * scene.drum.diameter;
@@ -57,22 +60,19 @@ StressOutcome run_flow(const SceneConfig& scene, Particles particles, const Flow
         2.0 * (mechanical_energy(d0) +
                0.7 * total_mass(sim.particles()) *
                    (v_wall * v_wall + 2.0 * scene.gravity.norm() * scene.drum.diameter));
-    const auto settle = static_cast<std::uint64_t>(std::ceil(plan.settle_time / sim.dt()));
+    const std::uint64_t settle = session.settle_steps();
     auto turn = static_cast<std::uint64_t>(std::ceil(plan.turn_time / sim.dt()));
     if (plan.min_particle_steps > 0) {
       const std::uint64_t total = (plan.min_particle_steps + n0 - 1) / n0;
       turn = std::max(turn, total > settle ? total - settle : 0);
     }
-    const std::uint64_t chunk = std::max<std::uint64_t>(1, scene.output.diagnostics_every);
     double ke_max = 0.0;
     double ke_turn_max = 0.0;  // turning phase only (the settling fall often dominates ke_max)
     double overlap_max = 0.0;
     std::string problem;
-    const auto run_phase = [&](std::uint64_t steps, bool turning) {
-      for (std::uint64_t done = 0; done < steps && problem.empty();) {
-        const std::uint64_t k = std::min(chunk, steps - done);
-        sim.advance(k);
-        done += k;
+    // Checked after every chunk of output.diagnostics_every steps; a problem stops the run.
+    const auto check = [&](bool turning) {
+      return [&, turning](std::uint64_t, std::uint64_t) {
         const Diagnostics d = sim.diagnostics();
         ke_max = std::max(ke_max, d.kinetic_energy + d.rotational_energy);
         if (turning) ke_turn_max = std::max(ke_turn_max, d.kinetic_energy + d.rotational_energy);
@@ -81,12 +81,11 @@ StressOutcome run_flow(const SceneConfig& scene, Particles particles, const Flow
         if (d.outside_drum > 0) problem = fmt::format("{} outside the drum", d.outside_drum);
         if (sim.particles().size() != n0) problem = "particle count changed";
         if (!(ke_max <= bound)) problem = fmt::format("energy {:.3g} J above bound", ke_max);
-      }
+        return problem.empty();
+      };
     };
-    sim.set_drum_omega(0.0);
-    run_phase(settle, false);
-    sim.set_drum_omega(scene.drum.omega);
-    run_phase(turn, true);
+    session.settle(check(false));
+    if (problem.empty()) session.advance(turn, check(true));
     if (problem.empty() && !ids_intact(sim.particles())) problem = "particle ids lost";
     // Mean particle speed against the wall speed at the end: ~1 when the bed turns with the drum.
     double mean_speed = 0.0;
@@ -128,7 +127,7 @@ StressCase flow_case(const StressContext& ctx, std::string name, const StressSce
                                 : std::move(expected);
   c.run = [ctx, name, s, plan] {
     const SceneConfig scene = write_and_load(ctx, name, s);
-    return run_flow(scene, initial_fill(scene), plan);
+    return run_flow(scene, plan);
   };
   c.name = std::move(name);
   return c;
@@ -153,7 +152,8 @@ StressCase gentle_release_case(const StressContext& ctx, bool quick) {
     write_text(ctx.work / s.fill_file, lattice_csv(s, 0.004, 0.08, max_count));
     try {
       const SceneConfig scene = write_and_load(ctx, "overlap_release", s);
-      Simulation sim(scene, initial_fill(scene));
+      RunSession session(scene, SessionOptions{});
+      Simulation& sim = session.simulation();
       const double e0 = mechanical_energy(sim.diagnostics());
       const double m_min =
           *std::min_element(sim.particles().mass.begin(), sim.particles().mass.end());
@@ -162,7 +162,7 @@ StressCase gentle_release_case(const StressContext& ctx, bool quick) {
       double e_max = 0.0;
       double v_max = 0.0;
       for (std::uint64_t done = 0; done < steps; done += 10) {
-        sim.advance(10);
+        session.advance(10);
         e_max = std::max(e_max, mechanical_energy(sim.diagnostics()));
         for (const Vec3& v : sim.particles().velocity) v_max = std::max(v_max, v.norm());
       }

@@ -8,13 +8,11 @@
 #include <filesystem>
 
 #include <fmt/format.h>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include "app/bench/stress_suite.hpp"
 #include "app/cli/commands.hpp"
 #include "engine/io/atomic_file.hpp"
+#include "engine/threads.hpp"
 #include "engine/types.hpp"
 
 namespace drumlab::cli {
@@ -60,11 +58,9 @@ void run_stress(const StressArgs& a) {
   if (ec || !std::filesystem::is_directory(out / "work")) {
     throw InputError(fmt::format("--out {}: cannot create the folder ({})", a.out, ec.message()));
   }
-#ifdef _OPENMP
   // One thread by default: the cases are small, and OpenMP threads that spin-wait on a loaded
   // machine slow a run down many times.
-  omp_set_num_threads(a.threads);
-#endif
+  set_thread_count(a.threads);
   bench::StressContext ctx;
   ctx.work = std::filesystem::absolute(out / "work");
   ctx.quick = a.quick;
