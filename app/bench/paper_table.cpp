@@ -70,30 +70,27 @@ std::string number(double v) {
   return fmt::format("{:.4g}", v);
 }
 
-}  // namespace
+/// Rows of (quantity, paper value per method, drumlab value per method).
+struct Row {
+  std::string quantity;
+  std::array<double, 5> paper;
+  std::array<double, 5> ours;
+};
 
-void run_paper_table(int table, const std::string& csv_path) {
-  const PaperTable& ref = kPaperTables.at(static_cast<std::size_t>(table - 1));
-  const Vec3 box_size(1.85, 1.80, ref.depth);
-  const Particles p = paper_packing(box_size, 2500.0);
-  const Box box{Vec3::Zero(), box_size};
-  std::array<std::size_t, 3> count{};
-  for (auto c : p.size_class) ++count[c];
-
+/// m1..m5 counted on the packing (progress on stderr).
+std::vector<MethodCount> count_methods(const Particles& p, const Box& box) {
   std::vector<MethodCount> counts;
   for (int m = 1; m <= 5; ++m) {
     fmt::print(stderr, "counting m{} on {} particles...\n", m, p.size());
     counts.push_back(count_method(fmt::format("m{}", m), p, box));
   }
-  bool identical = true;
-  for (const auto& m : counts) identical = identical && m.pairs == counts.front().pairs;
+  return counts;
+}
 
-  // Rows of (quantity, paper value per method, drumlab value per method).
-  struct Row {
-    std::string quantity;
-    std::array<double, 5> paper;
-    std::array<double, 5> ours;
-  };
+std::vector<Row> table_rows(const PaperTable& ref, const std::vector<MethodCount>& counts,
+                            const Particles& p) {
+  std::array<std::size_t, 3> count{};
+  for (auto c : p.size_class) ++count[c];
   std::vector<Row> rows;
   auto add = [&](std::string q, auto paper_of, auto ours_of) {
     Row r{std::move(q), {}, {}};
@@ -149,7 +146,10 @@ void run_paper_table(int table, const std::string& csv_path) {
       });
   add(
       "search time (s)", [](auto&, int) { return -1.0; }, [](auto& m) { return m.seconds; });
+  return rows;
+}
 
+void print_table(int table, const PaperTable& ref, const std::vector<Row>& rows) {
   fmt::print("Paper Table {} (depth H = {} m): paper's estimate | drumlab's count on the packing\n",
              table, ref.depth);
   fmt::print("{:<30}", "quantity");
@@ -161,19 +161,38 @@ void run_paper_table(int table, const std::string& csv_path) {
       fmt::print("{:>22}", fmt::format("{} | {}", number(r.paper[m]), number(r.ours[m])));
     fmt::print("\n");
   }
+}
+
+/// The table in long format: one line per quantity and method.
+void write_table_csv(const std::string& csv_path, int table, const std::vector<Row>& rows) {
+  write_file_atomically(csv_path, [&](std::ostream& os) {
+    os << "table,quantity,method,paper,drumlab\n";
+    for (const Row& r : rows) {
+      for (int m = 0; m < 5; ++m) {
+        os << table << ',' << r.quantity << ",m" << (m + 1) << ','
+           << (r.paper[m] < 0 ? std::string() : fmt::format("{}", r.paper[m])) << ','
+           << (r.ours[m] < 0 ? std::string() : fmt::format("{}", r.ours[m])) << '\n';
+      }
+    }
+  });
+}
+
+}  // namespace
+
+void run_paper_table(int table, const std::string& csv_path) {
+  const PaperTable& ref = kPaperTables.at(static_cast<std::size_t>(table - 1));
+  const Vec3 box_size(1.85, 1.80, ref.depth);
+  const Particles p = paper_packing(box_size, 2500.0);
+  const Box box{Vec3::Zero(), box_size};
+  const std::vector<MethodCount> counts = count_methods(p, box);
+  bool identical = true;
+  for (const auto& m : counts) identical = identical && m.pairs == counts.front().pairs;
+  const std::vector<Row> rows = table_rows(ref, counts, p);
+  print_table(table, ref, rows);
   fmt::print("contact sets of m1..m5 identical: {} ({} contacts)\n", identical ? "yes" : "NO",
              counts.front().contacts);
   if (!csv_path.empty()) {
-    write_file_atomically(csv_path, [&](std::ostream& os) {
-      os << "table,quantity,method,paper,drumlab\n";
-      for (const Row& r : rows) {
-        for (int m = 0; m < 5; ++m) {
-          os << table << ',' << r.quantity << ",m" << (m + 1) << ','
-             << (r.paper[m] < 0 ? std::string() : fmt::format("{}", r.paper[m])) << ','
-             << (r.ours[m] < 0 ? std::string() : fmt::format("{}", r.ours[m])) << '\n';
-        }
-      }
-    });
+    write_table_csv(csv_path, table, rows);
     fmt::print("wrote {}\n", csv_path);
   }
   if (!identical) throw std::runtime_error("the five methods disagree on the contact set");

@@ -180,17 +180,20 @@ StressCase gentle_release_case(const StressContext& ctx, bool quick) {
   return c;
 }
 
-}  // namespace
-
-std::vector<StressCase> physics_stress_cases(const StressContext& ctx) {
-  const bool quick = ctx.quick;
-  const FlowPlan plan{quick ? 0.08 : 0.2, quick ? 0.12 : 1.0, 0};
-  std::vector<StressCase> cases;
+/// Drum flows over the regime map: Fr = 1e-4 ... 3.
+void add_regime_map_cases(const StressContext& ctx, const FlowPlan& plan,
+                          std::vector<StressCase>& cases) {
   for (const double fr : {1e-4, 1e-2, 0.3, 1.0, 3.0}) {
     StressScene s;
     s.froude = fr;
     cases.push_back(flow_case(ctx, fmt::format("Fr {:g}", fr), s, plan));
   }
+}
+
+/// Two size classes, radius ratios 3 and 10.
+void add_size_ratio_cases(const StressContext& ctx, const FlowPlan& plan,
+                          std::vector<StressCase>& cases) {
+  const bool quick = ctx.quick;
   {
     StressScene s;
     s.radius = 0.003;
@@ -209,6 +212,12 @@ std::vector<StressCase> physics_stress_cases(const StressContext& ctx) {
     s.search = "mlgrid";  // m5 (cells of R_max, ~100 small particles each) was 1.6x slower here
     cases.push_back(flow_case(ctx, "size ratio 10", s, plan));
   }
+}
+
+/// Soft and stiff materials, no and high friction, periodic ends on a tilted drum.
+void add_material_cases(const StressContext& ctx, const FlowPlan& plan,
+                        std::vector<StressCase>& cases) {
+  const bool quick = ctx.quick;
   {
     StressScene s;
     s.youngs_modulus = 1e5;
@@ -238,33 +247,51 @@ std::vector<StressCase> physics_stress_cases(const StressContext& ctx) {
     s.tilt_deg = 20.0;
     cases.push_back(flow_case(ctx, "periodic ends, tilt 20 deg", s, plan));
   }
-  {
-    StressScene s;
-    s.fill_file = "overlap_8pct.csv";
-    s.settle_time = 0.0;
-    const std::size_t max_count = quick ? 150 : 400;
-    StressCase c = flow_case(ctx, "overlap 8% in drum", s, {0.0, plan.turn_time, 0});
-    c.setup = fmt::format("lattice <= {} p, r 4 mm, overlap 0.08 r, Fr 0.05, turn {:g} s",
-                          max_count, plan.turn_time);
-    auto inner = c.run;
-    c.run = [ctx, s, max_count, inner] {
-      write_text(ctx.work / s.fill_file, lattice_csv(s, 0.004, 0.08, max_count));
-      return inner();
-    };
-    cases.push_back(std::move(c));
-  }
+}
+
+/// A file packing whose neighbours overlap by 8 % of the radius, in a turning drum.
+StressCase overlap_in_drum_case(const StressContext& ctx, const FlowPlan& plan) {
+  const bool quick = ctx.quick;
+  StressScene s;
+  s.fill_file = "overlap_8pct.csv";
+  s.settle_time = 0.0;
+  const std::size_t max_count = quick ? 150 : 400;
+  StressCase c = flow_case(ctx, "overlap 8% in drum", s, {0.0, plan.turn_time, 0});
+  c.setup = fmt::format("lattice <= {} p, r 4 mm, overlap 0.08 r, Fr 0.05, turn {:g} s", max_count,
+                        plan.turn_time);
+  auto inner = c.run;
+  c.run = [ctx, s, max_count, inner] {
+    write_text(ctx.work / s.fill_file, lattice_csv(s, 0.004, 0.08, max_count));
+    return inner();
+  };
+  return c;
+}
+
+/// The full suite's long run: at least 1e8 particle-steps.
+StressCase long_run_case(const StressContext& ctx) {
+  StressScene s;
+  s.diameter = 0.2;
+  s.depth = 0.04;
+  s.count = 1000;
+  s.froude = 0.05;
+  StressCase c = flow_case(ctx, "long run", s, {0.3, 0.0, 100'000'000},
+                           "stable for >= 1e8 particle-steps, E_kin bounded, N conserved");
+  c.setup = fmt::format("{}; >= 1e8 particle-steps", s.summary());
+  return c;
+}
+
+}  // namespace
+
+std::vector<StressCase> physics_stress_cases(const StressContext& ctx) {
+  const bool quick = ctx.quick;
+  const FlowPlan plan{quick ? 0.08 : 0.2, quick ? 0.12 : 1.0, 0};
+  std::vector<StressCase> cases;
+  add_regime_map_cases(ctx, plan, cases);
+  add_size_ratio_cases(ctx, plan, cases);
+  add_material_cases(ctx, plan, cases);
+  cases.push_back(overlap_in_drum_case(ctx, plan));
   cases.push_back(gentle_release_case(ctx, quick));
-  if (!quick) {
-    StressScene s;
-    s.diameter = 0.2;
-    s.depth = 0.04;
-    s.count = 1000;
-    s.froude = 0.05;
-    StressCase c = flow_case(ctx, "long run", s, {0.3, 0.0, 100'000'000},
-                             "stable for >= 1e8 particle-steps, E_kin bounded, N conserved");
-    c.setup = fmt::format("{}; >= 1e8 particle-steps", s.summary());
-    cases.push_back(std::move(c));
-  }
+  if (!quick) cases.push_back(long_run_case(ctx));
   return cases;
 }
 
