@@ -23,8 +23,18 @@ struct AccuracyOptions {
   std::string scene;  ///< default: scenes/accuracy_drum.toml (--quick: scenes/accuracy_quick.toml)
   std::string out = "out/bench";
   bool quick = false;  ///< short windows (and the small quick scene unless --scene is given)
-  RollingPlan plan;    ///< how the steady state is prepared (settle + turn) and cached
+  RollingPlan plan = accuracy_plan();  ///< how the steady state is prepared and cached
+
+  /// A steady rolling flow before the sweep: half a revolution after settling.
+  static RollingPlan accuracy_plan() {
+    RollingPlan p;
+    p.turn_revolutions = 0.5;
+    return p;
+  }
 };
+
+/// Drum revolutions before the sweep with --quick (unless --turn is given).
+inline constexpr double kAccuracyQuickTurnRevolutions = 0.2;
 
 /// Runs the sweep; throws InputError for bad input (scene, output folder).
 void run_bench_accuracy(AccuracyOptions opt);

@@ -132,7 +132,6 @@ void add_bench_command(CLI::App& app) {
   });
 
   auto a = std::make_shared<bench::AccuracyOptions>();
-  a->plan.turn_revolutions = 0.5;  // a steady rolling flow before the sweep
   CLI::App* accuracy = bench->add_subcommand(
       "accuracy", "Run time against error: time step and search sweeps (see bench_accuracy.hpp)");
   add_state_options(accuracy, a->scene, a->plan, a->out);
@@ -141,7 +140,9 @@ void add_bench_command(CLI::App& app) {
   accuracy->add_flag("--quick", a->quick,
                      "short windows; --turn 0.2 and scenes/accuracy_quick.toml unless given");
   accuracy->callback([a, accuracy] {
-    if (a->quick && accuracy->count("--turn") == 0) a->plan.turn_revolutions = 0.2;
+    if (a->quick && accuracy->count("--turn") == 0) {
+      a->plan.turn_revolutions = bench::kAccuracyQuickTurnRevolutions;
+    }
     bench::run_bench_accuracy(*a);
   });
   add_skips_subcommand(bench);

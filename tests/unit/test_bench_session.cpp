@@ -10,17 +10,11 @@
 #include "app/bench/bench_state.hpp"
 #include "app/bench/bench_throughput.hpp"
 #include "app/bench/stress_scene.hpp"
+#include "tests/unit/bench_runner.hpp"
 #include "tests/unit/cli_runner.hpp"
 
 namespace drumlab::test {
 namespace {
-
-std::vector<std::string> lines_of(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
 
 bench::ThroughputOptions tiny_throughput(const TempDir& dir, const std::filesystem::path& scene) {
   bench::ThroughputOptions opt;
@@ -40,11 +34,11 @@ TEST(BenchSession, ThroughputTakesAnAutoSceneAndReportsTheChoice) {
   std::string text = small_drum_scene("dt_factor = 0.2\nduration = 0.01", "name = \"tiny_auto\"\n");
   text.replace(text.find("search = \"m5\""), 13, "search = \"auto\"");
   const auto scene = dir.write("auto.toml", text);
-  testing::internal::CaptureStdout();
-  bench::run_bench_throughput(tiny_throughput(dir, scene));
-  const std::string out = testing::internal::GetCapturedStdout();
+  const auto run = run_bench([&] { bench::run_bench_throughput(tiny_throughput(dir, scene)); });
+  ASSERT_TRUE(run.ok) << run.output;
+  const std::string& out = run.output;
   EXPECT_NE(out.find("search auto       -> "), std::string::npos) << out;
-  const auto lines = lines_of(dir.path() / "out" / "throughput_tiny_auto.csv");
+  const auto lines = read_lines(dir.path() / "out" / "throughput_tiny_auto.csv");
   ASSERT_EQ(lines.size(), 2u) << out;
   EXPECT_EQ(lines[1].rfind("tiny_auto,m5,", 0), 0u) << lines[1];
 
@@ -67,12 +61,12 @@ TEST(BenchSession, ThroughputTakesAFileFillScene) {
   bench::write_text(dir.path() / s.fill_file, csv);
   const auto scene =
       bench::write_text(dir.path() / "file_fill.toml", "name = \"tiny_file\"\n" + s.toml());
-  const std::size_t count = lines_of(dir.path() / s.fill_file).size() - 1;
+  const std::size_t count = read_lines(dir.path() / s.fill_file).size() - 1;
   ASSERT_GT(count, 10u);
-  testing::internal::CaptureStdout();
-  bench::run_bench_throughput(tiny_throughput(dir, scene));
-  const std::string out = testing::internal::GetCapturedStdout();
-  const auto lines = lines_of(dir.path() / "out" / "throughput_tiny_file.csv");
+  const auto run = run_bench([&] { bench::run_bench_throughput(tiny_throughput(dir, scene)); });
+  ASSERT_TRUE(run.ok) << run.output;
+  const std::string& out = run.output;
+  const auto lines = read_lines(dir.path() / "out" / "throughput_tiny_file.csv");
   ASSERT_EQ(lines.size(), 2u) << out;
   EXPECT_EQ(lines[1].rfind("tiny_file,m5,", 0), 0u) << lines[1];
   EXPECT_NE(lines[1].find("," + std::to_string(count) + ",3,"), std::string::npos) << lines[1];
