@@ -31,6 +31,17 @@ BenchRun run_bench(F&& f) {
   return r;
 }
 
+/// A bench's options (any of app/bench's *Options) for `scene`, with the cached rolling state in
+/// DIR/cache and the CSV and chart in DIR/out.
+template <class Options>
+Options bench_options(const std::string& scene, const std::filesystem::path& dir) {
+  Options opt;
+  opt.scene = scene;
+  opt.plan.cache_dir = dir / "cache";
+  opt.out = (dir / "out").string();
+  return opt;
+}
+
 /// The lines of a text file (none if it cannot be read).
 inline std::vector<std::string> read_lines(const std::filesystem::path& file) {
   std::ifstream in(file);

@@ -57,11 +57,10 @@ bool looks_like_png(const std::filesystem::path& file) {
 TEST(CliBenchAccuracy, QuickSweepWritesCsvAndChartAndErrorFallsWithDt) {
   TempDir dir("bench-accuracy");
   const auto out = dir.path() / "out";
-  bench::AccuracyOptions opt;  // as `drumlab bench accuracy --quick`
+  // As `drumlab bench accuracy --quick`.
+  auto opt = bench_options<bench::AccuracyOptions>("", dir.path());
   opt.quick = true;
   opt.plan.turn_revolutions = bench::kAccuracyQuickTurnRevolutions;
-  opt.out = out.string();
-  opt.plan.cache_dir = dir.path() / "cache";
   const auto r = run_bench([&] { bench::run_bench_accuracy(opt); });
   ASSERT_TRUE(r.ok) << r.output;
   EXPECT_NE(r.output.find("steady state"), std::string::npos) << r.output;

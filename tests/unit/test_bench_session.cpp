@@ -17,13 +17,10 @@ namespace drumlab::test {
 namespace {
 
 bench::ThroughputOptions tiny_throughput(const TempDir& dir, const std::filesystem::path& scene) {
-  bench::ThroughputOptions opt;
-  opt.scene = scene.string();
+  auto opt = bench_options<bench::ThroughputOptions>(scene.string(), dir.path());
   opt.methods = {"m5"};
   opt.steps = 3;
   opt.warmup = 1;
-  opt.out = (dir.path() / "out").string();
-  opt.plan.cache_dir = dir.path() / "cache";
   opt.plan.settle_time = 0.002;
   opt.plan.turn_revolutions = 0.001;
   return opt;

@@ -50,10 +50,7 @@ TEST(CliBench, ThroughputWritesOneRowPerMethodAndAChart) {
                              " --steps 5 --warmup 1";
   // As `drumlab ` + common: the scene, cache and output folders, 5 timed steps after 1 warm-up.
   const auto options = [&](std::vector<std::string> methods) {
-    bench::ThroughputOptions opt;
-    opt.scene = scene.string();
-    opt.plan.cache_dir = dir.path() / "cache";
-    opt.out = out.string();
+    auto opt = bench_options<bench::ThroughputOptions>(scene.string(), dir.path());
     opt.steps = 5;
     opt.warmup = 1;
     opt.methods = std::move(methods);
@@ -120,11 +117,9 @@ TEST(CliBench, SearchWritesOneRowPerMethodAndAChart) {
   TempDir dir("bench-search");
   const auto scene = dir.write("tiny.toml", tiny_scene());
   const auto out = dir.path() / "out";
-  bench::SearchBenchOptions opt;  // as `drumlab bench search --no-table1 --steps 3 --repeats 1`
-  opt.scene = scene.string();
+  // As `drumlab bench search --no-table1 --steps 3 --repeats 1`.
+  auto opt = bench_options<bench::SearchBenchOptions>(scene.string(), dir.path());
   opt.table1 = false;
-  opt.plan.cache_dir = dir.path() / "cache";
-  opt.out = out.string();
   opt.steps = 3;
   opt.repeats = 1;
   const auto r = run_bench([&] { bench::run_bench_search(opt); });

@@ -30,13 +30,11 @@ std::vector<std::string> split(const std::string& line) {
 TEST(CliBench, RegimesQuickPrintsPredictedBesideObserved) {
   TempDir dir("bench-regimes");
   const auto out = dir.path() / "out";
-  bench::RegimesBenchOptions opt;
+  auto opt = bench_options<bench::RegimesBenchOptions>(
+      std::string(DRUMLAB_SCENES_DIR) + "/regime_drum_small.toml", dir.path());
   opt.quick = true;
-  opt.scene = std::string(DRUMLAB_SCENES_DIR) + "/regime_drum_small.toml";
   opt.froude = {0.005, 1.0};
   opt.plan.settle_time = 0.2;
-  opt.plan.cache_dir = dir.path() / "cache";
-  opt.out = out.string();
   const auto r = run_bench([&] { bench::run_bench_regimes(opt); });
   ASSERT_TRUE(r.ok) << r.output;
   EXPECT_NE(r.output.find("window"), std::string::npos) << r.output;

@@ -70,10 +70,7 @@ TEST(CliBench, SkipsWritesOneRowPerSkipAndSamePhysicsAgrees) {
   const auto scene = dir.write(
       "tiny.toml", small_drum_scene("dt_factor = 0.2\nduration = 0.01", "name = \"tiny_skips\"\n"));
   const auto out = dir.path() / "out";
-  bench::SkipsBenchOptions opt;
-  opt.scene = scene.string();
-  opt.plan.cache_dir = dir.path() / "cache";
-  opt.out = out.string();
+  auto opt = bench_options<bench::SkipsBenchOptions>(scene.string(), dir.path());
   opt.steps = 20;
   opt.repeats = 1;
   opt.every = 10;
