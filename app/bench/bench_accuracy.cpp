@@ -166,6 +166,7 @@ void write_csv(const std::filesystem::path& file, const std::string& scene,
   });
 }
 
+#ifdef DRUMLAB_WITH_RENDER  // the chart marks the Pareto front
 /// Orders rows by run time, rows without one (unstable runs) last.
 bool by_run_time(const Row& a, const Row& b) {
   const double ta = std::isfinite(a.run_time()) ? a.run_time() : INFINITY;
@@ -194,6 +195,7 @@ std::vector<std::size_t> pareto_front(const std::vector<Row>& rows, double (*err
   }
   return front;
 }
+#endif
 
 struct ErrorMeasure {
   const char* title;
