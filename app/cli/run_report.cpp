@@ -4,11 +4,10 @@
 
 #include <algorithm>
 #include <cstdio>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include <fmt/format.h>
+
+#include "engine/threads.hpp"
 
 namespace drumlab::cli {
 
@@ -52,8 +51,7 @@ void print_summary(const Simulation& sim, const PhaseStats& phase) {
       static_cast<double>(phase.steps) * sim.dt(), sim.time());
   fmt::print("search method     {} ({})\n", sim.search().name(), sim.search().description());
 #ifdef _OPENMP
-  fmt::print("threads           {} (OpenMP: pair forces, walls, integration)\n",
-             omp_get_max_threads());
+  fmt::print("threads           {} (OpenMP: pair forces, walls, integration)\n", max_threads());
 #endif
   const double stepping = phase.wall_seconds - phase.output_seconds;
   fmt::print("wall time         {:.3f} s (stepping {:.3f} s, output {:.3f} s)\n",
