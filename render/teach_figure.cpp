@@ -4,7 +4,7 @@
 
 #include <fmt/format.h>
 
-#include "engine/fill/random_fill.hpp"
+#include "engine/session/run_session.hpp"
 #include "render/drum_view.hpp"
 
 namespace drumlab::render {
@@ -39,12 +39,11 @@ std::vector<std::string> teach_methods() {
 }
 
 std::unique_ptr<Simulation> teach_simulation(SceneConfig scene, std::string_view method) {
-  scene.search_method = std::string(method);
-  auto sim = std::make_unique<Simulation>(scene, random_fill(scene));
-  const auto settle = static_cast<std::uint64_t>(std::ceil(scene.fill.settle_time / sim->dt()));
-  sim->set_drum_omega(0.0);
-  sim->advance(settle);
-  return sim;
+  SessionOptions options;
+  options.method = std::string(method);
+  RunSession session(std::move(scene), options);  // the scene's fill, random or from a file
+  session.settle();
+  return session.release_simulation();
 }
 
 TeachFigure make_teach_figure(const SceneConfig& scene, std::optional<Index> particle_id,

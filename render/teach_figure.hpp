@@ -30,7 +30,8 @@ struct TeachFigure {
 /// The paper methods shown, in order.
 std::vector<std::string> teach_methods();
 
-/// The state a panel shows: the scene filled and settled (drum at rest) with `method` as its
+/// The state a panel shows: the scene filled (its [fill] kind) and settled (drum at rest; a
+/// RunSession, engine/session/run_session.hpp) with `method` as its
 /// search, so the last step's per-particle counters are that method's. Every method gives the
 /// same trajectory, hence the same state.
 std::unique_ptr<Simulation> teach_simulation(SceneConfig scene, std::string_view method);

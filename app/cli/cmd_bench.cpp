@@ -7,11 +7,11 @@
 // bench_throughput.hpp and bench_search.hpp.
 #include <memory>
 
-#include "app/cli/bench_accuracy.hpp"
-#include "app/cli/bench_regimes.hpp"
-#include "app/cli/bench_search.hpp"
-#include "app/cli/bench_skips.hpp"
-#include "app/cli/bench_throughput.hpp"
+#include "app/bench/bench_accuracy.hpp"
+#include "app/bench/bench_regimes.hpp"
+#include "app/bench/bench_search.hpp"
+#include "app/bench/bench_skips.hpp"
+#include "app/bench/bench_throughput.hpp"
 #include "app/cli/commands.hpp"
 #include "app/cli/scene_setup.hpp"
 
@@ -20,7 +20,8 @@ namespace drumlab::cli {
 namespace {
 
 /// Options both benchmarks share: the scene and how its rolling state is prepared.
-void add_state_options(CLI::App* cmd, std::string& scene, RollingPlan& plan, std::string& out) {
+void add_state_options(CLI::App* cmd, std::string& scene, bench::RollingPlan& plan,
+                       std::string& out) {
   cmd->add_option("--scene", scene, "scene file (default: scenes/drum_demo.toml)");
   cmd->add_option("--settle-time", plan.settle_time,
                   "s of settling before the drum turns (default: the scene's fill.settle_time)")
@@ -36,7 +37,7 @@ void add_state_options(CLI::App* cmd, std::string& scene, RollingPlan& plan, std
 
 /// `bench skips`: the speed each skip of scene_features() gains (bench_skips.hpp).
 void add_skips_subcommand(CLI::App* bench) {
-  auto k = std::make_shared<SkipsBenchOptions>();
+  auto k = std::make_shared<bench::SkipsBenchOptions>();
   CLI::App* cmd = bench->add_subcommand(
       "skips", "Speed gained by each skip (friction, rolling, 2D grid, periodic ends, writers)");
   add_state_options(cmd, k->scene, k->plan, k->out);
@@ -51,13 +52,13 @@ void add_skips_subcommand(CLI::App* bench) {
       ->capture_default_str();
   cmd->callback([k] {
     if (k->scene.empty()) k->scene = shipped_scene("drum_demo.toml");
-    run_bench_skips(*k);
+    bench::run_bench_skips(*k);
   });
 }
 
 /// `bench regimes`: the drum regime map (bench_regimes.hpp).
 void add_regimes_subcommand(CLI::App* bench) {
-  auto r = std::make_shared<RegimesBenchOptions>();
+  auto r = std::make_shared<bench::RegimesBenchOptions>();
   CLI::App* cmd = bench->add_subcommand(
       "regimes", "Regime map: observed flow regime and angle of repose against Fr = 3e-5..3");
   cmd->add_option("--scene", r->scene, "scene file (default: scenes/regime_drum.toml)");
@@ -75,7 +76,7 @@ void add_regimes_subcommand(CLI::App* bench) {
   cmd->add_option("--out", r->out, "folder for the CSV and PNG")->capture_default_str();
   cmd->callback([r] {
     if (r->scene.empty()) r->scene = shipped_scene("regime_drum.toml");
-    run_bench_regimes(*r);
+    bench::run_bench_regimes(*r);
   });
 }
 
@@ -86,7 +87,7 @@ void add_bench_command(CLI::App& app) {
       "bench", "Benchmarks: throughput, contact search, accuracy, skips, regimes");
   bench->require_subcommand(1);
 
-  auto t = std::make_shared<ThroughputOptions>();
+  auto t = std::make_shared<bench::ThroughputOptions>();
   CLI::App* throughput = bench->add_subcommand(
       "throughput", "Particle-steps/s of a scene's rolling state for each search method");
   add_state_options(throughput, t->scene, t->plan, t->out);
@@ -110,10 +111,10 @@ void add_bench_command(CLI::App& app) {
       ->capture_default_str();
   throughput->callback([t] {
     if (t->scene.empty()) t->scene = shipped_scene("drum_demo.toml");
-    run_bench_throughput(*t);
+    bench::run_bench_throughput(*t);
   });
 
-  auto s = std::make_shared<SearchBenchOptions>();
+  auto s = std::make_shared<bench::SearchBenchOptions>();
   CLI::App* search = bench->add_subcommand(
       "search", "Every search method on the flowing demo drum and the paper's packings");
   add_state_options(search, s->scene, s->plan, s->out);
@@ -127,11 +128,10 @@ void add_bench_command(CLI::App& app) {
       ->capture_default_str();
   search->callback([s] {
     if (s->scene.empty()) s->scene = shipped_scene("drum_demo.toml");
-    run_bench_search(*s);
+    bench::run_bench_search(*s);
   });
 
-  auto a = std::make_shared<AccuracyOptions>();
-  a->plan.turn_revolutions = 0.5;  // a steady rolling flow before the sweep
+  auto a = std::make_shared<bench::AccuracyOptions>();
   CLI::App* accuracy = bench->add_subcommand(
       "accuracy", "Run time against error: time step and search sweeps (see bench_accuracy.hpp)");
   add_state_options(accuracy, a->scene, a->plan, a->out);
@@ -140,8 +140,10 @@ void add_bench_command(CLI::App& app) {
   accuracy->add_flag("--quick", a->quick,
                      "short windows; --turn 0.2 and scenes/accuracy_quick.toml unless given");
   accuracy->callback([a, accuracy] {
-    if (a->quick && accuracy->count("--turn") == 0) a->plan.turn_revolutions = 0.2;
-    run_bench_accuracy(*a);
+    if (a->quick && accuracy->count("--turn") == 0) {
+      a->plan.turn_revolutions = bench::kAccuracyQuickTurnRevolutions;
+    }
+    bench::run_bench_accuracy(*a);
   });
   add_skips_subcommand(bench);
   add_regimes_subcommand(bench);

@@ -4,6 +4,7 @@
 
 #include "app/cli/commands.hpp"
 #include "app/cli/scene_setup.hpp"
+#include "engine/session/run_session.hpp"
 #include "render/frame_writer.hpp"
 #include "render/teach_figure.hpp"
 

@@ -1,11 +1,11 @@
-// GLX entry points for HEADLESS executables only (the drumlab CLI and the render tests), never a
+// GLX entry points for HEADLESS executables only (the drumlab CLI and the tests), never a
 // GUI. Debian's VTK 9.1 is built for GLX: its GLEW (glewInit -> glxewInit) loads OpenGL functions
 // through glXGetProcAddressARB, asks glXGetCurrentDisplay for a display, then calls
 // glXQueryVersion and glXGetClientString on it. These definitions in the executable take precedence
 // over libGLX's: OpenGL functions come from OSMesa (whose context render/offscreen_context.cpp
 // makes current), and the GLX queries answer "GLX 1.2, no extensions" for a placeholder display
-// that is non-null while an OSMesa context is current. See DESIGN.md, "Rendering without a
-// display".
+// that is non-null while an OSMesa context is current. See render/README.md, section "Rendering
+// without a display".
 #include <cstring>
 
 #include <GL/osmesa.h>

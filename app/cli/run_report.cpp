@@ -4,11 +4,10 @@
 
 #include <algorithm>
 #include <cstdio>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include <fmt/format.h>
+
+#include "engine/threads.hpp"
 
 namespace drumlab::cli {
 
@@ -37,28 +36,6 @@ void ProgressBar::finish() {
   if (tty_ && total_ > 0) fmt::print(stderr, "\n");
 }
 
-PhaseMeter::PhaseMeter(const Simulation& sim)
-    : sim_(sim),
-      steps0_(sim.steps()),
-      timers0_(sim.timers()),
-      search0_(sim.search_totals()),
-      start_(std::chrono::steady_clock::now()),
-      cpu_start_(std::clock()) {}
-
-PhaseStats PhaseMeter::finish() const {
-  PhaseStats s;
-  s.steps = sim_.steps() - steps0_;
-  s.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  s.cpu_seconds = static_cast<double>(std::clock() - cpu_start_) / CLOCKS_PER_SEC;
-  const StepTimers& t = sim_.timers();
-  s.timers = {t.search - timers0_.search, t.forces - timers0_.forces, t.walls - timers0_.walls,
-              t.integration - timers0_.integration};
-  const SearchCounters& c = sim_.search_totals();
-  s.search = {c.cells_visited - search0_.cells_visited, c.pairs_tested - search0_.pairs_tested,
-              c.pairs_found - search0_.pairs_found, c.cells_total};
-  return s;
-}
-
 void print_summary(const Simulation& sim, const PhaseStats& phase) {
   const double n = static_cast<double>(sim.particles().size());
   const double steps = static_cast<double>(std::max<std::uint64_t>(phase.steps, 1));
@@ -74,8 +51,7 @@ void print_summary(const Simulation& sim, const PhaseStats& phase) {
       static_cast<double>(phase.steps) * sim.dt(), sim.time());
   fmt::print("search method     {} ({})\n", sim.search().name(), sim.search().description());
 #ifdef _OPENMP
-  fmt::print("threads           {} (OpenMP: pair forces, walls, integration)\n",
-             omp_get_max_threads());
+  fmt::print("threads           {} (OpenMP: pair forces, walls, integration)\n", max_threads());
 #endif
   const double stepping = phase.wall_seconds - phase.output_seconds;
   fmt::print("wall time         {:.3f} s (stepping {:.3f} s, output {:.3f} s)\n",

@@ -6,6 +6,7 @@
 #include <ctime>
 #include <string>
 
+#include "engine/session/phase_meter.hpp"
 #include "engine/simulation.hpp"
 
 namespace drumlab::cli {
@@ -22,31 +23,6 @@ class ProgressBar {
   std::uint64_t total_;
   bool tty_;
   std::chrono::steady_clock::time_point start_;
-};
-
-/// What a phase of the run cost: differences of the simulation's running totals.
-struct PhaseStats {
-  std::uint64_t steps = 0;
-  double wall_seconds = 0.0;
-  double cpu_seconds = 0.0;     ///< process CPU time, all threads
-  double output_seconds = 0.0;  ///< spent in observers (rendering, writers), not stepping
-  StepTimers timers;
-  SearchCounters search;
-};
-
-/// Takes the totals now; `finish` turns them into the phase's differences.
-class PhaseMeter {
- public:
-  explicit PhaseMeter(const Simulation& sim);
-  PhaseStats finish() const;
-
- private:
-  const Simulation& sim_;
-  std::uint64_t steps0_;
-  StepTimers timers0_;
-  SearchCounters search0_;
-  std::chrono::steady_clock::time_point start_;
-  std::clock_t cpu_start_;
 };
 
 /// Prints the summary of a phase: throughput as "... particle-steps/s", the time split, search

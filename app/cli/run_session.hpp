@@ -1,7 +1,7 @@
 #pragma once
-// The run loop shared by `run`, `demo` and `render`: load a scene, fill, settle with the drum at
-// rest, turn the drum, and call scheduled observers (writers, renderers) between steps — never
-// inside the step loop.
+// `run`, `demo` and `render` on the command line: their options, and the printing around one
+// RunSession (engine/session/run_session.hpp: fill, settle with the drum at rest, turn the drum,
+// scheduled observers between steps).
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -9,7 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "engine/simulation.hpp"
+#include "engine/session/run_session.hpp"
 
 namespace drumlab::cli {
 
@@ -36,18 +36,19 @@ struct RunOptions {
   std::string restart;  ///< --restart FILE: skip fill and settling, continue from the file
 };
 
-/// A scheduled observer: called at the start of the turning phase (frame 0) and every
-/// `every` steps after it, then once at the end. It reads the simulation and must not change it.
-class FrameObserver {
- public:
-  virtual ~FrameObserver() = default;
-  virtual void on_frame(const Simulation& sim, std::uint64_t frame) = 0;
-  virtual void on_finish(const Simulation& /*sim*/) {}
-};
-
 /// Adds the options of RunOptions (except the scene and the frame schedule --every/--frames, which
 /// each command adds itself) to a subcommand.
 void add_run_options(CLI::App* cmd, RunOptions& opt);
+
+/// The session options `opt` asks for (the scene file, method, time step, settling, restart...).
+SessionOptions session_options(const RunOptions& opt);
+
+/// Prints the search "auto" chose and why ("search auto       -> METHOD: REASON").
+void print_auto_choice(const SearchChoice& choice);
+
+/// Prints how the session resolved "auto" and what a restart read (the notes and the restart
+/// line), as `run` does.
+void print_session_choices(const RunSession& session);
 
 /// Runs the scene as planned by `opt` and prints the summary of the turning phase. The output
 /// writers requested in `opt` are added to `observers`.

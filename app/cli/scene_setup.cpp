@@ -7,17 +7,6 @@
 
 namespace drumlab::cli {
 
-SceneConfig load_dynamic_scene(const std::string& file) {
-  SceneConfig scene = load_scene(file);
-  if (!scene.dynamic()) {
-    throw InputError(fmt::format(
-        "{}: fill.kind: 'paper_packing' is a static packing for `drumlab paper-table`, not a "
-        "dynamic run",
-        file));
-  }
-  return scene;
-}
-
 double froude_number(const SceneConfig& scene) {
   const double r = 0.5 * scene.drum.diameter;
   const double tilt = scene.drum.tilt;

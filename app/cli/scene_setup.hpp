@@ -1,5 +1,5 @@
 #pragma once
-// Shared by the run/demo/info commands: load a scene and derive what they report.
+// Shared by the run/demo/info commands and the benches: what they derive from a scene.
 #include <string>
 #include <string_view>
 
@@ -7,10 +7,6 @@
 #include "engine/scene/scene_config.hpp"
 
 namespace drumlab::cli {
-
-/// Loads a dynamic scene (random or file fill). A static paper packing is refused with a clear
-/// error.
-SceneConfig load_dynamic_scene(const std::string& file);
 
 /// Froude number omega^2 R / g (g = |gravity| in the drum's cross-section plane).
 double froude_number(const SceneConfig& scene);

@@ -1,10 +1,13 @@
 // `teach`: five panels, one per method, whose counters (counted from the cells and candidates the
 // panel draws) equal the engine's own per-particle counters of the step that produced the state.
+#include <unistd.h>
 #include <cstdlib>
+#include <filesystem>
 #include <set>
 
 #include <gtest/gtest.h>
 
+#include "app/bench/stress_scene.hpp"
 #include "engine/scene/scene_config.hpp"
 #include "render/drum_view.hpp"
 #include "render/grid_overlay.hpp"
@@ -77,6 +80,23 @@ TEST(TeachFigure, EveryParticleOfEveryMethodMatchesItsTrace) {
 TEST(TeachFigure, UnknownParticleIsAnInputError) {
   ::unsetenv("DISPLAY");
   EXPECT_THROW(render::make_teach_figure(teach_scene(), Index{999999}, 64, 64), InputError);
+}
+
+TEST(TeachFigure, TeachesAFileFillScene) {
+  ::unsetenv("DISPLAY");
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("drumlab-teach-file-fill-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  bench::StressScene s;
+  s.fill_file = "packing.csv";
+  s.settle_time = 0.002;
+  bench::write_text(dir / s.fill_file, bench::lattice_csv(s, 0.004, 0.02, 60));
+  const SceneConfig scene = load_scene(bench::write_text(dir / "file_fill.toml", s.toml()));
+  const auto sim = render::teach_simulation(scene, "m1");
+  EXPECT_EQ(sim->particles().size(), 60u);
+  const render::TeachFigure fig = render::make_teach_figure(scene, std::nullopt, 64, 64);
+  EXPECT_EQ(fig.panels.size(), 5u);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

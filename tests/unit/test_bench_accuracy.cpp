@@ -1,8 +1,8 @@
-// `drumlab bench accuracy --quick` end to end on the 300-particle quick drum (about 5 s): exit 0,
-// one CSV row per setting, a PNG chart (when built with rendering), errors that fall as the time
-// step falls (contact duration against Hertz theory at every step of the sweep, energy drift
-// between the ends), and search methods whose trajectories coincide with brute force. A bad
-// output folder gives exit code 2.
+// `bench accuracy --quick` (app/bench, in-process) end to end on the 300-particle quick drum (about
+// 5 s): exit 0, one CSV row per setting, a PNG chart (when built with rendering), errors that fall
+// as the time step falls (contact duration against Hertz theory at every step of the sweep, energy
+// drift between the ends), and search methods whose trajectories coincide with brute force. A bad
+// output folder gives exit code 2 (the command itself).
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -10,6 +10,8 @@
 #include <sstream>
 #include <vector>
 
+#include "app/bench/bench_accuracy.hpp"
+#include "tests/unit/bench_runner.hpp"
 #include "tests/unit/cli_runner.hpp"
 
 namespace drumlab::test {
@@ -55,9 +57,12 @@ bool looks_like_png(const std::filesystem::path& file) {
 TEST(CliBenchAccuracy, QuickSweepWritesCsvAndChartAndErrorFallsWithDt) {
   TempDir dir("bench-accuracy");
   const auto out = dir.path() / "out";
-  const auto r = run_cli("bench accuracy --quick --out " + out.string() + " --cache " +
-                         (dir.path() / "cache").string());
-  ASSERT_EQ(r.exit_code, 0) << r.output;
+  // As `drumlab bench accuracy --quick`.
+  auto opt = bench_options<bench::AccuracyOptions>("", dir.path());
+  opt.quick = true;
+  opt.plan.turn_revolutions = bench::kAccuracyQuickTurnRevolutions;
+  const auto r = run_bench([&] { bench::run_bench_accuracy(opt); });
+  ASSERT_TRUE(r.ok) << r.output;
   EXPECT_NE(r.output.find("steady state"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("recommended dt"), std::string::npos) << r.output;
   const auto rows = read_csv(out / "accuracy_accuracy_quick.csv");

@@ -1,13 +1,17 @@
-// `drumlab bench throughput` and `drumlab bench search` end to end on a tiny drum with few steps:
-// exit 0, the CSV has the expected header and one row per method, the chart is a valid PNG (when
-// the CLI is built with rendering), the rolling state is cached and reused; bad output folders,
-// unknown methods and bad scenes give exit code 2 and leave no file. No speeds are asserted.
+// `bench throughput` and `bench search` (app/bench, in-process) end to end on a tiny drum with few
+// steps: no error, the CSV has the expected header and one row per method, the chart is a valid PNG
+// (when the CLI is built with rendering), the rolling state is cached and reused; bad output
+// folders, unknown methods and bad scenes give exit code 2 and leave no file (the command itself).
+// No speeds are asserted.
 #include <gtest/gtest.h>
 
 #include <fstream>
 #include <sstream>
 #include <vector>
 
+#include "app/bench/bench_search.hpp"
+#include "app/bench/bench_throughput.hpp"
+#include "tests/unit/bench_runner.hpp"
 #include "tests/unit/cli_runner.hpp"
 
 namespace drumlab::test {
@@ -15,13 +19,6 @@ namespace {
 
 std::string tiny_scene() {
   return small_drum_scene("dt_factor = 0.2\nduration = 0.01", "name = \"tiny_bench\"\n");
-}
-
-std::vector<std::string> lines_of(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
 }
 
 /// PNG signature and an IHDR chunk with a non-zero size.
@@ -51,10 +48,20 @@ TEST(CliBench, ThroughputWritesOneRowPerMethodAndAChart) {
   const std::string common = "bench throughput --scene " + scene.string() + " --cache " +
                              (dir.path() / "cache").string() + " --out " + out.string() +
                              " --steps 5 --warmup 1";
-  const auto r = run_cli(common + " --methods m5,verlet,mlgrid,brute");
-  ASSERT_EQ(r.exit_code, 0) << r.output;
+  // As `drumlab ` + common: the scene, cache and output folders, 5 timed steps after 1 warm-up.
+  const auto options = [&](std::vector<std::string> methods) {
+    auto opt = bench_options<bench::ThroughputOptions>(scene.string(), dir.path());
+    opt.steps = 5;
+    opt.warmup = 1;
+    opt.methods = std::move(methods);
+    return opt;
+  };
+  const auto r = run_bench([&] {
+    bench::run_bench_throughput(options({"m5", "verlet", "mlgrid", "brute"}));
+  });
+  ASSERT_TRUE(r.ok) << r.output;
   EXPECT_NE(r.output.find("cached as"), std::string::npos) << r.output;
-  const auto lines = lines_of(out / "throughput_tiny_bench.csv");
+  const auto lines = read_lines(out / "throughput_tiny_bench.csv");
   ASSERT_EQ(lines.size(), 5u) << r.output;
   EXPECT_EQ(lines[0],
             "scene,method,sort_every,threads,particles,steps,stepping_s,particle_steps_per_s,"
@@ -84,17 +91,22 @@ TEST(CliBench, ThroughputWritesOneRowPerMethodAndAChart) {
   }
 
   // The second run reuses the cached rolling state; two thread counts give two rows per method.
-  const auto again = run_cli(common + " --methods m2 --threads 2");
-  ASSERT_EQ(again.exit_code, 0) << again.output;
+  bench::ThroughputOptions two_threads = options({"m2"});
+  two_threads.threads = 2;
+  const auto again = run_bench([&] { bench::run_bench_throughput(two_threads); });
+  ASSERT_TRUE(again.ok) << again.output;
   EXPECT_NE(again.output.find("cached "), std::string::npos) << again.output;
   EXPECT_EQ(again.output.find("cached as"), std::string::npos) << again.output;
-  EXPECT_EQ(lines_of(out / "throughput_tiny_bench.csv").size(), 3u);
+  EXPECT_EQ(read_lines(out / "throughput_tiny_bench.csv").size(), 3u);
 
   // A sort-interval sweep: one row per interval, labelled with it.
-  const auto sweep = run_cli(common + " --methods verlet --sort-every 0,2 --repeats 2");
-  ASSERT_EQ(sweep.exit_code, 0) << sweep.output;
+  bench::ThroughputOptions sorts = options({"verlet"});
+  sorts.sort_every = {0, 2};
+  sorts.repeats = 2;
+  const auto sweep = run_bench([&] { bench::run_bench_throughput(sorts); });
+  ASSERT_TRUE(sweep.ok) << sweep.output;
   EXPECT_NE(sweep.output.find("verlet sort 2"), std::string::npos) << sweep.output;
-  const auto rows = lines_of(out / "throughput_tiny_bench.csv");
+  const auto rows = read_lines(out / "throughput_tiny_bench.csv");
   ASSERT_EQ(rows.size(), 3u);
   EXPECT_EQ(rows[1].rfind("tiny_bench,verlet,0,1,300,5,", 0), 0u) << rows[1];
   EXPECT_EQ(rows[2].rfind("tiny_bench,verlet,2,1,300,5,", 0), 0u) << rows[2];
@@ -105,11 +117,14 @@ TEST(CliBench, SearchWritesOneRowPerMethodAndAChart) {
   TempDir dir("bench-search");
   const auto scene = dir.write("tiny.toml", tiny_scene());
   const auto out = dir.path() / "out";
-  const auto r = run_cli("bench search --no-table1 --scene " + scene.string() + " --cache " +
-                         (dir.path() / "cache").string() + " --out " + out.string() +
-                         " --steps 3 --repeats 1");
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  const auto lines = lines_of(out / "search_tiny_bench.csv");
+  // As `drumlab bench search --no-table1 --steps 3 --repeats 1`.
+  auto opt = bench_options<bench::SearchBenchOptions>(scene.string(), dir.path());
+  opt.table1 = false;
+  opt.steps = 3;
+  opt.repeats = 1;
+  const auto r = run_bench([&] { bench::run_bench_search(opt); });
+  ASSERT_TRUE(r.ok) << r.output;
+  const auto lines = read_lines(out / "search_tiny_bench.csv");
   ASSERT_FALSE(lines.empty()) << r.output;
   EXPECT_EQ(lines[0],
             "dataset,method,particles,contacts_per_particle,cells_per_particle,tested_per_particle,"

@@ -1,7 +1,8 @@
-// `drumlab bench regimes --quick` end to end on the small regime drum with two Froude numbers
-// and a short settling: exit 0, one CSV row per Froude number with the regime predicted from Fr,
-// an observed regime that is one of the classifier's names and a finite angle of repose; bad
-// Froude numbers give exit code 2. The regimes observed in so short a window are not asserted.
+// `bench regimes --quick` (app/bench, in-process) end to end on the small regime drum with two
+// Froude numbers and a short settling: exit 0, one CSV row per Froude number with the regime
+// predicted from Fr, an observed regime that is one of the classifier's names and a finite angle of
+// repose; bad Froude numbers give exit code 2 (the command itself). The regimes observed in so
+// short a window are not asserted.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "app/bench/bench_regimes.hpp"
+#include "tests/unit/bench_runner.hpp"
 #include "tests/unit/cli_runner.hpp"
 
 namespace drumlab::test {
@@ -27,14 +30,15 @@ std::vector<std::string> split(const std::string& line) {
 TEST(CliBench, RegimesQuickPrintsPredictedBesideObserved) {
   TempDir dir("bench-regimes");
   const auto out = dir.path() / "out";
-  const auto r = run_cli(std::string("bench regimes --quick --scene ") + DRUMLAB_SCENES_DIR +
-                         "/regime_drum_small.toml --froude 0.005,1 --settle-time 0.2 --cache " +
-                         (dir.path() / "cache").string() + " --out " + out.string());
-  ASSERT_EQ(r.exit_code, 0) << r.output;
+  auto opt = bench_options<bench::RegimesBenchOptions>(
+      std::string(DRUMLAB_SCENES_DIR) + "/regime_drum_small.toml", dir.path());
+  opt.quick = true;
+  opt.froude = {0.005, 1.0};
+  opt.plan.settle_time = 0.2;
+  const auto r = run_bench([&] { bench::run_bench_regimes(opt); });
+  ASSERT_TRUE(r.ok) << r.output;
   EXPECT_NE(r.output.find("window"), std::string::npos) << r.output;
-  std::ifstream csv(out / "regimes_regime_drum_small.csv");
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(csv, line);) lines.push_back(line);
+  const std::vector<std::string> lines = read_lines(out / "regimes_regime_drum_small.csv");
   ASSERT_EQ(lines.size(), 3u) << r.output;
   EXPECT_EQ(lines[0].rfind("scene,froude,omega,transient_s,window_s,steps,predicted,observed,", 0),
             0u);

@@ -1,7 +1,7 @@
-// `drumlab info` prints the needs / skips section; `drumlab bench skips` runs end to end on a tiny
-// drum: one CSV row per skip, and where the two paths have the same physics their positions agree
-// to round-off (friction 0 vs a tiny friction, rolling 0 vs tiny, m2 vs m3/m5, with/without
-// writers). No speeds are asserted.
+// `drumlab info` prints the needs / skips section; `bench skips` (app/bench, in-process) runs end
+// to end on a tiny drum: one CSV row per skip, and where the two paths have the same physics their
+// positions agree to round-off (friction 0 vs a tiny friction, rolling 0 vs tiny, m2 vs m3/m5,
+// with/without writers). No speeds are asserted.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -10,17 +10,12 @@
 #include <string>
 #include <vector>
 
+#include "app/bench/bench_skips.hpp"
+#include "tests/unit/bench_runner.hpp"
 #include "tests/unit/cli_runner.hpp"
 
 namespace drumlab::test {
 namespace {
-
-std::vector<std::string> csv_lines(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
 
 std::vector<std::string> fields(const std::string& line) {
   std::vector<std::string> out;
@@ -75,11 +70,14 @@ TEST(CliBench, SkipsWritesOneRowPerSkipAndSamePhysicsAgrees) {
   const auto scene = dir.write(
       "tiny.toml", small_drum_scene("dt_factor = 0.2\nduration = 0.01", "name = \"tiny_skips\"\n"));
   const auto out = dir.path() / "out";
-  const auto r = run_cli("bench skips --scene " + scene.string() + " --cache " +
-                         (dir.path() / "cache").string() + " --out " + out.string() +
-                         " --steps 20 --repeats 1 --every 10 --turn 0.02");
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  const auto lines = csv_lines(out / "skips_tiny_skips.csv");
+  auto opt = bench_options<bench::SkipsBenchOptions>(scene.string(), dir.path());
+  opt.steps = 20;
+  opt.repeats = 1;
+  opt.every = 10;
+  opt.plan.turn_revolutions = 0.02;
+  const auto r = run_bench([&] { bench::run_bench_skips(opt); });
+  ASSERT_TRUE(r.ok) << r.output;
+  const auto lines = read_lines(out / "skips_tiny_skips.csv");
   ASSERT_EQ(lines.size(), 7u) << r.output;
   EXPECT_EQ(lines[0],
             "scene,skip,general_path,measure,steps,repeats,with_skip_cpu_s_per_step,"

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "app/cli/bench_state.hpp"
+#include "app/bench/bench_state.hpp"
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 struct RegimesBenchOptions {
   std::string scene;           ///< scene file (default: scenes/regime_drum.toml)
@@ -38,4 +38,4 @@ struct RegimeWindow {
 /// Runs the sweep; throws InputError for bad input (scene, Froude number, output folder).
 void run_bench_regimes(const RegimesBenchOptions& opt);
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

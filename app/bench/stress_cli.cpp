@@ -7,15 +7,15 @@
 
 #include <fmt/format.h>
 
-#include "app/cli/stress_process.hpp"
-#include "app/cli/stress_scene.hpp"
-#include "app/cli/stress_suite.hpp"
+#include "app/bench/stress_process.hpp"
+#include "app/bench/stress_scene.hpp"
+#include "app/bench/stress_suite.hpp"
 #include "engine/drum.hpp"
 #include "engine/io/checkpoint.hpp"
 #include "engine/io/h5_file.hpp"
 #include "engine/io/h5_series.hpp"
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 namespace {
 
@@ -170,31 +170,33 @@ std::string with_line(const std::string& text, const std::string& prefix, const 
   return out;
 }
 
-std::vector<BadInput> bad_inputs() {
-  StressScene s;
-  const std::string scene = s.toml();
-  StressScene f = s;
-  f.fill_file = "p.csv";
-  const std::string file_scene = f.toml();
-  const std::string run = "run scene.toml --steps 1";
-  const auto scene_case = [&](std::string name, std::string setup, std::string text,
-                              std::vector<std::string> tokens) {
-    tokens.insert(tokens.begin(), "scene.toml");
-    return BadInput{std::move(name),
-                    std::move(setup),
-                    {{"scene.toml", std::move(text)}},
-                    run,
-                    std::move(tokens)};
-  };
-  const auto csv_case = [&](std::string name, std::string setup, std::string csv,
-                            std::vector<std::string> tokens) {
-    tokens.insert(tokens.begin(), "p.csv");
-    return BadInput{std::move(name),
-                    std::move(setup),
-                    {{"scene.toml", file_scene}, {"p.csv", std::move(csv)}},
-                    run,
-                    std::move(tokens)};
-  };
+/// The command line every scene and CSV case runs.
+const std::string kBadInputRun = "run scene.toml --steps 1";
+
+/// `drumlab run` on a bad scene.toml: the message names the file, then `tokens`.
+BadInput scene_case(std::string name, std::string setup, std::string text,
+                    std::vector<std::string> tokens) {
+  tokens.insert(tokens.begin(), "scene.toml");
+  return BadInput{std::move(name),
+                  std::move(setup),
+                  {{"scene.toml", std::move(text)}},
+                  kBadInputRun,
+                  std::move(tokens)};
+}
+
+/// `drumlab run` on a file-fill scene whose p.csv is bad: the message names p.csv, then `tokens`.
+BadInput csv_case(const std::string& file_scene, std::string name, std::string setup,
+                  std::string csv, std::vector<std::string> tokens) {
+  tokens.insert(tokens.begin(), "p.csv");
+  return BadInput{std::move(name),
+                  std::move(setup),
+                  {{"scene.toml", file_scene}, {"p.csv", std::move(csv)}},
+                  kBadInputRun,
+                  std::move(tokens)};
+}
+
+/// Bad values, types, keys and syntax in the scene file.
+std::vector<BadInput> bad_scene_inputs(const std::string& scene) {
   std::vector<BadInput> v;
   v.push_back(scene_case("scene NaN", "youngs_modulus = nan",
                          with_line(scene, "youngs_modulus", "youngs_modulus = nan"),
@@ -212,6 +214,13 @@ std::vector<BadInput> bad_inputs() {
                          with_line(scene, "diameter", "diameter = = 1"), {"TOML syntax error"}));
   v.push_back(scene_case("scene unknown method", "search = \"m9\"",
                          with_line(scene, "search", "search = \"m9\""), {"search", "m9"}));
+  return v;
+}
+
+/// Bad options and unwritable outputs on a good scene.
+std::vector<BadInput> bad_option_inputs(const std::string& scene) {
+  const std::string& run = kBadInputRun;
+  std::vector<BadInput> v;
   v.push_back(BadInput{"option unknown method",
                        "--method m9",
                        {{"scene.toml", scene}},
@@ -232,23 +241,31 @@ std::vector<BadInput> bad_inputs() {
                        {{"scene.toml", scene}},
                        run + " --checkpoint /proc/drumlab/c.h5",
                        {"--checkpoint", "/proc/drumlab/c.h5"}});
+  return v;
+}
+
+/// Bad particle files: a missing fill file, bad CSV packings, a bad `contacts --particles` CSV.
+std::vector<BadInput> bad_file_inputs(const std::string& file_scene) {
+  std::vector<BadInput> v;
   v.push_back(scene_case("fill file missing", "file = \"none.csv\"",
                          with_line(file_scene, "file", "file = \"none.csv\""),
                          {"fill.file", "none.csv"}));
-  v.push_back(csv_case("csv NaN", "x = nan", "x,y,z,r\nnan,-0.02,0.01,0.004\n", {":2:", "'x'"}));
-  v.push_back(csv_case("csv negative radius", "r = -0.004", "x,y,z,r\n0,-0.02,0.01,-0.004\n",
-                       {":2:", "'r'"}));
-  v.push_back(csv_case("csv empty", "empty file", "", {"empty"}));
-  v.push_back(csv_case("csv header only", "x,y,z,r only", "x,y,z,r\n", {"no particles"}));
-  v.push_back(csv_case("csv missing column", "x,y,r", "x,y,r\n0,0,0.004\n", {"'z'"}));
-  v.push_back(csv_case("csv huge coordinates", "x = 1e300",
+  v.push_back(csv_case(file_scene, "csv NaN", "x = nan", "x,y,z,r\nnan,-0.02,0.01,0.004\n",
+                       {":2:", "'x'"}));
+  v.push_back(csv_case(file_scene, "csv negative radius", "r = -0.004",
+                       "x,y,z,r\n0,-0.02,0.01,-0.004\n", {":2:", "'r'"}));
+  v.push_back(csv_case(file_scene, "csv empty", "empty file", "", {"empty"}));
+  v.push_back(
+      csv_case(file_scene, "csv header only", "x,y,z,r only", "x,y,z,r\n", {"no particles"}));
+  v.push_back(csv_case(file_scene, "csv missing column", "x,y,r", "x,y,r\n0,0,0.004\n", {"'z'"}));
+  v.push_back(csv_case(file_scene, "csv huge coordinates", "x = 1e300",
                        "x,y,z,r\n0,-0.02,0.01,0.004\n1e300,-0.02,0.01,0.004\n",
                        {":3:", "outside the drum"}));
-  v.push_back(csv_case("csv foreign radius", "r = 0.005 (class 0.004)",
+  v.push_back(csv_case(file_scene, "csv foreign radius", "r = 0.005 (class 0.004)",
                        "x,y,z,r\n0,-0.02,0.01,0.005\n", {":2:", "radii"}));
-  v.push_back(csv_case("csv partial velocity", "x,y,z,r,vx", "x,y,z,r,vx\n0,-0.02,0.01,0.004,1\n",
-                       {"vx, vy, vz"}));
-  v.push_back(csv_case("overlap 30% refused", "two particles 0.3 r apart from touching",
+  v.push_back(csv_case(file_scene, "csv partial velocity", "x,y,z,r,vx",
+                       "x,y,z,r,vx\n0,-0.02,0.01,0.004,1\n", {"vx, vy, vz"}));
+  v.push_back(csv_case(file_scene, "overlap 30% refused", "two particles 0.3 r apart from touching",
                        "x,y,z,r\n0,-0.02,0.0125,0.004\n0.0068,-0.02,0.0125,0.004\n",
                        {":3:", "line 2", "overlaps"}));
   v.push_back(BadInput{"contacts csv NaN",
@@ -256,6 +273,16 @@ std::vector<BadInput> bad_inputs() {
                        {{"p.csv", "x,y,z,r\n0,nan,0,0.004\n"}},
                        "contacts --particles p.csv --method m5",
                        {"p.csv:2:", "'y'"}});
+  return v;
+}
+
+std::vector<BadInput> bad_inputs() {
+  StressScene s;
+  StressScene f = s;
+  f.fill_file = "p.csv";
+  std::vector<BadInput> v = bad_scene_inputs(s.toml());
+  for (BadInput& b : bad_option_inputs(s.toml())) v.push_back(std::move(b));
+  for (BadInput& b : bad_file_inputs(f.toml())) v.push_back(std::move(b));
   return v;
 }
 
@@ -281,4 +308,4 @@ std::vector<StressCase> cli_stress_cases(const StressContext& ctx) {
   return cases;
 }
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

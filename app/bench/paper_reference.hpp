@@ -1,9 +1,12 @@
 #pragma once
-// The paper's own estimates (Lobovikov et al. 2021, Tables 1 and 2; shared/paper/tables.csv),
-// printed beside drumlab's counts. -1 marks an empty cell of the paper's table.
+// The paper's own estimates, printed beside drumlab's counts: Tables 1 (drum depth 0.15 m) and 2
+// (depth 2 m) of Lobovikov D.V., Kharchenko A.V., Matygullina E.V., "Comparison of efficiency of
+// contact search algorithms for discrete element method", Bulletin PNRPU. Mechanical engineering,
+// materials science, 2021, vol. 23, no. 2, pp. 55-61, DOI 10.15593/2224-9877/2021.2.07. -1 marks
+// an empty cell of the paper's table.
 #include <array>
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 struct PaperColumn {
   double cell_side;  ///< m
@@ -37,4 +40,4 @@ inline constexpr std::array<PaperTable, 2> kPaperTables{{
        {0.015, 1973333, 1.31, {65, 65, 65}, {85, 85, 85}, 4137}}}},
 }};
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "app/cli/bench_state.hpp"
+#include "app/bench/bench_state.hpp"
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 struct SearchBenchOptions {
   std::string scene;                 ///< flowing scene (default: the demo drum)
@@ -24,4 +24,4 @@ struct SearchBenchOptions {
 
 void run_bench_search(const SearchBenchOptions& opt);
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

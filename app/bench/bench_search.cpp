@@ -1,4 +1,4 @@
-#include "app/cli/bench_search.hpp"
+#include "app/bench/bench_search.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-#include "app/cli/paper_reference.hpp"
+#include "app/bench/paper_reference.hpp"
 #include "app/cli/run_report.hpp"
 #include "engine/fill/paper_packing.hpp"
 #include "engine/io/atomic_file.hpp"
@@ -20,7 +20,7 @@
 #include "render/bench_chart.hpp"
 #endif
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 namespace {
 
@@ -240,4 +240,4 @@ void run_bench_search(const SearchBenchOptions& opt) {
   write_chart(out / fmt::format("search_{}.png", rolling.scene.name), names, methods, rows);
 }
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

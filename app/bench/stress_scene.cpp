@@ -1,4 +1,4 @@
-#include "app/cli/stress_scene.hpp"
+#include "app/bench/stress_scene.hpp"
 
 #include <cctype>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include "engine/types.hpp"
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 namespace {
 constexpr double kGravity = 9.81;
@@ -94,4 +94,4 @@ std::string lattice_csv(const StressScene& scene, double r, double overlap, std:
   return csv;
 }
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

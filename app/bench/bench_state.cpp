@@ -1,8 +1,4 @@
-#include "app/cli/bench_state.hpp"
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
+#include "app/bench/bench_state.hpp"
 
 #include <malloc.h>
 #include <sys/resource.h>
@@ -16,13 +12,13 @@
 
 #include <fmt/format.h>
 
-#include "app/cli/scene_setup.hpp"
-#include "engine/fill/random_fill.hpp"
+#include "app/cli/run_session.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/io/checkpoint.hpp"
+#include "engine/session/run_session.hpp"
 #include "engine/simulation.hpp"
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 namespace {
 
@@ -42,23 +38,27 @@ std::string read_text(const std::filesystem::path& file) {
   return text.str();
 }
 
-/// Fill, settle with the drum at rest, turn: the state to benchmark.
-SimulationState make_rolling(const SceneConfig& scene, double settle_time, double revolutions) {
+/// Fill (the scene's [fill] kind), settle with the drum at rest, turn: the state to benchmark.
+/// `scene` comes back with search "auto" resolved.
+SimulationState make_rolling(SceneConfig& scene, double settle_time, double revolutions) {
   const auto t0 = std::chrono::steady_clock::now();
-  Simulation sim(scene, random_fill(scene));
+  SessionOptions options;
+  options.settle_time = settle_time;
+  RunSession session(scene, options);
   const double fill_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const auto settle = static_cast<std::uint64_t>(std::ceil(settle_time / sim.dt()));
+  if (session.auto_choice()) cli::print_auto_choice(*session.auto_choice());
+  scene = session.scene();
+  const Simulation& sim = session.simulation();
+  const std::uint64_t settle = session.settle_steps();
   const double omega = std::abs(scene.drum.omega);
   const auto turn = omega > 0.0 ? static_cast<std::uint64_t>(std::ceil(
                                       revolutions * 2.0 * std::numbers::pi / omega / sim.dt()))
                                 : 0;
   fmt::print("prepare           {} particles filled in {:.2f} s; settle {} steps, turn {} steps\n",
              sim.particles().size(), fill_seconds, settle, turn);
-  sim.set_drum_omega(0.0);
-  sim.advance(settle);
-  sim.set_drum_omega(scene.drum.omega);
-  sim.advance(turn);
+  session.settle();
+  session.advance(turn);
   return sim.state();
 }
 
@@ -75,6 +75,9 @@ RollingState rolling_state(const std::string& scene_file, const RollingPlan& pla
     Checkpoint c = read_checkpoint(file);
     if (c.scene_name == r.scene.name && c.state.particles.size() == r.scene.fill.count) {
       r.state = std::move(c.state);
+      if (const auto choice = resolve_auto_search(r.scene, r.state.particles, r.state.dt)) {
+        cli::print_auto_choice(*choice);
+      }
       r.origin = fmt::format("cached {} (t = {:.4g} s)", file.string(), r.state.time);
       return r;
     }
@@ -113,12 +116,4 @@ void make_output_dir(const std::filesystem::path& dir) {
   }
 }
 
-void set_threads(int threads) {
-#ifdef _OPENMP
-  omp_set_num_threads(threads);
-#else
-  if (threads > 1) fmt::print("note: built without OpenMP: {} threads asked, 1 runs\n", threads);
-#endif
-}
-
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

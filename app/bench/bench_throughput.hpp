@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "app/cli/bench_state.hpp"
+#include "app/bench/bench_state.hpp"
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 struct ThroughputOptions {
   std::string scene;                 ///< scene file (default: the demo drum)
@@ -29,4 +29,4 @@ void run_bench_throughput(const ThroughputOptions& opt);
 /// Steps brute force runs at most (it is O(N^2) per step).
 inline constexpr std::uint64_t kBruteMaxSteps = 20;
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

@@ -15,16 +15,26 @@
 // time, log-log, one curve per knob, the Pareto front over all settings marked).
 #include <string>
 
-#include "app/cli/bench_state.hpp"
+#include "app/bench/bench_state.hpp"
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 struct AccuracyOptions {
   std::string scene;  ///< default: scenes/accuracy_drum.toml (--quick: scenes/accuracy_quick.toml)
   std::string out = "out/bench";
   bool quick = false;  ///< short windows (and the small quick scene unless --scene is given)
-  RollingPlan plan;    ///< how the steady state is prepared (settle + turn) and cached
+  RollingPlan plan = accuracy_plan();  ///< how the steady state is prepared and cached
+
+  /// A steady rolling flow before the sweep: half a revolution after settling.
+  static RollingPlan accuracy_plan() {
+    RollingPlan p;
+    p.turn_revolutions = 0.5;
+    return p;
+  }
 };
+
+/// Drum revolutions before the sweep with --quick (unless --turn is given).
+inline constexpr double kAccuracyQuickTurnRevolutions = 0.2;
 
 /// Runs the sweep; throws InputError for bad input (scene, output folder).
 void run_bench_accuracy(AccuracyOptions opt);
@@ -32,4 +42,4 @@ void run_bench_accuracy(AccuracyOptions opt);
 /// Brute force is swept only on scenes with at most this many particles (O(N^2) per step).
 inline constexpr std::size_t kAccuracyBruteMaxParticles = 1000;
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

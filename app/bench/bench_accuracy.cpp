@@ -1,4 +1,4 @@
-#include "app/cli/bench_accuracy.hpp"
+#include "app/bench/bench_accuracy.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,16 +7,21 @@
 
 #include <fmt/format.h>
 
-#include "app/cli/bench_accuracy_cases.hpp"
+#include "app/bench/bench_accuracy_cases.hpp"
 #include "app/cli/scene_setup.hpp"
 #include "engine/analysis/flow_regime.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/simulation.hpp"
+#include "engine/threads.hpp"
 #ifdef DRUMLAB_WITH_RENDER
 #include "render/xy_chart.hpp"
 #endif
 
-namespace drumlab::cli {
+namespace drumlab::bench {
+
+using cli::froude_number;
+using cli::regime_for_froude;
+using cli::shipped_scene;
 
 namespace {
 
@@ -161,6 +166,7 @@ void write_csv(const std::filesystem::path& file, const std::string& scene,
   });
 }
 
+#ifdef DRUMLAB_WITH_RENDER  // the chart marks the Pareto front
 /// Orders rows by run time, rows without one (unstable runs) last.
 bool by_run_time(const Row& a, const Row& b) {
   const double ta = std::isfinite(a.run_time()) ? a.run_time() : INFINITY;
@@ -189,6 +195,7 @@ std::vector<std::size_t> pareto_front(const std::vector<Row>& rows, double (*err
   }
   return front;
 }
+#endif
 
 struct ErrorMeasure {
   const char* title;
@@ -285,22 +292,11 @@ void print_recommendation(const std::vector<Row>& rows) {
   }
 }
 
-}  // namespace
-
-void run_bench_accuracy(AccuracyOptions opt) {
-  if (opt.scene.empty()) {
-    opt.scene = shipped_scene(opt.quick ? "accuracy_quick.toml" : "accuracy_drum.toml");
-  }
-  Protocol pr;
-  if (opt.quick) pr = Protocol{0.05, 0.1, 5, 0.1};
-  set_threads(1);  // run times comparable between settings and with bench throughput
-  const std::filesystem::path out = opt.out;
-  make_output_dir(out);
-  const RollingState rolling = rolling_state(opt.scene, opt.plan);
+/// The setting printed before the sweep: scene, state, drum-run protocol, the analytic cases.
+void print_setup(const AccuracyOptions& opt, const RollingState& rolling, const Protocol& pr) {
   const SceneConfig& scene = rolling.scene;
   const std::size_t n = rolling.state.particles.size();
   const double r_min = scene.min_radius();
-  const double drum_radius = 0.5 * scene.drum.diameter;
   const double t_r = rayleigh_time(r_min, scene.material);
   fmt::print("scene             {} ({}), {} particles, Fr = {:.3g} ({} expected)\n", scene.name,
              opt.scene, n, froude_number(scene), regime_for_froude(froude_number(scene)));
@@ -315,10 +311,15 @@ void run_bench_accuracy(AccuracyOptions opt) {
       r_min, kImpactSpeed, scene.material.restitution);
   fmt::print("energy            36 elastic frictionless spheres r = {} m, {} s\n", r_min,
              pr.energy_time);
-  const std::vector<KnobSweep> sweeps = sweep_table(n);
-  const RunSettings baseline{scene.time.dt_factor, scene.search_method, scene.performance};
-  fmt::print("baseline          dt = {} t_R, search {} (knobs not swept keep these)\n",
-             baseline.dt_factor, baseline.method);
+}
+
+/// Every value of every knob: the analytic cases, the drum run, the errors against the sweep's
+/// reference (its first value); each row printed as it is done.
+std::vector<Row> run_sweeps(const std::vector<KnobSweep>& sweeps, const RunSettings& baseline,
+                            const RollingState& rolling, const Protocol& pr) {
+  const SceneConfig& scene = rolling.scene;
+  const double r_min = scene.min_radius();
+  const double drum_radius = 0.5 * scene.drum.diameter;
   print_header();
   std::vector<Row> rows;
   for (const KnobSweep& sweep : sweeps) {
@@ -335,6 +336,11 @@ void run_bench_accuracy(AccuracyOptions opt) {
       print_row(rows.back());
     }
   }
+  return rows;
+}
+
+/// What the columns mean, and the settings whose drum run went unstable.
+void print_legend(const std::vector<Row>& rows) {
   fmt::print(
       "errors: e_err, tc_err relative to the exact values; E_drift max |E - E0| / E_ref; angle "
       "(deg), KE, layer relative and COM (/ drum radius) against the first value of the knob's "
@@ -345,36 +351,62 @@ void run_bench_accuracy(AccuracyOptions opt) {
     if (!r.drum.failure.empty())
       fmt::print("unstable          {} = {}: {}\n", r.knob, r.value, r.drum.failure);
   }
-  const Row& ref = rows.front();
-  if (ref.drum.failure.empty()) {
-    const DrumObservables& m = ref.drum.mean;
-    const SteadyCheck c = steady_check(ref.drum);
-    fmt::print(
-        "reference         {} = {}: angle {:.2f} deg, mean KE {:.4g} J, layer {:.4g} m, COM "
-        "({:.4f}, {:.4f}, {:.4f}) m, curvature {:.3f}\n",
-        ref.knob, ref.value, m.angle_of_repose_deg, m.mean_kinetic_energy,
-        m.flowing_layer_thickness, m.centre_of_mass.x(), m.centre_of_mass.y(), m.centre_of_mass.z(),
-        m.surface_curvature);
-    fmt::print(
-        "steady state      angle {:.2f} deg (first half of the window) vs {:.2f} deg (second "
-        "half); standard error of the window mean {:.2f} deg ({:.2g} relative): drum errors "
-        "below that are noise\n",
-        c.first, c.second, c.noise,
-        m.angle_of_repose_deg != 0.0 ? c.noise / std::abs(m.angle_of_repose_deg) : 0.0);
-    fmt::print(
-        "noise floor       {:.3g}: the largest relative standard error of a window mean (angle, "
-        "KE, layer, COM / R) in the reference run; drum_err below it is not resolved\n",
-        drum_noise_floor(ref.drum, drum_radius));
-    std::string angles;
-    for (const auto& o : ref.drum.samples) angles += fmt::format(" {:.1f}", o.angle_of_repose_deg);
-    fmt::print("window angles    {} deg\n", angles);
-    const RegimeEvidence regime = classify_regime(ref.drum.samples);
-    fmt::print(
-        "observed regime   {} (curvature {:.3f}, in flight {:.3f}, still share {:.2f}, angle swing "
-        "{:.1f} deg; see engine/analysis/flow_regime.hpp); Fr predicts {}\n",
-        regime_name(regime.regime), regime.curvature, regime.airborne_fraction, regime.still_share,
-        regime.angle_swing_deg, regime_for_froude(froude_number(scene)));
+}
+
+/// The reference drum run: its time averages, whether it is steady, the noise floor, the regime.
+void print_reference(const Row& ref, const SceneConfig& scene) {
+  const double drum_radius = 0.5 * scene.drum.diameter;
+  const DrumObservables& m = ref.drum.mean;
+  const SteadyCheck c = steady_check(ref.drum);
+  fmt::print(
+      "reference         {} = {}: angle {:.2f} deg, mean KE {:.4g} J, layer {:.4g} m, COM "
+      "({:.4f}, {:.4f}, {:.4f}) m, curvature {:.3f}\n",
+      ref.knob, ref.value, m.angle_of_repose_deg, m.mean_kinetic_energy, m.flowing_layer_thickness,
+      m.centre_of_mass.x(), m.centre_of_mass.y(), m.centre_of_mass.z(), m.surface_curvature);
+  fmt::print(
+      "steady state      angle {:.2f} deg (first half of the window) vs {:.2f} deg (second "
+      "half); standard error of the window mean {:.2f} deg ({:.2g} relative): drum errors "
+      "below that are noise\n",
+      c.first, c.second, c.noise,
+      m.angle_of_repose_deg != 0.0 ? c.noise / std::abs(m.angle_of_repose_deg) : 0.0);
+  fmt::print(
+      "noise floor       {:.3g}: the largest relative standard error of a window mean (angle, "
+      "KE, layer, COM / R) in the reference run; drum_err below it is not resolved\n",
+      drum_noise_floor(ref.drum, drum_radius));
+  std::string angles;
+  for (const auto& o : ref.drum.samples) angles += fmt::format(" {:.1f}", o.angle_of_repose_deg);
+  fmt::print("window angles    {} deg\n", angles);
+  const RegimeEvidence regime = classify_regime(ref.drum.samples);
+  fmt::print(
+      "observed regime   {} (curvature {:.3f}, in flight {:.3f}, still share {:.2f}, angle swing "
+      "{:.1f} deg; see engine/analysis/flow_regime.hpp); Fr predicts {}\n",
+      regime_name(regime.regime), regime.curvature, regime.airborne_fraction, regime.still_share,
+      regime.angle_swing_deg, regime_for_froude(froude_number(scene)));
+}
+
+}  // namespace
+
+void run_bench_accuracy(AccuracyOptions opt) {
+  if (opt.scene.empty()) {
+    opt.scene = shipped_scene(opt.quick ? "accuracy_quick.toml" : "accuracy_drum.toml");
   }
+  Protocol pr;
+  if (opt.quick) pr = Protocol{0.05, 0.1, 5, 0.1};
+  set_thread_count(1);  // run times comparable between settings and with bench throughput
+  const std::filesystem::path out = opt.out;
+  make_output_dir(out);
+  const RollingState rolling = rolling_state(opt.scene, opt.plan);
+  const SceneConfig& scene = rolling.scene;
+  const double drum_radius = 0.5 * scene.drum.diameter;
+  print_setup(opt, rolling, pr);
+  const std::vector<KnobSweep> sweeps = sweep_table(rolling.state.particles.size());
+  const RunSettings baseline{scene.time.dt_factor, scene.search_method, scene.performance};
+  fmt::print("baseline          dt = {} t_R, search {} (knobs not swept keep these)\n",
+             baseline.dt_factor, baseline.method);
+  const std::vector<Row> rows = run_sweeps(sweeps, baseline, rolling, pr);
+  print_legend(rows);
+  const Row& ref = rows.front();
+  if (ref.drum.failure.empty()) print_reference(ref, scene);
   print_recommendation(rows);
   const auto csv = out / fmt::format("accuracy_{}.csv", scene.name);
   write_csv(csv, scene.name, rows);
@@ -383,4 +415,4 @@ void run_bench_accuracy(AccuracyOptions opt) {
               ref.drum.failure.empty() ? drum_noise_floor(ref.drum, drum_radius) : kNaN);
 }
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

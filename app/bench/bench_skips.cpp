@@ -1,4 +1,4 @@
-#include "app/cli/bench_skips.hpp"
+#include "app/bench/bench_skips.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -16,11 +16,15 @@
 #include "engine/io/atomic_file.hpp"
 #include "engine/scene/scene_features.hpp"
 #include "engine/simulation.hpp"
+#include "engine/threads.hpp"
 #ifdef DRUMLAB_WITH_RENDER
 #include "render/bench_chart.hpp"
 #endif
 
-namespace drumlab::cli {
+namespace drumlab::bench {
+
+using cli::make_output_observers;
+using cli::RunOptions;
 
 namespace {
 
@@ -248,7 +252,7 @@ void run_bench_skips(const SkipsBenchOptions& opt) {
   }
   const std::filesystem::path out = opt.out;
   make_output_dir(out);
-  set_threads(1);  // also for preparing the state: 2 threads on a busy 2-core VM crawl
+  set_thread_count(1);  // also for preparing the state: 2 threads on a busy 2-core VM crawl
   const RollingState rolling = rolling_state(opt.scene, opt.plan);
   const std::string& name = rolling.scene.name;
   const std::string method = rolling.state.search_method;
@@ -305,4 +309,4 @@ void run_bench_skips(const SkipsBenchOptions& opt) {
   write_chart(out / fmt::format("skips_{}.png", name), name, cases);
 }
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

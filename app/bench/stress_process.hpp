@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <string>
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 struct ChildResult {
   int exit_code = -1;  ///< -1: killed by a signal (a crash)
@@ -20,4 +20,4 @@ std::string shell_quote(const std::string& text);
 /// Lines of `text` that are not empty.
 std::size_t line_count(const std::string& text);
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

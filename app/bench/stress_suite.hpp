@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 struct StressOutcome {
   std::string observed;
@@ -32,4 +32,14 @@ std::vector<StressCase> physics_stress_cases(const StressContext& ctx);
 /// executable itself, asserting exit codes, one-line messages and the files left behind.
 std::vector<StressCase> cli_stress_cases(const StressContext& ctx);
 
-}  // namespace drumlab::cli
+struct StressSuiteOptions {
+  std::string out = "out/stress";  ///< folder for stress.csv and the cases' files (OUT/work)
+  bool quick = false;              ///< the cheap cases only
+  std::string only;                ///< non-empty: only the cases whose name contains it
+};
+
+/// Runs the suite: prints the table, writes OUT/stress.csv. Throws InputError for an unusable
+/// folder or an `only` that matches no case, std::runtime_error if any case misbehaves.
+void run_stress_suite(const StressSuiteOptions& opt);
+
+}  // namespace drumlab::bench

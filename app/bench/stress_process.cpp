@@ -1,4 +1,4 @@
-#include "app/cli/stress_process.hpp"
+#include "app/bench/stress_process.hpp"
 
 #include <sys/wait.h>
 
@@ -8,7 +8,7 @@
 
 #include <fmt/format.h>
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 namespace {
 
@@ -59,4 +59,4 @@ ChildResult run_drumlab(const std::string& args, const std::filesystem::path& wo
   return r;
 }
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

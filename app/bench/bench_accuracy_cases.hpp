@@ -4,10 +4,10 @@
 #include <string>
 #include <vector>
 
-#include "app/cli/bench_state.hpp"
+#include "app/bench/bench_state.hpp"
 #include "engine/analysis/drum_observables.hpp"
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 /// One point in knob space: everything a sweep may change.
 struct RunSettings {
@@ -62,4 +62,4 @@ SteadyCheck steady_check(const DrumRun& run);
 /// not resolved by the window. NaN with fewer than two samples.
 double drum_noise_floor(const DrumRun& run, double drum_radius);
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

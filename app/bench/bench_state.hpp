@@ -9,7 +9,7 @@
 #include "engine/scene/scene_config.hpp"
 #include "engine/simulation_state.hpp"
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 struct RollingPlan {
   double settle_time = -1.0;      ///< s with the drum at rest; < 0: the scene's fill.settle_time
@@ -24,7 +24,8 @@ struct RollingState {
   std::string origin;  ///< one line: where the state came from (cache file, or how it was made)
 };
 
-/// Loads the scene and returns its rolling state: from CACHE/<scene>_rolling.h5 when that exists
+/// Loads the scene and returns its rolling state (search "auto" resolved on it and printed as
+/// `drumlab run` prints it): from CACHE/<scene>_rolling.h5 when that exists
 /// and was made from the same scene text with the same plan, otherwise made now (and cached when
 /// any step was simulated). Throws InputError for a bad scene or an unusable cache folder.
 RollingState rolling_state(const std::string& scene_file, const RollingPlan& plan);
@@ -35,11 +36,7 @@ std::size_t heap_bytes_in_use();
 /// Peak resident set size of the process so far (getrusage ru_maxrss), bytes.
 std::size_t peak_rss_bytes();
 
-/// Sets the OpenMP thread count for the next parallel regions (a note if built without OpenMP
-/// and more than one thread was asked for).
-void set_threads(int threads);
-
 /// Creates `dir` (and parents) or throws InputError naming it.
 void make_output_dir(const std::filesystem::path& dir);
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

@@ -12,9 +12,9 @@
 #include <cstdint>
 #include <string>
 
-#include "app/cli/bench_state.hpp"
+#include "app/bench/bench_state.hpp"
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 struct SkipsBenchOptions {
   std::string scene;              ///< scene file (default: the demo drum)
@@ -29,4 +29,4 @@ struct SkipsBenchOptions {
 /// Runs the benchmark; throws InputError for bad input (scene, output folder).
 void run_bench_skips(const SkipsBenchOptions& opt);
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

@@ -7,12 +7,12 @@
 
 #include <fmt/format.h>
 
-#include "app/cli/stress_scene.hpp"
-#include "app/cli/stress_suite.hpp"
-#include "engine/fill/file_fill.hpp"
+#include "app/bench/stress_scene.hpp"
+#include "app/bench/stress_suite.hpp"
+#include "engine/session/run_session.hpp"
 #include "engine/simulation.hpp"
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 namespace {
 
@@ -42,13 +42,16 @@ struct FlowPlan {
   std::uint64_t min_particle_steps = 0;  ///< lengthen the turning phase to reach this
 };
 
-/// Runs `scene` from `particles` and checks every `diagnostics_every` steps: finite, nobody
+/// Runs `scene` from its fill and checks every `diagnostics_every` steps: finite, nobody
 /// outside the drum, count and ids conserved, kinetic + rotational energy below a bound
 /// 2 (E0 + 0.7 M ((omega R)^2 + 2 g D)): the initial mechanical energy plus, per unit mass, a
 /// particle moving with the wall after falling the whole diameter (rolling adds 2/5).
-StressOutcome run_flow(const SceneConfig& scene, Particles particles, const FlowPlan& plan) {
+StressOutcome run_flow(const SceneConfig& scene, const FlowPlan& plan) {
   try {
-    Simulation sim(scene, std::move(particles));
+    SessionOptions options;
+    options.settle_time = plan.settle_time;
+    RunSession session(scene, options);  // the scene's fill, random or from a file
+    const Simulation& sim = session.simulation();
     const std::size_t n0 = sim.particles().size();
     const Diagnostics d0 = sim.diagnostics();
     const double r_drum = 0.5 * scene.drum.diameter;
@@ -57,22 +60,19 @@ StressOutcome run_flow(const SceneConfig& scene, Particles particles, const Flow
         2.0 * (mechanical_energy(d0) +
                0.7 * total_mass(sim.particles()) *
                    (v_wall * v_wall + 2.0 * scene.gravity.norm() * scene.drum.diameter));
-    const auto settle = static_cast<std::uint64_t>(std::ceil(plan.settle_time / sim.dt()));
+    const std::uint64_t settle = session.settle_steps();
     auto turn = static_cast<std::uint64_t>(std::ceil(plan.turn_time / sim.dt()));
     if (plan.min_particle_steps > 0) {
       const std::uint64_t total = (plan.min_particle_steps + n0 - 1) / n0;
       turn = std::max(turn, total > settle ? total - settle : 0);
     }
-    const std::uint64_t chunk = std::max<std::uint64_t>(1, scene.output.diagnostics_every);
     double ke_max = 0.0;
     double ke_turn_max = 0.0;  // turning phase only (the settling fall often dominates ke_max)
     double overlap_max = 0.0;
     std::string problem;
-    const auto run_phase = [&](std::uint64_t steps, bool turning) {
-      for (std::uint64_t done = 0; done < steps && problem.empty();) {
-        const std::uint64_t k = std::min(chunk, steps - done);
-        sim.advance(k);
-        done += k;
+    // Checked after every chunk of output.diagnostics_every steps; a problem stops the run.
+    const auto check = [&](bool turning) {
+      return [&, turning](std::uint64_t, std::uint64_t) {
         const Diagnostics d = sim.diagnostics();
         ke_max = std::max(ke_max, d.kinetic_energy + d.rotational_energy);
         if (turning) ke_turn_max = std::max(ke_turn_max, d.kinetic_energy + d.rotational_energy);
@@ -81,12 +81,11 @@ StressOutcome run_flow(const SceneConfig& scene, Particles particles, const Flow
         if (d.outside_drum > 0) problem = fmt::format("{} outside the drum", d.outside_drum);
         if (sim.particles().size() != n0) problem = "particle count changed";
         if (!(ke_max <= bound)) problem = fmt::format("energy {:.3g} J above bound", ke_max);
-      }
+        return problem.empty();
+      };
     };
-    sim.set_drum_omega(0.0);
-    run_phase(settle, false);
-    sim.set_drum_omega(scene.drum.omega);
-    run_phase(turn, true);
+    session.settle(check(false));
+    if (problem.empty()) session.advance(turn, check(true));
     if (problem.empty() && !ids_intact(sim.particles())) problem = "particle ids lost";
     // Mean particle speed against the wall speed at the end: ~1 when the bed turns with the drum.
     double mean_speed = 0.0;
@@ -128,7 +127,7 @@ StressCase flow_case(const StressContext& ctx, std::string name, const StressSce
                                 : std::move(expected);
   c.run = [ctx, name, s, plan] {
     const SceneConfig scene = write_and_load(ctx, name, s);
-    return run_flow(scene, initial_fill(scene), plan);
+    return run_flow(scene, plan);
   };
   c.name = std::move(name);
   return c;
@@ -153,7 +152,8 @@ StressCase gentle_release_case(const StressContext& ctx, bool quick) {
     write_text(ctx.work / s.fill_file, lattice_csv(s, 0.004, 0.08, max_count));
     try {
       const SceneConfig scene = write_and_load(ctx, "overlap_release", s);
-      Simulation sim(scene, initial_fill(scene));
+      RunSession session(scene, SessionOptions{});
+      Simulation& sim = session.simulation();
       const double e0 = mechanical_energy(sim.diagnostics());
       const double m_min =
           *std::min_element(sim.particles().mass.begin(), sim.particles().mass.end());
@@ -162,7 +162,7 @@ StressCase gentle_release_case(const StressContext& ctx, bool quick) {
       double e_max = 0.0;
       double v_max = 0.0;
       for (std::uint64_t done = 0; done < steps; done += 10) {
-        sim.advance(10);
+        session.advance(10);
         e_max = std::max(e_max, mechanical_energy(sim.diagnostics()));
         for (const Vec3& v : sim.particles().velocity) v_max = std::max(v_max, v.norm());
       }
@@ -180,17 +180,20 @@ StressCase gentle_release_case(const StressContext& ctx, bool quick) {
   return c;
 }
 
-}  // namespace
-
-std::vector<StressCase> physics_stress_cases(const StressContext& ctx) {
-  const bool quick = ctx.quick;
-  const FlowPlan plan{quick ? 0.08 : 0.2, quick ? 0.12 : 1.0, 0};
-  std::vector<StressCase> cases;
+/// Drum flows over the regime map: Fr = 1e-4 ... 3.
+void add_regime_map_cases(const StressContext& ctx, const FlowPlan& plan,
+                          std::vector<StressCase>& cases) {
   for (const double fr : {1e-4, 1e-2, 0.3, 1.0, 3.0}) {
     StressScene s;
     s.froude = fr;
     cases.push_back(flow_case(ctx, fmt::format("Fr {:g}", fr), s, plan));
   }
+}
+
+/// Two size classes, radius ratios 3 and 10.
+void add_size_ratio_cases(const StressContext& ctx, const FlowPlan& plan,
+                          std::vector<StressCase>& cases) {
+  const bool quick = ctx.quick;
   {
     StressScene s;
     s.radius = 0.003;
@@ -209,6 +212,12 @@ std::vector<StressCase> physics_stress_cases(const StressContext& ctx) {
     s.search = "mlgrid";  // m5 (cells of R_max, ~100 small particles each) was 1.6x slower here
     cases.push_back(flow_case(ctx, "size ratio 10", s, plan));
   }
+}
+
+/// Soft and stiff materials, no and high friction, periodic ends on a tilted drum.
+void add_material_cases(const StressContext& ctx, const FlowPlan& plan,
+                        std::vector<StressCase>& cases) {
+  const bool quick = ctx.quick;
   {
     StressScene s;
     s.youngs_modulus = 1e5;
@@ -238,34 +247,52 @@ std::vector<StressCase> physics_stress_cases(const StressContext& ctx) {
     s.tilt_deg = 20.0;
     cases.push_back(flow_case(ctx, "periodic ends, tilt 20 deg", s, plan));
   }
-  {
-    StressScene s;
-    s.fill_file = "overlap_8pct.csv";
-    s.settle_time = 0.0;
-    const std::size_t max_count = quick ? 150 : 400;
-    StressCase c = flow_case(ctx, "overlap 8% in drum", s, {0.0, plan.turn_time, 0});
-    c.setup = fmt::format("lattice <= {} p, r 4 mm, overlap 0.08 r, Fr 0.05, turn {:g} s",
-                          max_count, plan.turn_time);
-    auto inner = c.run;
-    c.run = [ctx, s, max_count, inner] {
-      write_text(ctx.work / s.fill_file, lattice_csv(s, 0.004, 0.08, max_count));
-      return inner();
-    };
-    cases.push_back(std::move(c));
-  }
+}
+
+/// A file packing whose neighbours overlap by 8 % of the radius, in a turning drum.
+StressCase overlap_in_drum_case(const StressContext& ctx, const FlowPlan& plan) {
+  const bool quick = ctx.quick;
+  StressScene s;
+  s.fill_file = "overlap_8pct.csv";
+  s.settle_time = 0.0;
+  const std::size_t max_count = quick ? 150 : 400;
+  StressCase c = flow_case(ctx, "overlap 8% in drum", s, {0.0, plan.turn_time, 0});
+  c.setup = fmt::format("lattice <= {} p, r 4 mm, overlap 0.08 r, Fr 0.05, turn {:g} s", max_count,
+                        plan.turn_time);
+  auto inner = c.run;
+  c.run = [ctx, s, max_count, inner] {
+    write_text(ctx.work / s.fill_file, lattice_csv(s, 0.004, 0.08, max_count));
+    return inner();
+  };
+  return c;
+}
+
+/// The full suite's long run: at least 1e8 particle-steps.
+StressCase long_run_case(const StressContext& ctx) {
+  StressScene s;
+  s.diameter = 0.2;
+  s.depth = 0.04;
+  s.count = 1000;
+  s.froude = 0.05;
+  StressCase c = flow_case(ctx, "long run", s, {0.3, 0.0, 100'000'000},
+                           "stable for >= 1e8 particle-steps, E_kin bounded, N conserved");
+  c.setup = fmt::format("{}; >= 1e8 particle-steps", s.summary());
+  return c;
+}
+
+}  // namespace
+
+std::vector<StressCase> physics_stress_cases(const StressContext& ctx) {
+  const bool quick = ctx.quick;
+  const FlowPlan plan{quick ? 0.08 : 0.2, quick ? 0.12 : 1.0, 0};
+  std::vector<StressCase> cases;
+  add_regime_map_cases(ctx, plan, cases);
+  add_size_ratio_cases(ctx, plan, cases);
+  add_material_cases(ctx, plan, cases);
+  cases.push_back(overlap_in_drum_case(ctx, plan));
   cases.push_back(gentle_release_case(ctx, quick));
-  if (!quick) {
-    StressScene s;
-    s.diameter = 0.2;
-    s.depth = 0.04;
-    s.count = 1000;
-    s.froude = 0.05;
-    StressCase c = flow_case(ctx, "long run", s, {0.3, 0.0, 100'000'000},
-                             "stable for >= 1e8 particle-steps, E_kin bounded, N conserved");
-    c.setup = fmt::format("{}; >= 1e8 particle-steps", s.summary());
-    cases.push_back(std::move(c));
-  }
+  if (!quick) cases.push_back(long_run_case(ctx));
   return cases;
 }
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

@@ -1,4 +1,4 @@
-#include "app/cli/bench_regimes.hpp"
+#include "app/bench/bench_regimes.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -13,11 +13,15 @@
 #include "engine/analysis/flow_regime.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/simulation.hpp"
+#include "engine/threads.hpp"
 #ifdef DRUMLAB_WITH_RENDER
 #include "render/xy_chart.hpp"
 #endif
 
-namespace drumlab::cli {
+namespace drumlab::bench {
+
+using cli::froude_number;
+using cli::regime_for_froude;
 
 namespace {
 
@@ -229,7 +233,7 @@ void run_bench_regimes(const RegimesBenchOptions& opt) {
   }
   const std::filesystem::path out = opt.out;
   make_output_dir(out);
-  set_threads(1);  // small drums: one thread; 2 threads on a busy 2-core VM crawl
+  set_thread_count(1);  // small drums: one thread; 2 threads on a busy 2-core VM crawl
   const auto t_start = std::chrono::steady_clock::now();
   RollingPlan plan = opt.plan;
   plan.turn_revolutions = 0.0;  // settled at rest; each Froude number turns it from there
@@ -283,4 +287,4 @@ void run_bench_regimes(const RegimesBenchOptions& opt) {
              std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count());
 }
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <string>
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 /// A small drum scene (random fill unless fill_file is set).
 struct StressScene {
@@ -48,4 +48,4 @@ std::filesystem::path write_text(const std::filesystem::path& file, const std::s
 std::string lattice_csv(const StressScene& scene, double r, double overlap, std::size_t max_count,
                         double wall_gap = 1.0);
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

@@ -1,4 +1,4 @@
-#include "app/cli/bench_throughput.hpp"
+#include "app/bench/bench_throughput.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,11 +13,12 @@
 #include "engine/io/atomic_file.hpp"
 #include "engine/search/verlet_list.hpp"
 #include "engine/simulation.hpp"
+#include "engine/threads.hpp"
 #ifdef DRUMLAB_WITH_RENDER
 #include "render/bench_chart.hpp"
 #endif
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 namespace {
 
@@ -68,7 +69,10 @@ std::uint64_t verlet_rebuilds(const Simulation& sim) {
 ThroughputRow measure(const RollingState& rolling, const std::string& method,
                       std::uint64_t sort_every, int threads, std::uint64_t steps,
                       std::uint64_t warmup) {
-  set_threads(threads);
+  set_thread_count(threads);
+  if (threads > max_threads()) {
+    fmt::print("note: built without OpenMP: {} threads asked, 1 runs\n", threads);
+  }
   ThroughputRow row;
   row.method = method;
   row.sort_every = sort_every;
@@ -253,4 +257,4 @@ void run_bench_throughput(const ThroughputOptions& opt) {
   write_chart(out / fmt::format("throughput_{}.png", name), name, labels, threads, rows);
 }
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

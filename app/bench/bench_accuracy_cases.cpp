@@ -1,4 +1,4 @@
-#include "app/cli/bench_accuracy_cases.hpp"
+#include "app/bench/bench_accuracy_cases.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -11,7 +11,7 @@
 #include "engine/contact/hertz_mindlin.hpp"
 #include "engine/simulation.hpp"
 
-namespace drumlab::cli {
+namespace drumlab::bench {
 
 namespace {
 
@@ -248,4 +248,4 @@ double drum_noise_floor(const DrumRun& run, double drum_radius) {
   return floor;
 }
 
-}  // namespace drumlab::cli
+}  // namespace drumlab::bench

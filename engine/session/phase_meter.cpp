@@ -1,0 +1,27 @@
+#include "engine/session/phase_meter.hpp"
+
+namespace drumlab {
+
+PhaseMeter::PhaseMeter(const Simulation& sim)
+    : sim_(sim),
+      steps0_(sim.steps()),
+      timers0_(sim.timers()),
+      search0_(sim.search_totals()),
+      start_(std::chrono::steady_clock::now()),
+      cpu_start_(std::clock()) {}
+
+PhaseStats PhaseMeter::finish() const {
+  PhaseStats s;
+  s.steps = sim_.steps() - steps0_;
+  s.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  s.cpu_seconds = static_cast<double>(std::clock() - cpu_start_) / CLOCKS_PER_SEC;
+  const StepTimers& t = sim_.timers();
+  s.timers = {t.search - timers0_.search, t.forces - timers0_.forces, t.walls - timers0_.walls,
+              t.integration - timers0_.integration};
+  const SearchCounters& c = sim_.search_totals();
+  s.search = {c.cells_visited - search0_.cells_visited, c.pairs_tested - search0_.pairs_tested,
+              c.pairs_found - search0_.pairs_found, c.cells_total};
+  return s;
+}
+
+}  // namespace drumlab

@@ -1,0 +1,171 @@
+#include "engine/session/run_session.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "engine/fill/file_fill.hpp"
+#include "engine/io/checkpoint.hpp"
+
+namespace drumlab {
+
+SceneConfig load_dynamic_scene(const std::string& file) {
+  SceneConfig scene = load_scene(file);
+  if (!scene.dynamic()) {
+    throw InputError(fmt::format(
+        "{}: fill.kind: 'paper_packing' is a static packing for `drumlab paper-table`, not a "
+        "dynamic run",
+        file));
+  }
+  return scene;
+}
+
+std::optional<SearchChoice> resolve_auto_search(SceneConfig& scene, const Particles& particles,
+                                                double dt) {
+  if (scene.search_method != "auto") return std::nullopt;
+  SearchChoice choice = choose_search_method(scene, dt, particles.position, particles.radius);
+  scene.search_method = choice.method;
+  return choice;
+}
+
+namespace {
+
+/// The time step a fresh run will take (the scene's dt, or its dt factor of the Rayleigh time).
+double planned_dt(const SceneConfig& scene, double dt_factor) {
+  return scene.time.dt.value_or((dt_factor > 0.0 ? dt_factor : scene.time.dt_factor) *
+                                rayleigh_time(scene.min_radius(), scene.material));
+}
+
+}  // namespace
+
+RunSession::RunSession(SceneConfig scene, SessionOptions options)
+    : scene_(std::move(scene)), options_(std::move(options)) {
+  if (!options_.method.empty()) scene_.search_method = options_.method;
+  if (options_.sort_every >= 0) {
+    scene_.performance.sort_every = static_cast<std::uint64_t>(options_.sort_every);
+  }
+  if (options_.skin > 0.0) scene_.performance.verlet_skin = options_.skin;
+  if (options_.restart.empty()) {
+    SimulationOptions sim_options;
+    sim_options.allow_unsafe_dt = options_.unsafe_dt;
+    sim_options.dt_factor_override = options_.dt_factor;
+    Particles particles = initial_fill(scene_);
+    auto_choice_ = resolve_auto_search(scene_, particles, planned_dt(scene_, options_.dt_factor));
+    sim_ = std::make_unique<Simulation>(scene_, std::move(particles), sim_options);
+    return;
+  }
+  Checkpoint c = read_checkpoint(options_.restart);
+  restart_ = RestartInfo{options_.restart, c.scene_name, options_.dt_factor > 0.0};
+  if (!options_.method.empty()) {
+    auto_choice_ = resolve_auto_search(scene_, c.state.particles, c.state.dt);
+  }
+  const std::string method = scene_.search_method;
+  sim_ = std::make_unique<Simulation>(scene_, std::move(c.state));
+  if (!options_.method.empty()) sim_->set_search_method(method);
+}
+
+std::uint64_t RunSession::settle_steps() const {
+  if (restart_) return 0;
+  const double t = options_.settle_time >= 0.0 ? options_.settle_time : scene_.fill.settle_time;
+  return static_cast<std::uint64_t>(std::ceil(t / sim_->dt()));
+}
+
+SessionPlan RunSession::plan() const {
+  SessionPlan p;
+  p.settle_time = restart_                      ? 0.0
+                  : options_.settle_time >= 0.0 ? options_.settle_time
+                                                : scene_.fill.settle_time;
+  p.settle_steps = settle_steps();
+  const double dt = sim_->dt();
+  if (options_.steps) {  // 0 too: fill and settle only, as LAMMPS's `run 0`
+    p.turn_steps = *options_.steps;
+    return p;
+  }
+  const double omega = std::abs(scene_.drum.omega);
+  double seconds = 0.0;
+  if (options_.revolutions > 0.0 || scene_.time.revolutions) {
+    const double revs =
+        options_.revolutions > 0.0 ? options_.revolutions : *scene_.time.revolutions;
+    if (omega == 0.0) {
+      throw InputError(
+          fmt::format("{}: drum.omega: revolutions need a turning drum", options_.scene_file));
+    }
+    seconds = revs * 2.0 * std::numbers::pi / omega;
+  } else if (scene_.time.duration) {
+    seconds = *scene_.time.duration;
+  } else {
+    throw InputError(fmt::format(
+        "{}: time: set duration or revolutions in the scene, or pass --steps/--revolutions",
+        options_.scene_file));
+  }
+  p.turn_steps = static_cast<std::uint64_t>(std::ceil(seconds / dt));
+  return p;
+}
+
+std::uint64_t RunSession::advance_chunked(std::uint64_t n, std::uint64_t every,
+                                          const std::function<void()>& at_every,
+                                          const SessionProgress& progress) {
+  const std::uint64_t chunk = std::max<std::uint64_t>(1, sim_->scene().output.diagnostics_every);
+  std::uint64_t done = 0;
+  while (done < n) {
+    std::uint64_t k = std::min(chunk, n - done);
+    if (every > 0) k = std::min(k, every - done % every);
+    sim_->advance(k);
+    done += k;
+    if (every > 0 && done % every == 0) at_every();
+    if (progress && !progress(done, n)) break;
+  }
+  return done;
+}
+
+void RunSession::settle(const SessionProgress& progress) {
+  const std::uint64_t steps = settle_steps();
+  if (steps == 0) return;
+  sim_->set_drum_omega(0.0);
+  advance_chunked(steps, 0, {}, progress);
+  sim_->set_drum_omega(scene_.drum.omega);
+}
+
+std::uint64_t RunSession::advance(std::uint64_t n, const SessionProgress& progress) {
+  return advance_chunked(n, 0, {}, progress);
+}
+
+TurnResult RunSession::run_turn(std::uint64_t steps, std::uint64_t every,
+                                std::span<FrameObserver* const> observers,
+                                const SessionProgress& progress) {
+  TurnResult r;
+  const PhaseMeter meter(*sim_);
+  double output_seconds = 0.0;
+  const auto emit = [&] {
+    // No frame of a bad state: a writer sees only a state that has just passed the stability
+    // check (finite, inside the drum, sane overlaps), also for frame 0 of a restart.
+    sim_->check_stability();
+    const auto t0 = std::chrono::steady_clock::now();
+    for (FrameObserver* o : observers) o->on_frame(*sim_, r.frames);
+    ++r.frames;
+    output_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  if (every > 0) emit();
+  r.stopped = advance_chunked(steps, every, emit, progress) < steps;
+  r.stats = meter.finish();
+  r.stats.output_seconds = output_seconds;
+  for (FrameObserver* o : observers) o->on_finish(*sim_);
+  return r;
+}
+
+void RunSession::set_search_method(const std::string& name) {
+  std::string method = name;
+  if (name == "auto") {
+    SceneConfig probe = scene_;
+    probe.search_method = "auto";
+    auto_choice_ = resolve_auto_search(probe, sim_->particles(), sim_->dt());
+    method = probe.search_method;
+  }
+  sim_->set_search_method(method);
+  scene_.search_method = method;
+}
+
+}  // namespace drumlab
