@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "engine/contact/contact_kernel.hpp"
+#include "engine/periodic.hpp"
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -33,12 +34,7 @@ void check_material(const Material& m, const char* what) {
 // Separation of i from j (m); with period > 0 the nearest image along z.
 [[gnu::always_inline]] inline Vec3 separation(const Particles& p, std::size_t i, Index j,
                                               double period) {
-  Vec3 d = p.position[i] - p.position[j];
-  if (period > 0.0) {
-    if (d.z() > 0.5 * period) d.z() -= period;
-    if (d.z() < -0.5 * period) d.z() += period;
-  }
-  return d;
+  return nearest_image(p.position[i], p.position[j], period);
 }
 
 // Visits the entries k in [begin, end) of row i: apart(k) for those that do not overlap (in any
