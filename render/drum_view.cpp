@@ -47,47 +47,12 @@ struct ColorArray {
   std::string title;
 };
 
-/// Contacts per particle (surfaces touching), found with the engine's m5 search.
-std::vector<double> coordination(const Particles& p) {
-  std::vector<double> count(p.size(), 0.0);
-  if (p.empty()) return count;
-  auto search = make_search("m5");
-  SearchInput in;
-  in.position = p.position;
-  in.radius = p.radius;
-  std::vector<IndexPair> pairs;
-  search->find_pairs(in, pairs);
-  for (const IndexPair& q : pairs) {
-    count[q.i] += 1.0;
-    count[q.j] += 1.0;
-  }
-  return count;
-}
-
 ColorArray color_values(const Simulation& sim, ColorBy by) {
   const Particles& p = sim.particles();
   const double drum_r = 0.5 * sim.scene().drum.diameter;
   const double v_ref = std::max(0.1, std::abs(sim.scene().drum.omega) * drum_r);
   ColorArray c;
-  c.values.resize(p.size());
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    switch (by) {
-      case ColorBy::size:
-        c.values[i] = 1000.0 * p.radius[i];
-        break;
-      case ColorBy::speed:
-        c.values[i] = p.velocity[i].norm();
-        break;
-      case ColorBy::omega:
-        c.values[i] = p.omega[i].norm();
-        break;
-      case ColorBy::id:
-        c.values[i] = static_cast<double>(p.id[i]);
-        break;
-      case ColorBy::coordination:
-        break;
-    }
-  }
+  c.values = particle_color_values(sim, by);
   switch (by) {
     case ColorBy::size:
       c.lo = p.empty() ? 0.0 : 1000.0 * p.min_radius();
@@ -107,7 +72,6 @@ ColorArray color_values(const Simulation& sim, ColorBy by) {
       c.title = "particle id";
       break;
     case ColorBy::coordination:
-      c.values = coordination(p);
       c.hi = 12.0;
       c.title = "contacts";
       break;
@@ -189,6 +153,35 @@ std::string grid_text(const GridOverlay& grid, bool focus) {
 }
 
 }  // namespace
+
+std::vector<double> particle_color_values(const Simulation& sim, ColorBy by) {
+  const Particles& p = sim.particles();
+  if (by == ColorBy::coordination) {  // the engine's count, as the VTU's coordination array
+    std::vector<std::uint32_t> count;
+    sim.coordination_numbers(count);
+    return {count.begin(), count.end()};
+  }
+  std::vector<double> values(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    switch (by) {
+      case ColorBy::size:
+        values[i] = 1000.0 * p.radius[i];
+        break;
+      case ColorBy::speed:
+        values[i] = p.velocity[i].norm();
+        break;
+      case ColorBy::omega:
+        values[i] = p.omega[i].norm();
+        break;
+      case ColorBy::id:
+        values[i] = static_cast<double>(p.id[i]);
+        break;
+      case ColorBy::coordination:
+        break;
+    }
+  }
+  return values;
+}
 
 ColorBy parse_color_by(std::string_view s) {
   if (s == "size") return ColorBy::size;
