@@ -11,7 +11,7 @@
 #include "engine/fill/random_fill.hpp"
 #include "engine/scene/scene_features.hpp"
 #include "engine/search/auto_select.hpp"
-#include "engine/search/cell_grid.hpp"
+#include "engine/search/search_methods.hpp"
 #include "engine/simulation.hpp"
 
 namespace drumlab::cli {
@@ -86,14 +86,15 @@ void print_info(const std::string& file) {
     fmt::print("one revolution    {:.4g} s = {:.0f} steps = {:.3g} particle-steps\n", rev, rev / dt,
                rev / dt * static_cast<double>(total));
   }
-  // Memory: particle state plus the grid of the scene's method (if it is one of m1..m5).
+  // Memory: particle state plus the grid of the scene's method (if it has one cell side).
   double cells = 0.0;
   std::string grid;
-  if (scene.search_method.size() == 2 && scene.search_method[0] == 'm') {
-    const CellGridConfig g = paper_method(scene.search_method[1] - '0');
-    const double b = g.cell_from_min_radius ? scene.min_radius() : scene.max_radius();
+  const SearchMethodInfo* method = find_search_method(scene.search_method);
+  if (method != nullptr &&
+      (method->cell == CellRule::min_radius || method->cell == CellRule::max_radius)) {
+    const double b = method->cell == CellRule::min_radius ? scene.min_radius() : scene.max_radius();
     const double nxy = std::ceil(scene.drum.diameter / b) + 1;
-    const double nz = g.three_d ? std::ceil(scene.drum.depth / b) + 1 : 1;
+    const double nz = method->grid == SearchGrid::three_d ? std::ceil(scene.drum.depth / b) + 1 : 1;
     cells = nxy * nxy * nz;
     grid = fmt::format(", grid ~{:.0f} x {:.0f} x {:.0f} cells of {} m", nxy, nxy, nz, b);
   }
@@ -109,6 +110,12 @@ void print_info(const std::string& file) {
   } else {
     fmt::print("search method     {} (set by the scene; `--method` overrides it in `run`)\n",
                scene.search_method);
+    if (const auto parsed = parse_search_method(scene.search_method)) {
+      fmt::print("                  {}{}\n",
+                 parsed->verlet ? fmt::format("Verlet list built by {}: ", parsed->method->name)
+                                : std::string(),
+                 parsed->method->description);
+    }
   }
   if (dynamic) print_features(scene);
   if (!dynamic) fmt::print("note              static packing: use `drumlab paper-table`\n");

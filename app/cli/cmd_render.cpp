@@ -5,10 +5,12 @@
 #include <regex>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "app/cli/commands.hpp"
 #include "app/cli/render_observer.hpp"
 #include "app/cli/scene_setup.hpp"
+#include "engine/search/search_methods.hpp"
 #include "render/frame_writer.hpp"
 #include "render/movie_writer.hpp"
 
@@ -145,8 +147,10 @@ void add_render_command(CLI::App& app) {
     if (args->grid || !args->focus.empty()) {  // fail now, not after settling
       const std::string method =
           opt->method.empty() ? load_dynamic_scene(opt->scene).search_method : opt->method;
-      if (method == "brute") {
-        throw InputError("--grid/--focus: the brute-force search has no cells; use m1..m5");
+      const auto parsed = parse_search_method(method);
+      if (parsed && (parsed->verlet || !parsed->method->draws_cells)) {
+        throw InputError(fmt::format("--grid/--focus: search '{}' has no cells to draw; use {}",
+                                     method, fmt::join(cell_grid_method_names(), ", ")));
       }
     }
     auto observer = make_render_observer(out);

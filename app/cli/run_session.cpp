@@ -17,6 +17,7 @@
 #include "engine/io/checkpoint.hpp"
 #include "engine/search/auto_select.hpp"
 #include "engine/search/contact_search.hpp"
+#include "engine/search/search_methods.hpp"
 
 namespace drumlab::cli {
 
@@ -76,9 +77,9 @@ double advance_phase(Simulation& sim, std::uint64_t steps, const std::string& la
 }  // namespace
 
 void add_run_options(CLI::App* cmd, RunOptions& opt) {
-  cmd->add_option(
-      "--method", opt.method,
-      "contact search method (overrides the scene): brute, m1..m5, mlgrid, verlet[:BUILDER], auto");
+  cmd->add_option("--method", opt.method,
+                  fmt::format("contact search method (overrides the scene): {}, or auto",
+                              search_method_help()));
   auto* steps = cmd->add_option(
       "--steps", opt.steps,
       "turning steps after settling (0: only fill and settle, e.g. for --checkpoint)");

@@ -9,6 +9,7 @@
 
 #include "engine/search/grid_axes.hpp"
 #include "engine/search/search_input.hpp"
+#include "engine/search/search_methods.hpp"
 #include "engine/threads.hpp"
 
 namespace drumlab {
@@ -21,6 +22,10 @@ constexpr double kDenseCellsPerParticle = 64.0;
 constexpr double kDenseCellFloor = 1048576.0;  // 2^20
 
 }  // namespace
+
+std::string_view MultiLevelGridSearch::description() const {
+  return search_method(name()).description;
+}
 
 void MultiLevelGridSearch::find_pairs(const SearchInput& in, std::vector<IndexPair>& out) {
   const auto t0 = SearchClock::now();

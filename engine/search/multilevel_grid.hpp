@@ -21,9 +21,7 @@ namespace drumlab {
 class MultiLevelGridSearch final : public ContactSearch {
  public:
   std::string_view name() const override { return "mlgrid"; }
-  std::string_view description() const override {
-    return "multi-level grid: a 3D grid per size level, cross-level spheres from the larger side";
-  }
+  std::string_view description() const override;
   void find_pairs(const SearchInput& in, std::vector<IndexPair>& out) override;
   std::string report() const override;
 
