@@ -9,7 +9,7 @@
 #include "engine/periodic.hpp"
 #include "render/vtk_datasets.hpp"
 
-namespace drumlab {
+namespace drumlab::render {
 
 vtkSmartPointer<vtkPolyData> contacts_dataset(const Simulation& sim) {
   std::vector<ContactForce> contacts;
@@ -59,4 +59,4 @@ vtkSmartPointer<vtkPolyData> contacts_dataset(const Simulation& sim) {
   return pd;
 }
 
-}  // namespace drumlab
+}  // namespace drumlab::render

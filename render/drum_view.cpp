@@ -190,25 +190,26 @@ ColorBy parse_color_by(std::string_view s) {
   if (s == "id") return ColorBy::id;
   if (s == "coordination") return ColorBy::coordination;
   throw InputError(
-      fmt::format("--color-by: unknown '{}' (size, speed, omega, id, coordination)", s));
+      fmt::format("unknown colour mode '{}' (size, speed, omega, id, coordination)", s));
 }
 
 CameraMode parse_camera(std::string_view s) {
   if (s == "axis") return CameraMode::axis;
   if (s == "iso") return CameraMode::iso;
-  throw InputError(fmt::format("--camera: unknown '{}' (axis, iso)", s));
+  throw InputError(fmt::format("unknown camera '{}' (axis, iso)", s));
 }
 
 Index index_of_id(const Particles& p, Index id) {
   const auto it = std::find(p.id.begin(), p.id.end(), id);
   if (it == p.id.end()) {
-    throw InputError(fmt::format("--focus: no particle with id {} (ids 0..{})", id, p.size() - 1));
+    throw InputError(fmt::format("focus particle {} does not exist (N = {}, ids 0..{})", id,
+                                 p.size(), p.size() - 1));
   }
   return static_cast<Index>(it - p.id.begin());
 }
 
 Index auto_focus_id(const Particles& p) {
-  if (p.empty()) throw InputError("--focus auto: the scene has no particles");
+  if (p.empty()) throw InputError("no particle to focus on: the scene has none");
   Vec3 centroid = Vec3::Zero();
   for (const Vec3& x : p.position) centroid += x;
   centroid /= static_cast<double>(p.size());

@@ -21,6 +21,16 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
+/// f(), with the command-line flag an InputError of the render library came from put in front.
+template <class F>
+auto with_flag(std::string_view flag, F&& f) {
+  try {
+    return f();
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", flag, e.what()));
+  }
+}
+
 class RenderObserver final : public FrameObserver {
  public:
   explicit RenderObserver(const RenderOutput& out) : out_(out), frames_(out.frames_dir) {
@@ -37,11 +47,18 @@ class RenderObserver final : public FrameObserver {
 
   void on_frame(const Simulation& sim, std::uint64_t frame) override {
     if (!view_) {
-      if (out_.focus_auto) out_.view.focus_id = render::auto_focus_id(sim.particles());
+      if (out_.focus_auto) {
+        out_.view.focus_id =
+            with_flag("--focus auto", [&] { return render::auto_focus_id(sim.particles()); });
+      }
       view_ = std::make_unique<render::DrumView>(out_.view);
     }
     const auto t0 = Clock::now();
-    const render::Image image = view_->render(sim);
+    // The view's input errors come from the focus particle or the grid it was asked to draw.
+    const char* flags = !out_.view.focus_id ? "--grid"
+                        : out_.view.grid    ? "--grid/--focus"
+                                            : "--focus";
+    const render::Image image = with_flag(flags, [&] { return view_->render(sim); });
     const auto t1 = Clock::now();
     frames_.write(image, frame);
     render_s_ += std::chrono::duration<double>(t1 - t0).count();
@@ -98,8 +115,8 @@ RenderOutput make_output(const RenderArgs& a) {
   out.frames_dir = a.out;
   if (!a.movie.empty()) out.movie = a.movie;
   std::tie(out.view.width, out.view.height) = parse_size(a.size);
-  out.view.color_by = render::parse_color_by(a.color_by);
-  out.view.camera = render::parse_camera(a.camera);
+  out.view.color_by = with_flag("--color-by", [&] { return render::parse_color_by(a.color_by); });
+  out.view.camera = with_flag("--camera", [&] { return render::parse_camera(a.camera); });
   out.view.grid = a.grid;
   if (a.focus == "auto") {
     out.focus_auto = true;

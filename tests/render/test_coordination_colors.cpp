@@ -25,7 +25,7 @@ TEST(CoordinationColors, PngValuesEqualTheVtuArrayAcrossPeriodicEnds) {
   const Simulation sim(scene, std::move(p));
 
   const std::vector<double> png = render::particle_color_values(sim, render::ColorBy::coordination);
-  const auto grid = particles_dataset(sim);
+  const auto grid = render::particles_dataset(sim);
   vtkDataArray* vtu = grid->GetPointData()->GetArray("coordination");
   ASSERT_NE(vtu, nullptr);
   ASSERT_EQ(vtu->GetNumberOfTuples(), static_cast<vtkIdType>(png.size()));
