@@ -4,7 +4,6 @@
 #include <omp.h>
 #endif
 
-#include <malloc.h>
 #include <sys/resource.h>
 
 #include <chrono>
@@ -20,6 +19,7 @@
 #include "engine/fill/random_fill.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/io/checkpoint.hpp"
+#include "engine/memory_probe.hpp"
 #include "engine/simulation.hpp"
 
 namespace drumlab::cli {
@@ -94,8 +94,7 @@ RollingState rolling_state(const std::string& scene_file, const RollingPlan& pla
 }
 
 std::size_t heap_bytes_in_use() {
-  const struct mallinfo2 m = mallinfo2();
-  return m.uordblks + m.hblkhd;
+  return drumlab::heap_bytes_in_use();
 }
 
 std::size_t peak_rss_bytes() {
