@@ -13,15 +13,7 @@ std::string grid_of(const std::string& method) {
   if (method == "auto") return "auto";
   const auto parsed = parse_search_method(method);
   if (!parsed) return "3D";  // the loader refuses unknown names
-  switch (parsed->method->grid) {
-    case SearchGrid::none:
-      return "none";
-    case SearchGrid::two_d:
-      return "2D";
-    case SearchGrid::three_d:
-      return "3D";
-  }
-  return "3D";
+  return std::string(search_grid_name(parsed->method->grid));
 }
 
 SceneFeature term(std::string name, bool needed, std::string why) {

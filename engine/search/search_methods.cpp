@@ -59,6 +59,11 @@ std::vector<std::string> names_where(bool SearchMethodInfo::*trait) {
 
 }  // namespace
 
+std::string_view search_grid_name(SearchGrid grid) {
+  constexpr std::string_view kNames[] = {"none", "2D", "3D"};
+  return kNames[static_cast<std::size_t>(grid)];
+}
+
 std::span<const SearchMethodInfo> search_methods() {
   return kMethods;
 }

@@ -22,6 +22,9 @@ enum class SearchGrid : std::uint8_t {
   three_d,
 };
 
+/// "none", "2D" or "3D".
+std::string_view search_grid_name(SearchGrid grid);
+
 /// How the side of a grid cell follows from the radii.
 enum class CellRule : std::uint8_t {
   none,        ///< no grid
