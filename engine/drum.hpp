@@ -29,6 +29,8 @@ class Drum {
   double radius() const { return radius_; }
   double depth() const { return depth_; }
   bool periodic() const { return periodic_; }
+  /// The period of z for the minimum image (nearest_image_z): the depth with periodic ends, else 0.
+  double period() const { return periodic_ ? depth_ : 0.0; }
 
   /// Contact of a sphere (centre x, radius r) with the cylinder: overlap = rho + r - R.
   WallContact cylinder_contact(const Vec3& x, double r) const {

@@ -13,6 +13,7 @@
 #include "engine/contact/contact_model.hpp"
 #include "engine/contact/wall_candidates.hpp"
 #include "engine/drum.hpp"
+#include "engine/periodic.hpp"
 #include "engine/search/verlet_list.hpp"
 #include "engine/spatial_order.hpp"
 
@@ -148,7 +149,7 @@ SimulationState Simulation::state() const {
 }
 
 void Simulation::contact_forces(std::vector<ContactForce>& out) const {
-  const double period = impl_->drum.periodic() ? impl_->drum.depth() : 0.0;
+  const double period = impl_->drum.period();
   impl_->model.pair_forces(particles_, impl_->contacts, period, dt_, out);
 }
 
@@ -158,12 +159,11 @@ void Simulation::coordination_numbers(std::vector<std::uint32_t>& out) const {
   const ContactList& contacts = impl_->contacts;
   const auto row = contacts.row_start();
   const auto col = contacts.col();
-  const double period = impl_->drum.periodic() ? impl_->drum.depth() : 0.0;
+  const double period = impl_->drum.period();
   for (std::size_t i = 0; i < contacts.rows(); ++i) {
     for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
       const Index j = col[k];
-      Vec3 dx = p.position[i] - p.position[j];
-      if (period > 0.0) dx.z() -= period * std::round(dx.z() / period);
+      const Vec3 dx = nearest_image(p.position[i], p.position[j], period);
       const double sum_r = p.radius[i] + p.radius[j];
       if (dx.squaredNorm() >= sum_r * sum_r) continue;
       ++out[i];
@@ -271,7 +271,7 @@ void Simulation::compute_forces(double history_dt, bool count) {
   const auto t1 = Clock::now();
   if (!impl_->forces_cleared) particles_.clear_forces();
   impl_->forces_cleared = false;
-  const double period = impl_->drum.periodic() ? impl_->drum.depth() : 0.0;
+  const double period = impl_->drum.period();
   const std::size_t touching = impl_->model.add_pair_forces(
       particles_, contacts, impl_->pair_buffers, period, dt_, history_dt);
   if (impl_->verlet != nullptr) impl_->verlet->record_found(touching);
@@ -335,7 +335,7 @@ void Simulation::kick_drift(double h) {
   impl_->forces_cleared = true;
   // |x_new - x_old| <= dt |v|, plus the round-off of the sum (a few ulps of the coordinates) and
   // of the periodic wrap (of the period).
-  const double period = periodic ? impl_->drum.depth() : 0.0;
+  const double period = impl_->drum.period();
   const double bound = dt_ * std::sqrt(v2max) * (1.0 + 1e-12) +
                        8.0 * std::numeric_limits<double>::epsilon() * (xmax + period);
   impl_->moved +=
@@ -418,12 +418,11 @@ Diagnostics Simulation::diagnostics() const {
   const ContactList& contacts = impl_->contacts;
   const auto row = contacts.row_start();
   const auto col = contacts.col();
-  const double period = drum.periodic() ? drum.depth() : 0.0;
+  const double period = drum.period();
   for (std::size_t i = 0; i < contacts.rows(); ++i) {
     for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
       const Index j = col[k];
-      Vec3 dx = p.position[i] - p.position[j];
-      if (period > 0.0) dx.z() -= period * std::round(dx.z() / period);
+      const Vec3 dx = nearest_image(p.position[i], p.position[j], period);
       const double delta = p.radius[i] + p.radius[j] - dx.norm();
       if (!(delta > 0.0)) continue;
       ++d.contacts;

@@ -5,16 +5,17 @@
 #include <vtkPolyData.h>
 #include <vtkUnsignedIntArray.h>
 
+#include "engine/drum.hpp"
+#include "engine/periodic.hpp"
 #include "render/vtk_datasets.hpp"
 
-namespace drumlab {
+namespace drumlab::render {
 
 vtkSmartPointer<vtkPolyData> contacts_dataset(const Simulation& sim) {
   std::vector<ContactForce> contacts;
   sim.contact_forces(contacts);
   const Particles& p = sim.particles();
-  const DrumConfig& drum = sim.scene().drum;
-  const double period = drum.ends == DrumEnds::periodic ? drum.depth : 0.0;
+  const double period = Drum(sim.scene().drum).period();
   const auto m = static_cast<vtkIdType>(contacts.size());
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
@@ -36,8 +37,7 @@ vtkSmartPointer<vtkPolyData> contacts_dataset(const Simulation& sim) {
   id_b->SetNumberOfTuples(m);
   for (vtkIdType k = 0; k < m; ++k) {
     const ContactForce& c = contacts[static_cast<std::size_t>(k)];
-    Vec3 d = p.position[c.i] - p.position[c.j];
-    if (period > 0.0) d.z() -= period * std::round(d.z() / period);
+    const Vec3 d = nearest_image(p.position[c.i], p.position[c.j], period);
     const Vec3 other = p.position[c.i] - d;  // partner's image nearest to i
     points->SetPoint(2 * k, p.position[c.i].data());
     points->SetPoint(2 * k + 1, other.data());
@@ -59,4 +59,4 @@ vtkSmartPointer<vtkPolyData> contacts_dataset(const Simulation& sim) {
   return pd;
 }
 
-}  // namespace drumlab
+}  // namespace drumlab::render

@@ -11,7 +11,7 @@
 
 #include "render/vtk_datasets.hpp"
 
-namespace drumlab {
+namespace drumlab::render {
 namespace {
 
 void add_field(vtkPolyData* pd, const char* name, double value) {
@@ -74,4 +74,4 @@ vtkSmartPointer<vtkPolyData> drum_dataset(const Simulation& sim, int segments) {
   return pd;
 }
 
-}  // namespace drumlab
+}  // namespace drumlab::render

@@ -47,47 +47,12 @@ struct ColorArray {
   std::string title;
 };
 
-/// Contacts per particle (surfaces touching), found with the engine's m5 search.
-std::vector<double> coordination(const Particles& p) {
-  std::vector<double> count(p.size(), 0.0);
-  if (p.empty()) return count;
-  auto search = make_search("m5");
-  SearchInput in;
-  in.position = p.position;
-  in.radius = p.radius;
-  std::vector<IndexPair> pairs;
-  search->find_pairs(in, pairs);
-  for (const IndexPair& q : pairs) {
-    count[q.i] += 1.0;
-    count[q.j] += 1.0;
-  }
-  return count;
-}
-
 ColorArray color_values(const Simulation& sim, ColorBy by) {
   const Particles& p = sim.particles();
   const double drum_r = 0.5 * sim.scene().drum.diameter;
   const double v_ref = std::max(0.1, std::abs(sim.scene().drum.omega) * drum_r);
   ColorArray c;
-  c.values.resize(p.size());
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    switch (by) {
-      case ColorBy::size:
-        c.values[i] = 1000.0 * p.radius[i];
-        break;
-      case ColorBy::speed:
-        c.values[i] = p.velocity[i].norm();
-        break;
-      case ColorBy::omega:
-        c.values[i] = p.omega[i].norm();
-        break;
-      case ColorBy::id:
-        c.values[i] = static_cast<double>(p.id[i]);
-        break;
-      case ColorBy::coordination:
-        break;
-    }
-  }
+  c.values = particle_color_values(sim, by);
   switch (by) {
     case ColorBy::size:
       c.lo = p.empty() ? 0.0 : 1000.0 * p.min_radius();
@@ -107,7 +72,6 @@ ColorArray color_values(const Simulation& sim, ColorBy by) {
       c.title = "particle id";
       break;
     case ColorBy::coordination:
-      c.values = coordination(p);
       c.hi = 12.0;
       c.title = "contacts";
       break;
@@ -190,6 +154,35 @@ std::string grid_text(const GridOverlay& grid, bool focus) {
 
 }  // namespace
 
+std::vector<double> particle_color_values(const Simulation& sim, ColorBy by) {
+  const Particles& p = sim.particles();
+  if (by == ColorBy::coordination) {  // the engine's count, as the VTU's coordination array
+    std::vector<std::uint32_t> count;
+    sim.coordination_numbers(count);
+    return {count.begin(), count.end()};
+  }
+  std::vector<double> values(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    switch (by) {
+      case ColorBy::size:
+        values[i] = 1000.0 * p.radius[i];
+        break;
+      case ColorBy::speed:
+        values[i] = p.velocity[i].norm();
+        break;
+      case ColorBy::omega:
+        values[i] = p.omega[i].norm();
+        break;
+      case ColorBy::id:
+        values[i] = static_cast<double>(p.id[i]);
+        break;
+      case ColorBy::coordination:
+        break;
+    }
+  }
+  return values;
+}
+
 ColorBy parse_color_by(std::string_view s) {
   if (s == "size") return ColorBy::size;
   if (s == "speed") return ColorBy::speed;
@@ -197,25 +190,26 @@ ColorBy parse_color_by(std::string_view s) {
   if (s == "id") return ColorBy::id;
   if (s == "coordination") return ColorBy::coordination;
   throw InputError(
-      fmt::format("--color-by: unknown '{}' (size, speed, omega, id, coordination)", s));
+      fmt::format("unknown colour mode '{}' (size, speed, omega, id, coordination)", s));
 }
 
 CameraMode parse_camera(std::string_view s) {
   if (s == "axis") return CameraMode::axis;
   if (s == "iso") return CameraMode::iso;
-  throw InputError(fmt::format("--camera: unknown '{}' (axis, iso)", s));
+  throw InputError(fmt::format("unknown camera '{}' (axis, iso)", s));
 }
 
 Index index_of_id(const Particles& p, Index id) {
   const auto it = std::find(p.id.begin(), p.id.end(), id);
   if (it == p.id.end()) {
-    throw InputError(fmt::format("--focus: no particle with id {} (ids 0..{})", id, p.size() - 1));
+    throw InputError(fmt::format("focus particle {} does not exist (N = {}, ids 0..{})", id,
+                                 p.size(), p.size() - 1));
   }
   return static_cast<Index>(it - p.id.begin());
 }
 
 Index auto_focus_id(const Particles& p) {
-  if (p.empty()) throw InputError("--focus auto: the scene has no particles");
+  if (p.empty()) throw InputError("no particle to focus on: the scene has none");
   Vec3 centroid = Vec3::Zero();
   for (const Vec3& x : p.position) centroid += x;
   centroid /= static_cast<double>(p.size());

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "engine/search/cell_grid.hpp"
 #include "engine/simulation.hpp"
@@ -19,6 +20,10 @@ enum class CameraMode { axis, iso };
 
 /// Parses "size", "speed", "omega", "id", "coordination"; throws InputError otherwise.
 ColorBy parse_color_by(std::string_view s);
+/// The value each particle (in storage order) is coloured by: radius (mm), speed (m/s), |omega|
+/// (rad/s), stable id, or coordination (Simulation::coordination_numbers, periodic ends included,
+/// the same count as the VTU's coordination array).
+std::vector<double> particle_color_values(const Simulation& sim, ColorBy by);
 /// Parses "axis" or "iso"; throws InputError otherwise.
 CameraMode parse_camera(std::string_view s);
 

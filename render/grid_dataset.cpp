@@ -9,7 +9,7 @@
 #include "engine/search/cell_grid.hpp"
 #include "render/vtk_datasets.hpp"
 
-namespace drumlab {
+namespace drumlab::render {
 
 vtkSmartPointer<vtkImageData> grid_dataset(const Simulation& sim, std::size_t max_cells) {
   const auto* grid = dynamic_cast<const CellGridSearch*>(&sim.search());
@@ -19,7 +19,7 @@ vtkSmartPointer<vtkImageData> grid_dataset(const Simulation& sim, std::size_t ma
       static_cast<double>(g.nx) * static_cast<double>(g.ny) * static_cast<double>(g.nz);
   if (g.nx <= 0 || total > static_cast<double>(max_cells)) {
     throw InputError(
-        fmt::format("--grid-vtk: the {} grid has {:.3g} cells, more than the {} this output writes",
+        fmt::format("the {} grid has {:.3g} cells, more than the {} a grid dataset holds",
                     grid->name(), total, max_cells));
   }
   auto image = vtkSmartPointer<vtkImageData>::New();
@@ -52,4 +52,4 @@ vtkSmartPointer<vtkImageData> grid_dataset(const Simulation& sim, std::size_t ma
   return image;
 }
 
-}  // namespace drumlab
+}  // namespace drumlab::render

@@ -4,6 +4,7 @@
 #include <map>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <vtkActor.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -16,6 +17,8 @@
 #include <vtkProperty.h>
 #include <vtkRenderer.h>
 #include <vtkUnsignedCharArray.h>
+
+#include "engine/search/search_methods.hpp"
 
 namespace drumlab::render {
 
@@ -120,8 +123,8 @@ GridOverlay::~GridOverlay() {
 void GridOverlay::update(const Simulation& sim, bool occupancy, std::optional<Index> focus) {
   const auto* grid = dynamic_cast<const CellGridSearch*>(&sim.search());
   if (grid == nullptr) {
-    throw InputError(fmt::format("--grid/--focus: search '{}' has no cell grid (use m1..m5)",
-                                 sim.search().name()));
+    throw InputError(fmt::format("search '{}' has no cell grid to draw (methods with one: {})",
+                                 sim.search().name(), fmt::join(cell_grid_method_names(), ", ")));
   }
   for (vtkActor* a : {occupancy_.Get(), lines_.Get(), cells_.Get(), candidates_.Get(), own_.Get(),
                       links_.Get()}) {

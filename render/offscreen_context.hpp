@@ -1,7 +1,7 @@
 #pragma once
 // An OSMesa (software OpenGL) context rendering into our own RGBA buffer: VTK draws into it with no
 // X server and no DISPLAY. The executable must also link app/cli/osmesa_glx_shim.cpp (see
-// DESIGN.md, "Rendering without a display").
+// render/README.md, section "Rendering without a display").
 #include <array>
 #include <cstdint>
 #include <vector>

@@ -8,7 +8,7 @@
 
 #include "render/vtk_datasets.hpp"
 
-namespace drumlab {
+namespace drumlab::render {
 namespace {
 
 template <class Array>
@@ -74,4 +74,4 @@ vtkSmartPointer<vtkUnstructuredGrid> particles_dataset(const Simulation& sim) {
   return grid;
 }
 
-}  // namespace drumlab
+}  // namespace drumlab::render

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "engine/search/search_methods.hpp"
 #include "engine/session/run_session.hpp"
 #include "render/drum_view.hpp"
 
@@ -35,7 +36,7 @@ std::string panel_title(const Simulation& sim, const TeachPanel& p) {
 }  // namespace
 
 std::vector<std::string> teach_methods() {
-  return {"m1", "m2", "m3", "m4", "m5"};
+  return cell_grid_method_names();
 }
 
 std::unique_ptr<Simulation> teach_simulation(SceneConfig scene, std::string_view method) {

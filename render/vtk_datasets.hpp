@@ -8,7 +8,7 @@ class vtkImageData;
 class vtkPolyData;
 class vtkUnstructuredGrid;
 
-namespace drumlab {
+namespace drumlab::render {
 
 /// Point names of the particle dataset, in order.
 inline constexpr const char* kParticleArrays[] = {
@@ -37,4 +37,4 @@ vtkSmartPointer<vtkPolyData> contacts_dataset(const Simulation& sim);
 vtkSmartPointer<vtkImageData> grid_dataset(const Simulation& sim,
                                            std::size_t max_cells = 32u << 20);
 
-}  // namespace drumlab
+}  // namespace drumlab::render

@@ -18,7 +18,7 @@
 
 #include "engine/types.hpp"
 
-namespace drumlab {
+namespace drumlab::render {
 namespace {
 
 /// VTK's own multi-line error output is replaced by our one-line InputError.
@@ -90,4 +90,4 @@ std::string pvd_text(const std::vector<PvdEntry>& entries) {
   return out.str();
 }
 
-}  // namespace drumlab
+}  // namespace drumlab::render

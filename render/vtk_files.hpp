@@ -8,7 +8,7 @@
 
 class vtkDataObject;
 
-namespace drumlab {
+namespace drumlab::render {
 
 /// Writes `data` with the VTK XML writer matching its type (.vtu, .vtp, .vti) to `file`. Throws
 /// InputError naming the file if it cannot be written; no file is left under the final name.
@@ -22,4 +22,4 @@ struct PvdEntry {
 /// The text of a VTK "Collection" file (ParaView's .pvd).
 std::string pvd_text(const std::vector<PvdEntry>& entries);
 
-}  // namespace drumlab
+}  // namespace drumlab::render

@@ -10,7 +10,7 @@
 #include "engine/io/atomic_file.hpp"
 #include "render/vtk_datasets.hpp"
 
-namespace drumlab {
+namespace drumlab::render {
 
 VtuSeriesWriter::VtuSeriesWriter(std::filesystem::path directory, VtuSeriesOptions options)
     : dir_(std::move(directory)), options_(options) {
@@ -61,4 +61,4 @@ void VtuSeriesWriter::write_frame(const Simulation& sim) {
   ++frames_;
 }
 
-}  // namespace drumlab
+}  // namespace drumlab::render

@@ -14,7 +14,7 @@
 #include "engine/simulation.hpp"
 #include "render/vtk_files.hpp"
 
-namespace drumlab {
+namespace drumlab::render {
 
 struct VtuSeriesOptions {
   bool contacts = false;  ///< contacts_NNNNNN.vtp + contacts.pvd
@@ -42,4 +42,4 @@ class VtuSeriesWriter {
   std::vector<std::pair<std::string, std::vector<PvdEntry>>> series_;
 };
 
-}  // namespace drumlab
+}  // namespace drumlab::render

@@ -1,6 +1,5 @@
 #include "app/bench/bench_state.hpp"
 
-#include <malloc.h>
 #include <sys/resource.h>
 
 #include <chrono>
@@ -15,6 +14,7 @@
 #include "app/cli/run_session.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/io/checkpoint.hpp"
+#include "engine/memory_probe.hpp"
 #include "engine/session/run_session.hpp"
 #include "engine/simulation.hpp"
 
@@ -97,8 +97,7 @@ RollingState rolling_state(const std::string& scene_file, const RollingPlan& pla
 }
 
 std::size_t heap_bytes_in_use() {
-  const struct mallinfo2 m = mallinfo2();
-  return m.uordblks + m.hblkhd;
+  return drumlab::heap_bytes_in_use();
 }
 
 std::size_t peak_rss_bytes() {

@@ -30,8 +30,7 @@ struct RollingState {
 /// any step was simulated). Throws InputError for a bad scene or an unusable cache folder.
 RollingState rolling_state(const std::string& scene_file, const RollingPlan& plan);
 
-/// Bytes the allocator holds for live objects now (glibc mallinfo2: all arenas, mmap'd blocks
-/// included); independent of what freed memory the process keeps.
+/// Bytes the allocator holds for live objects now: engine/memory_probe.hpp's probe.
 std::size_t heap_bytes_in_use();
 /// Peak resident set size of the process so far (getrusage ru_maxrss), bytes.
 std::size_t peak_rss_bytes();

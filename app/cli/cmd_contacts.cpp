@@ -10,6 +10,7 @@
 #include "engine/io/atomic_file.hpp"
 #include "engine/io/particle_csv.hpp"
 #include "engine/search/contact_search.hpp"
+#include "engine/search/search_methods.hpp"
 
 namespace drumlab::cli {
 
@@ -64,7 +65,8 @@ void add_contacts_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "contacts", "Find all contacts among particles read from a CSV (header x,y,z,r; metres)");
   cmd->add_option("--particles", opt->particles, "CSV file with columns x,y,z,r")->required();
-  cmd->add_option("--method", opt->method, "search method: brute, m1..m5")->capture_default_str();
+  cmd->add_option("--method", opt->method, "search method: " + search_method_help())
+      ->capture_default_str();
   cmd->add_option("--out", opt->out, "write the pairs (i,j rows, 0-based, sorted) to this CSV");
   cmd->add_option("--margin", opt->margin, "count pairs whose surfaces are within this gap (m)")
       ->check(CLI::NonNegativeNumber)

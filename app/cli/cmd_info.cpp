@@ -9,19 +9,15 @@
 #include "engine/fill/file_fill.hpp"
 #include "engine/fill/paper_packing.hpp"
 #include "engine/fill/random_fill.hpp"
+#include "engine/memory_estimate.hpp"
 #include "engine/scene/scene_features.hpp"
 #include "engine/search/auto_select.hpp"
-#include "engine/search/cell_grid.hpp"
+#include "engine/search/search_methods.hpp"
 #include "engine/simulation.hpp"
 
 namespace drumlab::cli {
 
 namespace {
-
-/// Bytes per particle held by the engine (particle arrays, search scratch, ~6 contacts with
-/// history) and per grid cell; an estimate, stated as such.
-constexpr double kBytesPerParticle = 5 * 24 + 4 * 8 + 1 + 4 + (24 + 8 + 24 + 4 + 4 + 8) + 6 * 48;
-constexpr double kBytesPerCell = 12;
 
 /// The "needs / skips" section: each term the engine computes or leaves out for this scene, and
 /// why.
@@ -86,20 +82,32 @@ void print_info(const std::string& file) {
     fmt::print("one revolution    {:.4g} s = {:.0f} steps = {:.3g} particle-steps\n", rev, rev / dt,
                rev / dt * static_cast<double>(total));
   }
-  // Memory: particle state plus the grid of the scene's method (if it is one of m1..m5).
+  // Memory: what the engine allocates for a settled bed (engine/memory_estimate.hpp), with the
+  // grid of the scene's method (or its Verlet list's builder) if it has one cell side.
+  const std::string estimated = scene.search_method == "auto" ? "m5" : scene.search_method;
+  const auto parsed = parse_search_method(estimated);
   double cells = 0.0;
   std::string grid;
-  if (scene.search_method.size() == 2 && scene.search_method[0] == 'm') {
-    const CellGridConfig g = paper_method(scene.search_method[1] - '0');
-    const double b = g.cell_from_min_radius ? scene.min_radius() : scene.max_radius();
+  const SearchMethodInfo* method = parsed ? parsed->method : nullptr;
+  if (method != nullptr &&
+      (method->cell == CellRule::min_radius || method->cell == CellRule::max_radius)) {
+    const double b = method->cell == CellRule::min_radius ? scene.min_radius() : scene.max_radius();
     const double nxy = std::ceil(scene.drum.diameter / b) + 1;
-    const double nz = g.three_d ? std::ceil(scene.drum.depth / b) + 1 : 1;
+    const double nz = method->grid == SearchGrid::three_d ? std::ceil(scene.drum.depth / b) + 1 : 1;
     cells = nxy * nxy * nz;
     grid = fmt::format(", grid ~{:.0f} x {:.0f} x {:.0f} cells of {} m", nxy, nxy, nz, b);
   }
-  fmt::print("memory estimate   {:.1f} MiB ({:.0f} B/particle{})\n",
-             (kBytesPerParticle * static_cast<double>(total) + kBytesPerCell * cells) / 1048576.0,
-             kBytesPerParticle, grid);
+  MemoryShape shape;
+  shape.particles = total;
+  shape.listed_pairs_per_particle =
+      settled_pairs_per_particle(parsed && parsed->verlet, scene.performance.verlet_skin);
+  shape.grid_cells = cells;
+  shape.rotation = scene_features(scene).rotation;
+  shape.reorder = scene.performance.sort_every > 0;
+  const MemoryEstimate memory = estimate_memory(estimated, shape);
+  fmt::print("memory estimate   {:.1f} MiB ({:.0f} B/particle with {:.1f} listed pairs each{}{})\n",
+             memory.total() / 1048576.0, memory.per_particle, shape.listed_pairs_per_particle, grid,
+             scene.search_method == "auto" ? "; auto: for m5" : "");
   if (scene.search_method == "auto" && dynamic) {
     const Particles fill = initial_fill(scene);
     const SearchChoice choice = choose_search_method(scene, dt, fill.position, fill.radius);
@@ -109,6 +117,12 @@ void print_info(const std::string& file) {
   } else {
     fmt::print("search method     {} (set by the scene; `--method` overrides it in `run`)\n",
                scene.search_method);
+    if (const auto parsed = parse_search_method(scene.search_method)) {
+      fmt::print("                  {}{}\n",
+                 parsed->verlet ? fmt::format("Verlet list built by {}: ", parsed->method->name)
+                                : std::string(),
+                 parsed->method->description);
+    }
   }
   if (dynamic) print_features(scene);
   if (!dynamic) fmt::print("note              static packing: use `drumlab paper-table`\n");

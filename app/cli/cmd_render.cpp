@@ -5,10 +5,12 @@
 #include <regex>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "app/cli/commands.hpp"
 #include "app/cli/render_observer.hpp"
 #include "app/cli/scene_setup.hpp"
+#include "engine/search/search_methods.hpp"
 #include "render/frame_writer.hpp"
 #include "render/movie_writer.hpp"
 
@@ -18,6 +20,16 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
+
+/// f(), with the command-line flag an InputError of the render library came from put in front.
+template <class F>
+auto with_flag(std::string_view flag, F&& f) {
+  try {
+    return f();
+  } catch (const InputError& e) {
+    throw InputError(fmt::format("{}: {}", flag, e.what()));
+  }
+}
 
 class RenderObserver final : public FrameObserver {
  public:
@@ -35,11 +47,18 @@ class RenderObserver final : public FrameObserver {
 
   void on_frame(const Simulation& sim, std::uint64_t frame) override {
     if (!view_) {
-      if (out_.focus_auto) out_.view.focus_id = render::auto_focus_id(sim.particles());
+      if (out_.focus_auto) {
+        out_.view.focus_id =
+            with_flag("--focus auto", [&] { return render::auto_focus_id(sim.particles()); });
+      }
       view_ = std::make_unique<render::DrumView>(out_.view);
     }
     const auto t0 = Clock::now();
-    const render::Image image = view_->render(sim);
+    // The view's input errors come from the focus particle or the grid it was asked to draw.
+    const char* flags = !out_.view.focus_id ? "--grid"
+                        : out_.view.grid    ? "--grid/--focus"
+                                            : "--focus";
+    const render::Image image = with_flag(flags, [&] { return view_->render(sim); });
     const auto t1 = Clock::now();
     frames_.write(image, frame);
     render_s_ += std::chrono::duration<double>(t1 - t0).count();
@@ -96,8 +115,8 @@ RenderOutput make_output(const RenderArgs& a) {
   out.frames_dir = a.out;
   if (!a.movie.empty()) out.movie = a.movie;
   std::tie(out.view.width, out.view.height) = parse_size(a.size);
-  out.view.color_by = render::parse_color_by(a.color_by);
-  out.view.camera = render::parse_camera(a.camera);
+  out.view.color_by = with_flag("--color-by", [&] { return render::parse_color_by(a.color_by); });
+  out.view.camera = with_flag("--camera", [&] { return render::parse_camera(a.camera); });
   out.view.grid = a.grid;
   if (a.focus == "auto") {
     out.focus_auto = true;
@@ -145,8 +164,10 @@ void add_render_command(CLI::App& app) {
     if (args->grid || !args->focus.empty()) {  // fail now, not after settling
       const std::string method =
           opt->method.empty() ? load_dynamic_scene(opt->scene).search_method : opt->method;
-      if (method == "brute") {
-        throw InputError("--grid/--focus: the brute-force search has no cells; use m1..m5");
+      const auto parsed = parse_search_method(method);
+      if (parsed && (parsed->verlet || !parsed->method->draws_cells)) {
+        throw InputError(fmt::format("--grid/--focus: search '{}' has no cells to draw; use {}",
+                                     method, fmt::join(cell_grid_method_names(), ", ")));
       }
     }
     auto observer = make_render_observer(out);

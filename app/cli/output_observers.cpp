@@ -16,7 +16,7 @@ namespace {
 #ifdef DRUMLAB_WITH_RENDER
 class VtuObserver final : public FrameObserver {
  public:
-  VtuObserver(const std::string& dir, VtuSeriesOptions options) : writer_(dir, options) {}
+  VtuObserver(const std::string& dir, render::VtuSeriesOptions options) : writer_(dir, options) {}
   void on_frame(const Simulation& sim, std::uint64_t) override { writer_.write_frame(sim); }
   void on_finish(const Simulation&) override {
     fmt::print("vtu               {} frames in {} (open particles.pvd in ParaView)\n",
@@ -24,7 +24,7 @@ class VtuObserver final : public FrameObserver {
   }
 
  private:
-  VtuSeriesWriter writer_;
+  render::VtuSeriesWriter writer_;
 };
 #endif
 
@@ -85,7 +85,7 @@ std::vector<std::unique_ptr<FrameObserver>> make_output_observers(const RunOptio
   std::vector<std::unique_ptr<FrameObserver>> out;
   if (!opt.vtu_dir.empty()) {
 #ifdef DRUMLAB_WITH_RENDER
-    VtuSeriesOptions v;
+    render::VtuSeriesOptions v;
     v.contacts = opt.contacts_vtk;
     v.grid = opt.grid_vtk;
     out.push_back(std::make_unique<VtuObserver>(opt.vtu_dir, v));

@@ -9,14 +9,15 @@
 #include "app/cli/output_observers.hpp"
 #include "app/cli/run_report.hpp"
 #include "engine/search/contact_search.hpp"
+#include "engine/search/search_methods.hpp"
 #include "engine/threads.hpp"
 
 namespace drumlab::cli {
 
 void add_run_options(CLI::App* cmd, RunOptions& opt) {
-  cmd->add_option(
-      "--method", opt.method,
-      "contact search method (overrides the scene): brute, m1..m5, mlgrid, verlet[:BUILDER], auto");
+  cmd->add_option("--method", opt.method,
+                  fmt::format("contact search method (overrides the scene): {}, or auto",
+                              search_method_help()));
   auto* steps = cmd->add_option(
       "--steps", opt.steps,
       "turning steps after settling (0: only fill and settle, e.g. for --checkpoint)");

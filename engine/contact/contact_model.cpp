@@ -6,6 +6,8 @@
 #include <cmath>
 
 #include "engine/contact/contact_kernel.hpp"
+#include "engine/periodic.hpp"
+#include "engine/scene/material_check.hpp"
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -14,31 +16,15 @@ namespace drumlab {
 namespace {
 
 void check_material(const Material& m, const char* what) {
-  if (!(m.youngs_modulus > 0.0) || !std::isfinite(m.youngs_modulus)) {
-    throw InputError(
-        fmt::format("{}.youngs_modulus must be positive, got {}", what, m.youngs_modulus));
-  }
-  if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5)) {
-    throw InputError(
-        fmt::format("{}.poisson_ratio must be in (-1, 0.5), got {}", what, m.poisson_ratio));
-  }
-  if (!(m.restitution > 0.0 && m.restitution <= 1.0)) {
-    throw InputError(fmt::format("{}.restitution must be in (0, 1], got {}", what, m.restitution));
-  }
-  if (!(m.friction >= 0.0) || !(m.rolling_friction >= 0.0)) {
-    throw InputError(fmt::format("{}: friction and rolling_friction must be >= 0", what));
+  if (const auto problem = material_problem(m)) {
+    throw InputError(fmt::format("{}.{}: {}", what, problem->key, problem->reason));
   }
 }
 
 // Separation of i from j (m); with period > 0 the nearest image along z.
 [[gnu::always_inline]] inline Vec3 separation(const Particles& p, std::size_t i, Index j,
                                               double period) {
-  Vec3 d = p.position[i] - p.position[j];
-  if (period > 0.0) {
-    if (d.z() > 0.5 * period) d.z() -= period;
-    if (d.z() < -0.5 * period) d.z() += period;
-  }
-  return d;
+  return nearest_image(p.position[i], p.position[j], period);
 }
 
 // Visits the entries k in [begin, end) of row i: apart(k) for those that do not overlap (in any
@@ -384,8 +370,8 @@ NormalVariant make_normal(const SceneConfig& s, const Material& other, double re
 
 // Calls loop.template operator()<Normal, Tangential, Rolling>(law) with the scene's runtime
 // choices turned into template arguments, so the chosen law inlines into the loop.
-template <class Parts, class Loop>
-void with_law(const Parts& parts, bool tangential, bool rolling, Loop&& loop) {
+template <class Loop>
+void with_law(const ContactLaw<NormalVariant>& parts, bool tangential, bool rolling, Loop&& loop) {
   std::visit(
       [&](const auto& normal) {
         const auto law = make_law(normal, parts.tangential, parts.rolling);

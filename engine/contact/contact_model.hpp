@@ -21,7 +21,9 @@
 
 namespace drumlab {
 
-/// One composed contact law. Tangential/rolling parts are only used when the flags say so.
+/// One composed contact law. Tangential/rolling parts are only used when the flags say so. The
+/// model keeps ContactLaw<NormalVariant> (the normal law chosen at run time); the force loops get
+/// ContactLaw<HertzNormal> or ContactLaw<LinearSpringDashpot>, so the chosen law inlines.
 template <class Normal>
 struct ContactLaw {
   Normal normal;
@@ -102,13 +104,8 @@ class ContactModel {
   const NormalVariant& wall_normal() const { return wall_.normal; }
 
  private:
-  struct Parts {
-    NormalVariant normal;
-    MindlinTangential tangential;
-    RollingResistance rolling;
-  };
-  Parts pair_;
-  Parts wall_;
+  ContactLaw<NormalVariant> pair_;
+  ContactLaw<NormalVariant> wall_;
   bool pair_tangential_ = false;
   bool pair_rolling_ = false;
   bool wall_tangential_ = false;

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "engine/drum.hpp"
+#include "engine/periodic.hpp"
 #include "engine/search/contact_search.hpp"
 
 namespace drumlab {
@@ -53,10 +54,9 @@ void check_pair_overlaps(const Drum& drum, const Particles& p, const ParticleTab
   if (drum.periodic()) in.period_z = drum.depth();
   std::vector<IndexPair> pairs;
   make_search("m5")->find_pairs(in, pairs);
-  const double period = drum.periodic() ? drum.depth() : 0.0;
+  const double period = drum.period();
   for (const IndexPair& pr : pairs) {
-    Vec3 dx = p.position[pr.i] - p.position[pr.j];
-    if (period > 0.0) dx.z() -= period * std::round(dx.z() / period);
+    const Vec3 dx = nearest_image(p.position[pr.i], p.position[pr.j], period);
     const double r_small = std::min(p.radius[pr.i], p.radius[pr.j]);
     const double overlap = p.radius[pr.i] + p.radius[pr.j] - dx.norm();
     if (overlap > kMaxFileOverlap * r_small) {

@@ -1,7 +1,8 @@
 #pragma once
-// Small RAII layer over the HDF5 C API (the serial library, see DESIGN.md) for checkpoints and
-// time series: typed 1D/2D datasets and scalar attributes. Every failure throws InputError naming
-// the file and the object; HDF5's own error stack printing is switched off.
+// Small RAII layer over the HDF5 C API (the serial library, see engine/README.md, section "HDF5")
+// for checkpoints and time series: typed 1D/2D datasets and scalar attributes. Every failure
+// throws InputError naming the file and the object; HDF5's own error stack printing is switched
+// off.
 #include <hdf5.h>
 
 #include <cstdint>

@@ -2,18 +2,18 @@
 
 #include <fmt/format.h>
 
+#include "engine/search/search_methods.hpp"
+
 namespace drumlab {
 namespace {
 
-/// The grid a search method name uses: "2D", "3D", "none" (brute) or "auto".
+/// The grid a search method name uses (a Verlet list: its builder's): "2D", "3D", "none" (brute)
+/// or "auto".
 std::string grid_of(const std::string& method) {
-  std::string m = method;
-  if (m == "verlet") return "3D";  // Verlet lists built by m5
-  if (m.rfind("verlet:", 0) == 0) m = m.substr(7);
-  if (m == "m1" || m == "m2" || m == "m4") return "2D";
-  if (m == "brute") return "none";
-  if (m == "auto") return "auto";
-  return "3D";  // m3, m5, mlgrid
+  if (method == "auto") return "auto";
+  const auto parsed = parse_search_method(method);
+  if (!parsed) return "3D";  // the loader refuses unknown names
+  return std::string(search_grid_name(parsed->method->grid));
 }
 
 SceneFeature term(std::string name, bool needed, std::string why) {

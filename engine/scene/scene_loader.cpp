@@ -14,6 +14,7 @@
 #include <fmt/ranges.h>
 #include <toml++/toml.h>
 
+#include "engine/scene/material_check.hpp"
 #include "engine/scene/scene_config.hpp"
 #include "engine/search/contact_search.hpp"
 
@@ -177,6 +178,11 @@ void check_non_negative(const Scope& s, std::string_view key, double v) {
   if (!(v >= 0.0)) s.fail(key, fmt::format("must be >= 0, got {}", v));
 }
 
+/// The material ranges of engine/scene/material_check.hpp, reported for the key of this table.
+void check_material_value(const Scope& s, std::string_view key, double v) {
+  if (const auto reason = material_value_problem(key, v)) s.fail(key, *reason);
+}
+
 double positive(const Scope& s, std::string_view key, std::string_view what) {
   const double v = s.required_number(key, what);
   check_positive(s, key, v);
@@ -195,22 +201,18 @@ Material read_material(const Scope& s, const Material& base, bool all_optional) 
   };
   if (!all_optional) {
     m.density = get("density", m.density, "kg/m^3");
-    check_positive(s, "density", m.density);
+    check_material_value(s, "density", m.density);
   }
   m.youngs_modulus = get("youngs_modulus", m.youngs_modulus, "Young's modulus E, Pa");
-  check_positive(s, "youngs_modulus", m.youngs_modulus);
+  check_material_value(s, "youngs_modulus", m.youngs_modulus);
   m.poisson_ratio = get("poisson_ratio", m.poisson_ratio, "Poisson ratio nu");
-  if (!(m.poisson_ratio > -1.0 && m.poisson_ratio < 0.5)) {
-    s.fail("poisson_ratio", fmt::format("must be in (-1, 0.5), got {}", m.poisson_ratio));
-  }
+  check_material_value(s, "poisson_ratio", m.poisson_ratio);
   m.restitution = get("restitution", m.restitution, "coefficient of restitution e");
-  if (!(m.restitution > 0.0 && m.restitution <= 1.0)) {
-    s.fail("restitution", fmt::format("must be in (0, 1], got {}", m.restitution));
-  }
+  check_material_value(s, "restitution", m.restitution);
   m.friction = get("friction", m.friction, "sliding friction coefficient mu");
-  check_non_negative(s, "friction", m.friction);
+  check_material_value(s, "friction", m.friction);
   m.rolling_friction = s.number_or("rolling_friction", all_optional ? m.rolling_friction : 0.0);
-  check_non_negative(s, "rolling_friction", m.rolling_friction);
+  check_material_value(s, "rolling_friction", m.rolling_friction);
   return m;
 }
 

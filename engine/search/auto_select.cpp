@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "engine/search/contact_search.hpp"
+#include "engine/search/search_methods.hpp"
 
 namespace drumlab {
 
@@ -67,7 +67,7 @@ SearchChoice choose_search_method(const SceneConfig& scene, double dt,
   SearchInput in{position, radius, verlet ? skin_factor * rmin : 0.0, std::nullopt, std::nullopt};
   if (scene.drum.ends == DrumEnds::periodic) in.period_z = scene.drum.depth;
 
-  for (const char* name : {"m1", "m2", "m3", "m4", "m5", "mlgrid"}) {
+  for (const std::string& name : verlet_builder_names()) {  // the grids: m1..m5, mlgrid
     choice.candidates.push_back(estimate(name, in));
   }
   std::sort(choice.candidates.begin(), choice.candidates.end(),

@@ -1,8 +1,13 @@
 #include "engine/search/brute_force.hpp"
 
 #include "engine/search/search_input.hpp"
+#include "engine/search/search_methods.hpp"
 
 namespace drumlab {
+
+std::string_view BruteForceSearch::description() const {
+  return search_method(name()).description;
+}
 
 void BruteForceSearch::find_pairs(const SearchInput& in, std::vector<IndexPair>& out) {
   const auto t0 = SearchClock::now();

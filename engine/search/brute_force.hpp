@@ -7,9 +7,7 @@ namespace drumlab {
 class BruteForceSearch final : public ContactSearch {
  public:
   std::string_view name() const override { return "brute"; }
-  std::string_view description() const override {
-    return "all N(N-1)/2 pairs tested (test oracle, O(N^2))";
-  }
+  std::string_view description() const override;
   void find_pairs(const SearchInput& in, std::vector<IndexPair>& out) override;
 };
 

@@ -10,6 +10,7 @@
 
 #include "engine/search/grid_axes.hpp"
 #include "engine/search/search_input.hpp"
+#include "engine/search/search_methods.hpp"
 #include "engine/threads.hpp"
 
 namespace drumlab {
@@ -23,26 +24,20 @@ constexpr double kDenseCellFloor = 4194304.0;  // 2^22
 }  // namespace
 
 CellGridConfig paper_method(int method) {
-  switch (method) {
-    case 1:
-      return {"m1",  "paper method 1: 2D grid, cell = R_min, per-size half stencil",
-              false, true,
-              true,  false};
-    case 2:
-      return {"m2", "paper method 2: as m1, smallest particles skip far cells", false, true, true,
-              true};
-    case 3:
-      return {"m3", "paper method 3: 3D grid, cell = R_min, per-size half shell", true, true, true,
-              false};
-    case 4:
-      return {"m4", "paper method 4: 2D grid, cell = R_max, one stencil", false, false, false,
-              false};
-    case 5:
-      return {"m5", "paper method 5: 3D grid, cell = R_max, one half shell", true, false, false,
-              false};
-    default:
-      throw InputError(fmt::format("paper method must be 1..5, got {}", method));
+  if (method < 1 || method > 5) {
+    throw InputError(fmt::format("paper method must be 1..5, got {}", method));
   }
+  // Name, description, grid and cell side from the table of methods; the stencil per method.
+  static constexpr const char* kNames[] = {"m1", "m2", "m3", "m4", "m5"};
+  const SearchMethodInfo& m = search_method(kNames[method - 1]);
+  CellGridConfig c;
+  c.name = kNames[method - 1];
+  c.description = m.description.data();  // a literal: null-terminated
+  c.three_d = m.grid == SearchGrid::three_d;
+  c.cell_from_min_radius = m.cell == CellRule::min_radius;
+  c.per_size_stencil = method <= 3;
+  c.skip_far_for_smallest = method == 2;
+  return c;
 }
 
 void CellGridSearch::find_pairs(const SearchInput& in, std::vector<IndexPair>& out) {

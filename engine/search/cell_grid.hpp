@@ -1,6 +1,8 @@
 #pragma once
 // A uniform cell grid with half-shell stencils, configurable as each of the paper's five methods
-// (Lobovikov et al. 2021, see shared/paper/SUMMARY.md):
+// (Lobovikov D.V., Kharchenko A.V., Matygullina E.V., "Comparison of efficiency of contact search
+// algorithms for discrete element method", Bulletin PNRPU. Mechanical engineering, materials
+// science, 2021, vol. 23, no. 2, pp. 55-61, DOI 10.15593/2224-9877/2021.2.07):
 //   m1  2D grid (cells span the whole depth), cell side = R_min, per-size stencil
 //   m2  as m1, and a smallest-size particle skips the far cells (see below)
 //   m3  as m1 on a 3D grid (cells split along z with the same side)

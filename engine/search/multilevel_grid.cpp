@@ -9,6 +9,7 @@
 
 #include "engine/search/grid_axes.hpp"
 #include "engine/search/search_input.hpp"
+#include "engine/search/search_methods.hpp"
 #include "engine/threads.hpp"
 
 namespace drumlab {
@@ -21,6 +22,10 @@ constexpr double kDenseCellsPerParticle = 64.0;
 constexpr double kDenseCellFloor = 1048576.0;  // 2^20
 
 }  // namespace
+
+std::string_view MultiLevelGridSearch::description() const {
+  return search_method(name()).description;
+}
 
 void MultiLevelGridSearch::find_pairs(const SearchInput& in, std::vector<IndexPair>& out) {
   const auto t0 = SearchClock::now();
@@ -101,6 +106,17 @@ void MultiLevelGridSearch::lay_level(Level& level, const SearchInput& in, const 
   // Cells a hair wider than the reach, so that the round-off allowance of reach_cells() does not
   // push the stencil from 1 to 2 cells each way (5^3 instead of 3^3 cells visited).
   const GridAxes axes(bounds, reach * (1.0 + 1e-9), "mlgrid");
+  size_level(level, axes, reach, bounds, in);
+  bin_members(level, axes, in);
+  sort_members(level);
+  gather_members(level, in);
+  if (level.hashed) index_hashed_cells(level);  // else the counting sort filled the dense ranges
+}
+
+// The level's cells (along a periodic z, layers that tile the period), its stencil, and whether
+// its cell index is dense or hashed.
+void MultiLevelGridSearch::size_level(Level& level, const GridAxes& axes, double reach,
+                                      const Box& bounds, const SearchInput& in) {
   level.origin = bounds.lo;
   level.b = axes.side();
   level.k = axes.reach_cells(reach);
@@ -126,8 +142,11 @@ void MultiLevelGridSearch::lay_level(Level& level, const SearchInput& in, const 
   const double total = static_cast<double>(level.n[0]) * static_cast<double>(level.n[1]) *
                        static_cast<double>(level.n[2]);
   level.hashed = total > kDenseCellsPerParticle * m + kDenseCellFloor;
+}
 
-  // Cells of the members, then sort them by cell.
+// The cell of each member, by slot (scratch_cell).
+void MultiLevelGridSearch::bin_members(Level& level, const GridAxes& axes, const SearchInput& in) {
+  const bool three_d = level.n[2] > 1;
   std::vector<CellCoord>& cell_of = level.scratch_cell;
   cell_of.resize(level.order.size());
   for (std::size_t s = 0; s < level.order.size(); ++s) {
@@ -141,6 +160,12 @@ void MultiLevelGridSearch::lay_level(Level& level, const SearchInput& in, const 
     }
     cell_of[s] = c;
   }
+}
+
+// The members' order sorted by cell (scratch_perm): a sort for a hashed index, else a counting
+// sort that also fills the dense cell ranges.
+void MultiLevelGridSearch::sort_members(Level& level) {
+  const std::vector<CellCoord>& cell_of = level.scratch_cell;
   std::vector<std::size_t>& perm = level.scratch_perm;
   perm.resize(level.order.size());
   if (level.hashed) {
@@ -168,6 +193,12 @@ void MultiLevelGridSearch::lay_level(Level& level, const SearchInput& in, const 
       perm[level.dense.at(level.dense.linear(cell_of[s])).end++] = s;
     }
   }
+}
+
+// The members, their cells, positions and radii in cell-sorted order.
+void MultiLevelGridSearch::gather_members(Level& level, const SearchInput& in) {
+  const std::vector<CellCoord>& cell_of = level.scratch_cell;
+  const std::vector<std::size_t>& perm = level.scratch_perm;
   std::vector<Index>& members = level.scratch_order;
   members.assign(level.order.begin(), level.order.end());
   const std::size_t count = members.size();
@@ -180,7 +211,11 @@ void MultiLevelGridSearch::lay_level(Level& level, const SearchInput& in, const 
     level.position[s] = in.position[level.order[s]];
     level.radius[s] = in.radius[level.order[s]];
   }
-  if (!level.hashed) return;  // the counting sort filled the dense ranges
+}
+
+// The hashed index of the occupied cells (the slots are sorted by cell).
+void MultiLevelGridSearch::index_hashed_cells(Level& level) {
+  const std::size_t count = level.order.size();
   std::size_t occupied = 0;
   for (std::size_t s = 0; s < count; ++s) {
     occupied += (s == 0 || !(level.cell[s] == level.cell[s - 1]));

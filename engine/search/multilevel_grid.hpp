@@ -18,12 +18,12 @@
 
 namespace drumlab {
 
+class GridAxes;
+
 class MultiLevelGridSearch final : public ContactSearch {
  public:
   std::string_view name() const override { return "mlgrid"; }
-  std::string_view description() const override {
-    return "multi-level grid: a 3D grid per size level, cross-level spheres from the larger side";
-  }
+  std::string_view description() const override;
   void find_pairs(const SearchInput& in, std::vector<IndexPair>& out) override;
   std::string report() const override;
 
@@ -53,7 +53,14 @@ class MultiLevelGridSearch final : public ContactSearch {
   };
 
   void assign_levels(const SearchInput& in);
+  /// Lays the level's grid over `bounds` and sorts its members into it, in these steps:
   void lay_level(Level& level, const SearchInput& in, const Box& bounds);
+  void size_level(Level& level, const GridAxes& axes, double reach, const Box& bounds,
+                  const SearchInput& in);
+  static void bin_members(Level& level, const GridAxes& axes, const SearchInput& in);
+  static void sort_members(Level& level);
+  static void gather_members(Level& level, const SearchInput& in);
+  static void index_hashed_cells(Level& level);
   bool wrap(const Level& level, CellCoord& c) const;
   template <class Cells>
   void visit_level(const Level& level, const Cells& cells, const SearchInput& in,

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "engine/periodic.hpp"
 #include "engine/search/contact_search.hpp"
 
 namespace drumlab {
@@ -49,16 +50,9 @@ inline double seconds_since(SearchClock::time_point since) {
 
 /// Squared distance between a and b, using the minimum image along z when period > 0.
 inline double distance_squared(const Vec3& a, const Vec3& b, double period) {
-  double dx = a.x() - b.x();
-  double dy = a.y() - b.y();
-  double dz = a.z() - b.z();
-  if (period > 0.0) {
-    if (dz > 0.5 * period) {
-      dz -= period;
-    } else if (dz < -0.5 * period) {
-      dz += period;
-    }
-  }
+  const double dx = a.x() - b.x();
+  const double dy = a.y() - b.y();
+  const double dz = nearest_image_z(a.z() - b.z(), period);
   return dx * dx + dy * dy + dz * dz;
 }
 

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "engine/search/search_input.hpp"
+#include "engine/search/search_methods.hpp"
 #include "engine/spatial_order.hpp"
 #include "engine/threads.hpp"
 
@@ -17,8 +18,7 @@ VerletListSearch::VerletListSearch(std::unique_ptr<ContactSearch> builder, doubl
   if (!(skin_factor > 0.0)) {
     throw InputError(fmt::format("verlet: skin factor must be positive, got {}", skin_factor));
   }
-  name_ =
-      builder_->name() == "m5" ? std::string("verlet") : fmt::format("verlet:{}", builder_->name());
+  name_ = verlet_method_name(builder_->name());
   description_ = fmt::format(
       "Verlet list, skin {} R_min, rebuilt by {} when the two largest moves sum to > skin",
       skin_factor_, builder_->name());

@@ -130,5 +130,22 @@ TEST(RenderCli, RendersFramesAndAMovieAndTeachPrintsFivePanels) {
   EXPECT_EQ(lines, 5u) << t.output;
 }
 
+// The render library says what is wrong in its own terms; the CLI names the flag in front.
+TEST(RenderCli, LibraryErrorsGetTheFlagFromTheCli) {
+  test::TempDir dir("render-flags");
+  const std::string common = "render " + std::string(DRUMLAB_SCENES_DIR) +
+                             "/teach_stencil.toml --steps 1 --settle-time 0 --size 64x64 --out " +
+                             (dir.path() / "frames").string();
+  const test::CliResult colour = test::run_cli(common + " --color-by hue");
+  EXPECT_EQ(colour.exit_code, 2) << colour.output;
+  EXPECT_NE(colour.output.find("--color-by: unknown colour mode 'hue'"), std::string::npos)
+      << colour.output;
+  const test::CliResult focus = test::run_cli(common + " --focus 999999");
+  EXPECT_EQ(focus.exit_code, 2) << focus.output;
+  EXPECT_NE(focus.output.find("--focus: focus particle 999999 does not exist (N = "),
+            std::string::npos)
+      << focus.output;
+}
+
 }  // namespace
 }  // namespace drumlab

@@ -30,6 +30,8 @@
 namespace drumlab::test {
 namespace {
 
+using namespace drumlab::render;
+
 template <class Reader>
 auto read_xml(const std::filesystem::path& file) {
   vtkNew<Reader> r;

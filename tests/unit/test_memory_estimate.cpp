@@ -1,0 +1,51 @@
+// The memory estimate (engine/memory_estimate.hpp) against the heap a small settled run really
+// holds (glibc mallinfo2 before the Simulation is built and after it has run), for each kind of
+// search: within 20 %.
+#include <gtest/gtest.h>
+
+#include "engine/fill/random_fill.hpp"
+#include "engine/memory_estimate.hpp"
+#include "engine/memory_probe.hpp"
+#include "engine/search/verlet_list.hpp"
+#include "engine/simulation.hpp"
+#include "engine/threads.hpp"
+
+namespace drumlab {
+namespace {
+
+class MemoryEstimateTest : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(MemoryEstimateTest, WithinTwentyPercentOfTheMeasuredHeap) {
+  SceneConfig scene = load_scene(std::string(DRUMLAB_SCENES_DIR) + "/mono_periodic.toml");
+  scene.fill.count = 800;
+  set_thread_count(1);  // the estimate is for one thread
+  scene.search_method = GetParam();
+  const std::size_t heap0 = heap_bytes_in_use();
+  double measured = 0.0;
+  MemoryShape shape;
+  {
+    Simulation sim(scene, random_fill(scene));
+    sim.advance(800);  // 0.1 s: the fill has fallen into a bed with contacts
+    measured = static_cast<double>(heap_bytes_in_use() - heap0);
+    const SimulationState st = sim.state();
+    shape.particles = sim.particles().size();
+    shape.listed_pairs_per_particle =
+        static_cast<double>(st.contact_col.size()) / static_cast<double>(shape.particles);
+    const auto* verlet = dynamic_cast<const VerletListSearch*>(&sim.search());
+    const ContactSearch& grid = verlet != nullptr ? verlet->builder() : sim.search();
+    shape.grid_cells = static_cast<double>(grid.counters().cells_total);
+  }
+  const MemoryEstimate e = estimate_memory(GetParam(), shape);
+  const double n = static_cast<double>(shape.particles);
+  std::printf("%s: %.2f pairs/particle, %.0f cells; measured %.0f B/particle, estimated %.0f\n",
+              GetParam(), shape.listed_pairs_per_particle, shape.grid_cells, measured / n,
+              e.total() / n);
+  EXPECT_GT(shape.listed_pairs_per_particle, 1.0) << "a settled bed";
+  EXPECT_NEAR(e.total() / measured, 1.0, 0.2);
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, MemoryEstimateTest,
+                         ::testing::Values("m5", "m2", "m1", "mlgrid", "verlet", "verlet:m2"));
+
+}  // namespace
+}  // namespace drumlab
