@@ -39,7 +39,12 @@ bool write_with(vtkDataObject* data, const std::filesystem::path& file) {
   vtkNew<Writer> w;
   w->SetInputData(data);
   w->SetFileName(file.c_str());
-  w->SetDataModeToBinary();
+  // Appended raw binary (what ParaView itself writes), not inline: on a write error VTK 9.1's
+  // inline path frees position arrays it never allocated (vtkXMLUnstructuredDataWriter::
+  // WriteAPiece -> DeletePositionArrays on OutOfDiskSpaceError), which crashed the full-disk test
+  // depending on what the heap held.
+  w->SetDataModeToAppended();
+  w->EncodeAppendedDataOff();
   w->SetCompressorTypeToZLib();
   w->SetHeaderTypeToUInt64();
   return w->Write() == 1 && w->GetErrorCode() == 0;
