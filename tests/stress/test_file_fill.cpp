@@ -10,6 +10,7 @@
 #include "engine/fill/file_fill.hpp"
 #include "engine/io/particle_csv.hpp"
 #include "engine/simulation.hpp"
+#include "tests/small_drum_text.hpp"
 
 namespace drumlab {
 namespace {
@@ -18,35 +19,15 @@ constexpr double kR = 0.004;
 
 std::string scene_text(const std::string& fill, double restitution = 0.5,
                        const std::string& gravity = "[0.0, -9.81, 0.0]") {
-  return R"(search = "m5"
-gravity = )" +
-         gravity +
-         R"(
-[drum]
-diameter = 0.1
-depth = 0.025
-omega = 1.0
-[[particles]]
-radius = 0.004
-volume_fraction = 0.5
-[[particles]]
-radius = 0.008
-volume_fraction = 0.5
-[material]
-density = 2500.0
-youngs_modulus = 5e6
-poisson_ratio = 0.3
-restitution = )" +
-         std::to_string(restitution) +
-         R"(
-friction = 0.5
-[fill]
-)" + fill +
-         R"(
-[time]
-dt_factor = 0.02
-duration = 0.01
-)";
+  test::SmallDrumText t;
+  t.gravity = gravity;
+  t.diameter = "0.1";
+  t.depth = "0.025";
+  t.omega = "1.0";
+  t.restitution = std::to_string(restitution);
+  t.fill = fill;
+  t.time = "dt_factor = 0.02\nduration = 0.01";
+  return t.text();
 }
 
 SceneConfig random_scene() {

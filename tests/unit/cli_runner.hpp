@@ -8,6 +8,8 @@
 #include <fstream>
 #include <string>
 
+#include "tests/small_drum_text.hpp"
+
 namespace drumlab::test {
 
 struct CliResult {
@@ -34,29 +36,11 @@ inline CliResult run_cli(const std::string& args) {
 inline std::string small_drum_scene(
     const std::string& time_table = "dt_factor = 0.2\nduration = 0.01",
     const std::string& header = "") {
-  return header + R"(search = "m5"
-[drum]
-diameter = 0.2
-depth = 0.05
-omega = 2.0
-[[particles]]
-radius = 0.004
-volume_fraction = 0.5
-[[particles]]
-radius = 0.008
-volume_fraction = 0.5
-[material]
-density = 2500.0
-youngs_modulus = 5e6
-poisson_ratio = 0.3
-restitution = 0.5
-friction = 0.5
-[fill]
-count = 300
-settle_time = 0.01
-[time]
-)" + time_table +
-         "\n[output]\ndiagnostics_every = 20\n";
+  SmallDrumText t;
+  t.header = header;
+  t.time = time_table;
+  t.output = "diagnostics_every = 20";
+  return t.text();
 }
 
 /// A fresh directory under the system temp dir, removed at scope exit.

@@ -8,43 +8,20 @@
 #include "engine/fill/random_fill.hpp"
 #include "engine/scene/scene_config.hpp"
 #include "engine/simulation.hpp"
+#include "tests/small_drum_text.hpp"
 
 namespace drumlab::test {
 
 inline std::string output_scene_text() {
-  return R"(search = "m5"
-[drum]
-diameter = 0.2
-depth = 0.05
-omega = 3.0
-[[particles]]
-radius = 0.004
-volume_fraction = 0.5
-[[particles]]
-radius = 0.008
-volume_fraction = 0.5
-[material]
-density = 2500.0
-youngs_modulus = 5e6
-poisson_ratio = 0.3
-restitution = 0.5
-friction = 0.5
-rolling_friction = 0.05
-[wall]
-youngs_modulus = 5e6
-poisson_ratio = 0.3
-restitution = 0.5
-friction = 0.4
-rolling_friction = 0.05
-[fill]
-count = 250
-settle_time = 0.01
-[time]
-dt_factor = 0.2
-duration = 0.01
-[output]
-diagnostics_every = 50
-)";
+  SmallDrumText t;
+  t.omega = "3.0";
+  t.rolling_friction = "0.05";
+  t.wall =
+      "youngs_modulus = 5e6\npoisson_ratio = 0.3\nrestitution = 0.5\nfriction = 0.4\n"
+      "rolling_friction = 0.05";
+  t.fill = "count = 250\nsettle_time = 0.01";
+  t.output = "diagnostics_every = 50";
+  return t.text();
 }
 
 inline SceneConfig output_scene() {

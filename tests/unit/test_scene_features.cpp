@@ -13,6 +13,7 @@
 #include "engine/fill/random_fill.hpp"
 #include "engine/scene/scene_features.hpp"
 #include "engine/simulation.hpp"
+#include "tests/small_drum_text.hpp"
 
 namespace drumlab {
 namespace {
@@ -28,38 +29,14 @@ struct Knobs {
 };
 
 SceneConfig scene_with(const Knobs& k) {
-  return parse_scene(fmt::format(R"(search = "{}"
-[drum]
-diameter = 0.2
-depth = {}
-omega = 2.0
-ends = "{}"
-[[particles]]
-radius = 0.004
-volume_fraction = 0.5
-[[particles]]
-radius = 0.008
-volume_fraction = 0.5
-[material]
-density = 2500.0
-youngs_modulus = 5e6
-poisson_ratio = 0.3
-restitution = 0.5
-friction = {}
-rolling_friction = {}
-[wall]
-friction = {}
-rolling_friction = {}
-[fill]
-count = 300
-settle_time = 0.01
-[time]
-dt_factor = 0.2
-duration = 0.01
-)",
-                                 k.search, k.depth, k.ends, k.friction, k.rolling, k.wall_friction,
-                                 k.wall_rolling),
-                     "features.toml");
+  test::SmallDrumText t;
+  t.search = k.search;
+  t.depth = fmt::format("{}", k.depth);
+  t.ends = k.ends;
+  t.friction = fmt::format("{}", k.friction);
+  t.rolling_friction = fmt::format("{}", k.rolling);
+  t.wall = fmt::format("friction = {}\nrolling_friction = {}", k.wall_friction, k.wall_rolling);
+  return parse_scene(t.text(), "features.toml");
 }
 
 const SceneFeature& line(const SceneFeatures& f, const std::string& prefix) {
