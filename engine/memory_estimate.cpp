@@ -80,7 +80,10 @@ MemoryEstimate estimate_memory(std::string_view method, const MemoryShape& s) {
 }
 
 double settled_pairs_per_particle(bool verlet, double skin) {
-  const double touching = 3.0;
+  // Each pair is stored once: half the coordination number. Measured in the demo drum's rolling
+  // bed (3 sizes, 18,825 particles): 32,905 contacts = 1.75 per particle, and 3.82 listed pairs
+  // per particle with a Verlet skin of 0.5 R_min (the formula below gives 2 x 1.95 = 3.9).
+  const double touching = 2.0;
   if (!verlet) return touching;
   // Neighbours within 2 r + skin r of a centre, in a bed of equal spheres: the count grows with
   // the volume of that shell.
