@@ -14,8 +14,10 @@
 #include "engine/contact/contact_history.hpp"
 #include "engine/contact/liquid_bridge.hpp"
 #include "engine/io/checkpoint.hpp"
+#include "engine/scene/scene_features.hpp"
 #include "engine/search/contact_search.hpp"
 #include "engine/spatial_order.hpp"
+#include "engine/threads.hpp"
 #include "tests/unit/cli_runner.hpp"
 #include "tests/unit/output_test_scene.hpp"
 
@@ -345,6 +347,39 @@ TEST(BeyondContact, WetRestartWithReorderingIsBitIdentical) {
   // A dry state does not restart a wet scene (and the reverse).
   EXPECT_THROW(Simulation(scene, settled_simulation(output_scene(), 5)->state()), InputError);
   EXPECT_THROW(Simulation(output_scene(), half), InputError);
+}
+
+// The bridges' pass sums in the same order for any thread count (the contact forces already do).
+TEST(BeyondContact, WetRunIsBitIdenticalForAnyThreadCount) {
+  const SceneConfig scene = wet_scene("m5");
+  const Particles start = random_fill(scene);
+  const int saved = max_threads();
+  std::vector<Vec3> reference;
+  for (const int threads : {1, 2, 3}) {
+    set_thread_count(threads);
+    Simulation sim(scene, start);
+    sim.advance(200);
+    if (reference.empty()) {
+      reference = sim.particles().position;
+    } else {
+      EXPECT_TRUE(same_bits(reference, sim.particles().position)) << threads << " threads";
+    }
+  }
+  set_thread_count(saved);
+}
+
+TEST(BeyondContact, InfoSaysAWetSceneNeedsCohesion) {
+  EXPECT_FALSE(scene_features(output_scene()).cohesion);
+  const SceneFeatures wet = scene_features(wet_scene());
+  EXPECT_TRUE(wet.cohesion);
+  bool listed = false;
+  for (const SceneFeature& f : wet.list) {
+    if (f.term == "cohesion") {
+      listed = true;
+      EXPECT_EQ(f.use, FeatureUse::needed);
+    }
+  }
+  EXPECT_TRUE(listed);
 }
 
 TEST(BeyondContact, CheckpointCarriesRegisteredParticleArrays) {
