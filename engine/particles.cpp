@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <type_traits>
 
 #include <fmt/format.h>
 
@@ -22,6 +23,7 @@ void Particles::reserve(std::size_t n) {
   inv_inertia.reserve(n);
   size_class.reserve(n);
   id.reserve(n);
+  for (ParticleArray& a : extra) a.values.reserve(n);
 }
 
 Index Particles::add(const Vec3& x, double r, double density, std::uint8_t cls) {
@@ -45,6 +47,7 @@ Index Particles::add(const Vec3& x, double r, double density, std::uint8_t cls) 
   inv_inertia.push_back(1.0 / (0.4 * m * r * r));
   size_class.push_back(cls);
   id.push_back(i);
+  for (ParticleArray& a : extra) a.values.push_back(a.initial);
   return i;
 }
 
@@ -58,14 +61,43 @@ void Particles::clear_forces() {
 }
 
 void Particles::reorder(std::span<const Index> order, ReorderBuffers& scratch) {
-  for (std::vector<Vec3>* a : {&position, &velocity, &omega, &force, &torque}) {
-    apply_order(*a, order, scratch.vec3);
+  for_each_array([&]<class T>(std::string_view, std::vector<T>& a) {
+    if constexpr (std::is_same_v<T, Vec3>) {
+      apply_order(a, order, scratch.vec3);
+    } else if constexpr (std::is_same_v<T, double>) {
+      apply_order(a, order, scratch.real);
+    } else if constexpr (std::is_same_v<T, std::uint8_t>) {
+      apply_order(a, order, scratch.byte);
+    } else {
+      static_assert(std::is_same_v<T, Index>);
+      apply_order(a, order, scratch.index);
+    }
+  });
+}
+
+std::vector<double>& Particles::add_array(std::string_view name, double initial) {
+  bool taken = name.empty() || name.find(',') != std::string_view::npos;
+  for_each_array([&](std::string_view have, const auto&) { taken = taken || have == name; });
+  if (taken) {
+    throw InputError(
+        fmt::format("particle array '{}': empty, with a comma, or already registered", name));
   }
-  for (std::vector<double>* a : {&radius, &mass, &inv_mass, &inv_inertia}) {
-    apply_order(*a, order, scratch.real);
+  extra.push_back(ParticleArray{std::string(name), std::vector<double>(size(), initial), initial});
+  return extra.back().values;
+}
+
+std::vector<double>* Particles::find_array(std::string_view name) {
+  for (ParticleArray& a : extra) {
+    if (a.name == name) return &a.values;
   }
-  apply_order(size_class, order, scratch.byte);
-  apply_order(id, order, scratch.index);
+  return nullptr;
+}
+
+const std::vector<double>* Particles::find_array(std::string_view name) const {
+  for (const ParticleArray& a : extra) {
+    if (a.name == name) return &a.values;
+  }
+  return nullptr;
 }
 
 double Particles::min_radius() const {

@@ -91,6 +91,7 @@ Simulation::Simulation(const SceneConfig& scene, Particles particles, Simulation
   validate_particles();
   choose_time_step(options);
   impl_->wall_history.assign(particles_.size(), {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
+  impl_->contacts.set_state_size(impl_->model.pair_state_size());
   // Forces of the initial state, for the first half kick (no history increment, not counted).
   compute_forces(0.0, false);
 }
@@ -117,7 +118,15 @@ Simulation::Simulation(const SceneConfig& scene, SimulationState state)
   if (!state.contact_row_start.empty() && state.contact_row_start.size() != n + 1) {
     throw InputError("restart state: contact list does not match the particle count");
   }
-  impl_->contacts.assign(state.contact_row_start, state.contact_col, state.contact_history);
+  if (state.contact_state_size != impl_->model.pair_state_size()) {
+    throw InputError(fmt::format(
+        "restart state: {} scalars per contact, the scene's contact law keeps {} (a dry and a wet "
+        "scene do not mix)",
+        state.contact_state_size, impl_->model.pair_state_size()));
+  }
+  impl_->contacts.set_state_size(state.contact_state_size);
+  impl_->contacts.assign(state.contact_row_start, state.contact_col, state.contact_history,
+                         state.contact_state);
   impl_->wall_history = std::move(state.wall_history);
   rayleigh_time_ = drumlab::rayleigh_time(smallest_radius(scene_, particles_), scene_.material);
   dt_ = state.dt;
@@ -144,6 +153,8 @@ SimulationState Simulation::state() const {
   s.contact_row_start.assign(c.row_start().begin(), c.row_start().end());
   s.contact_col.assign(c.col().begin(), c.col().end());
   s.contact_history.assign(c.history().begin(), c.history().end());
+  s.contact_state_size = c.state_size();
+  s.contact_state.assign(c.state().begin(), c.state().end());
   s.wall_history = impl_->wall_history;
   return s;
 }
@@ -179,6 +190,11 @@ void Simulation::validate_particles() {
       p.force.size() != n || p.torque.size() != n || p.mass.size() != n || p.inv_mass.size() != n ||
       p.inv_inertia.size() != n) {
     throw InputError("particles: arrays of different lengths");
+  }
+  for (const ParticleArray& a : p.extra) {
+    if (a.values.size() != n) {
+      throw InputError(fmt::format("particles: array '{}' of a different length", a.name));
+    }
   }
   const Drum& drum = impl_->drum;
   if (drum.periodic() && n > 0 && !(drum.depth() > 4.0 * p.max_radius())) {
@@ -250,7 +266,8 @@ void Simulation::compute_forces(double history_dt, bool count) {
   SearchInput in;
   in.position = particles_.position;
   in.radius = particles_.radius;
-  in.margin = 0.0;
+  // The composed law's interaction range (0 for a dry law): every method lists the pairs up to it.
+  in.margin = impl_->model.max_pair_range();
   if (impl_->drum.periodic()) in.period_z = impl_->drum.depth();
   ContactList& contacts = impl_->contacts;
   try {
@@ -276,9 +293,11 @@ void Simulation::compute_forces(double history_dt, bool count) {
       particles_, contacts, impl_->pair_buffers, period, dt_, history_dt);
   if (impl_->verlet != nullptr) impl_->verlet->record_found(touching);
   const auto t2 = Clock::now();
-  // Only the particles near the wall: the reach is the Verlet skin, for every search method.
+  // Only the particles near the wall: the reach is the Verlet skin, for every search method, on
+  // top of the wall range of the composed law (0 for a dry law).
   if (impl_->wall_reach < 0.0) {
-    impl_->wall_reach = scene_.performance.verlet_skin * particles_.min_radius();
+    impl_->wall_reach =
+        impl_->model.wall_range() + scene_.performance.verlet_skin * particles_.min_radius();
   }
   impl_->walls.refresh(particles_, impl_->drum, impl_->wall_reach, impl_->wall_history,
                        impl_->moved);

@@ -24,7 +24,10 @@ struct SimulationState {
   std::vector<std::size_t> contact_row_start;
   std::vector<Index> contact_col;
   std::vector<Vec3> contact_history;  ///< tangential displacement per contact, m
-  WallHistory wall_history;           ///< per particle, per wall part, m
+  /// The law parts' scalars per contact (ContactList::state()): contact_state_size per contact.
+  std::size_t contact_state_size = 0;
+  std::vector<double> contact_state;
+  WallHistory wall_history;  ///< per particle, per wall part, m
 };
 
 }  // namespace drumlab

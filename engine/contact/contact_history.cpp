@@ -10,16 +10,26 @@ void ContactList::clear() {
   row_start_.clear();
   col_.clear();
   history_.clear();
+  state_.clear();
   cross_receivers_.clear();
   cross_start_.clear();
   cross_k_.clear();
   cross_block_rows_ = 0;
 }
 
+void ContactList::set_state_size(std::size_t scalars) {
+  if (scalars == state_size_) return;
+  clear();
+  state_size_ = scalars;
+}
+
 void ContactList::assign(std::span<const std::size_t> row_start, std::span<const Index> col,
-                         std::span<const Vec3> history) {
+                         std::span<const Vec3> history, std::span<const double> state) {
   const auto bad = [](const char* why) { throw InputError(fmt::format("contact list: {}", why)); };
   if (history.size() != col.size()) bad("history and partner arrays differ in length");
+  if (state.size() != col.size() * state_size_) {
+    bad("per-contact state does not match the partners and the law's state size");
+  }
   if (row_start.empty()) {
     if (!col.empty()) bad("partners without rows");
     clear();
@@ -37,6 +47,7 @@ void ContactList::assign(std::span<const std::size_t> row_start, std::span<const
   row_start_.assign(row_start.begin(), row_start.end());
   col_.assign(col.begin(), col.end());
   history_.assign(history.begin(), history.end());
+  state_.assign(state.begin(), state.end());
   cross_block_rows_ = 0;
 }
 
@@ -46,6 +57,7 @@ void ContactList::renumber(std::span<const Index> new_index) {
   // Old arrays become the source; the entries are re-sorted by the new (i, j) through an index.
   col_.swap(old_col_);
   history_.swap(old_history_);
+  state_.swap(old_state_);
   // Scratch with headroom: re-ordering is sampled every sort_every steps, so without it a list
   // slightly longer than at any earlier re-ordering would allocate again.
   if (renumbered_.capacity() < m) {
@@ -74,6 +86,8 @@ void ContactList::renumber(std::span<const Index> new_index) {
   for (std::size_t k = 0; k < m; ++k) by_pair_[fill_[renumbered_[k].i]++] = k;
   col_.resize(m);
   history_.resize(m);
+  const std::size_t s = state_size_;
+  state_.resize(m * s);
   const auto count = static_cast<std::int64_t>(n);
 #pragma omp parallel for schedule(static)
   for (std::int64_t ii = 0; ii < count; ++ii) {
@@ -90,6 +104,7 @@ void ContactList::renumber(std::span<const Index> new_index) {
     for (std::size_t q = begin; q < row_start_[i + 1]; ++q) {
       col_[q] = renumbered_[by_pair_[q]].j;
       history_[q] = old_history_[by_pair_[q]];
+      for (std::size_t c = 0; c < s; ++c) state_[q * s + c] = old_state_[by_pair_[q] * s + c];
     }
   }
   cross_block_rows_ = 0;
@@ -101,6 +116,10 @@ void ContactList::update(std::span<const IndexPair> pairs, std::size_t n_particl
   history_.swap(old_history_);
   build_rows(pairs, n_particles);
   transfer_history();
+  if (state_size_ > 0) {
+    state_.swap(old_state_);
+    transfer_state();
+  }
   cross_block_rows_ = 0;
 }
 
@@ -204,13 +223,45 @@ void ContactList::transfer_history() {
   }
 }
 
-const Vec3* ContactList::find(Index i, Index j) const {
-  if (static_cast<std::size_t>(i) + 1 >= row_start_.size()) return nullptr;
+// The same merge as transfer_history(), for the law's scalars (only with state_size() > 0, so a
+// dry scene's update is the one from before). old_state_ still matches old_col_ here.
+void ContactList::transfer_state() {
+  const std::size_t s = state_size_;
+  state_.resize(col_.size() * s);
+  const std::size_t old_rows = old_row_start_.empty() ? 0 : old_row_start_.size() - 1;
+  const auto rows = static_cast<std::int64_t>(row_start_.empty() ? 0 : row_start_.size() - 1);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ii = 0; ii < rows; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    std::size_t ko = i < old_rows ? old_row_start_[i] : 0;
+    const std::size_t ko_end = i < old_rows ? old_row_start_[i + 1] : 0;
+    for (std::size_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {
+      const Index j = col_[k];
+      while (ko < ko_end && old_col_[ko] < j) ++ko;
+      const bool kept = ko < ko_end && old_col_[ko] == j;
+      for (std::size_t c = 0; c < s; ++c) state_[k * s + c] = kept ? old_state_[ko * s + c] : 0.0;
+    }
+  }
+}
+
+std::size_t ContactList::locate(Index i, Index j) const {
+  constexpr auto npos = ~std::size_t{0};
+  if (static_cast<std::size_t>(i) + 1 >= row_start_.size()) return npos;
   const auto begin = col_.begin() + static_cast<std::ptrdiff_t>(row_start_[i]);
   const auto end = col_.begin() + static_cast<std::ptrdiff_t>(row_start_[i + 1]);
   const auto it = std::lower_bound(begin, end, j);
-  if (it == end || *it != j) return nullptr;
-  return &history_[static_cast<std::size_t>(it - col_.begin())];
+  if (it == end || *it != j) return npos;
+  return static_cast<std::size_t>(it - col_.begin());
+}
+
+const Vec3* ContactList::find(Index i, Index j) const {
+  const std::size_t k = locate(i, j);
+  return k == ~std::size_t{0} ? nullptr : &history_[k];
+}
+
+const double* ContactList::find_state(Index i, Index j) const {
+  const std::size_t k = locate(i, j);
+  return k == ~std::size_t{0} || state_size_ == 0 ? nullptr : &state_[k * state_size_];
 }
 
 }  // namespace drumlab

@@ -5,6 +5,12 @@
 // update() takes the search's unordered pair list, counting-sorts it by i into rows, sorts each
 // (short) row by j, and copies the history of every pair that was also in the previous list by a
 // linear merge of the old and new row: no hashing, and no allocation once the buffers have grown.
+//
+// Besides the tangential history, a contact can carry `state_size()` scalars that a law part
+// declares (ContactModel::pair_state_size(), e.g. a liquid bridge's volume). They follow the same
+// paths as the history: carried over by the merge at update(), moved (not negated) by renumber(),
+// saved and restored through assign(). Contact k's scalars are state()[k * state_size() + c].
+// With state_size() == 0 (a dry scene) none of this runs: the dry paths are the ones from before.
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -21,14 +27,17 @@ class ContactList {
   void update(std::span<const IndexPair> pairs, std::size_t n_particles);
   /// Forgets every contact and its history.
   void clear();
+  /// Scalars kept per contact (see above); changing it forgets every contact.
+  void set_state_size(std::size_t scalars);
+  std::size_t state_size() const { return state_size_; }
   /// Follows a re-ordering of the particles: particle i becomes new_index[i]. A pair whose order
   /// flips keeps its history negated (the history is i's displacement relative to j).
   void renumber(std::span<const Index> new_index);
   /// Replaces the list with a saved one (restart). Throws InputError if the arrays do not form a
   /// valid list: row_start non-decreasing from 0 to col.size(), every row sorted with partners
-  /// i < j < rows, history.size() == col.size().
+  /// i < j < rows, history.size() == col.size(), state.size() == col.size() * state_size().
   void assign(std::span<const std::size_t> row_start, std::span<const Index> col,
-              std::span<const Vec3> history);
+              std::span<const Vec3> history, std::span<const double> state = {});
 
   std::size_t size() const { return col_.size(); }
   std::size_t rows() const { return row_start_.empty() ? 0 : row_start_.size() - 1; }
@@ -47,12 +56,19 @@ class ContactList {
   std::span<const std::size_t> cross_contacts() const { return cross_k_; }
   std::span<Vec3> history() { return history_; }
   std::span<const Vec3> history() const { return history_; }
+  std::span<double> state() { return state_; }
+  std::span<const double> state() const { return state_; }
   /// History of pair (i, j), i < j, or nullptr if it is not a contact (tests, diagnostics).
   const Vec3* find(Index i, Index j) const;
+  /// The state_size() scalars of pair (i, j), i < j, or nullptr if it is not a contact.
+  const double* find_state(Index i, Index j) const;
 
  private:
   void build_rows(std::span<const IndexPair> pairs, std::size_t n);
   void transfer_history();
+  void transfer_state();
+  /// Contact k of the list, or npos if (i, j) is not listed.
+  std::size_t locate(Index i, Index j) const;
   void build_cross_block(std::size_t block_rows);
 
   std::vector<std::size_t> row_start_;
@@ -61,6 +77,9 @@ class ContactList {
   std::vector<std::size_t> old_row_start_;
   std::vector<Index> old_col_;
   std::vector<Vec3> old_history_;
+  std::size_t state_size_ = 0;
+  std::vector<double> state_;
+  std::vector<double> old_state_;
   std::vector<std::size_t> fill_;  // scratch: next free slot per row
   std::vector<Index> cross_receivers_;
   std::vector<std::size_t> cross_start_;

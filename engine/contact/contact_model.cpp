@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <stdexcept>
 
 #include "engine/contact/contact_kernel.hpp"
 #include "engine/periodic.hpp"
@@ -348,6 +350,39 @@ void wall_loop(const ContactLaw<Normal>& law, Particles& p, std::span<const Inde
   }
 }
 
+// The beyond-contact part `part` (see liquid_bridge.hpp for the contract) on every listed pair,
+// after the contact forces: it advances each pair's state (its scalars from `offset` on) and adds
+// its attractive normal force to both particles. One thread, by increasing k: the sums do not
+// depend on the thread count. Instantiated only for a scene that has the part, so a dry scene
+// runs none of it.
+template <class Part>
+void beyond_contact_loop(const Part& part, std::size_t offset, Particles& p, ContactList& contacts,
+                         double period) {
+  const auto row = contacts.row_start();
+  const auto col = contacts.col();
+  const auto state = contacts.state();
+  const std::size_t stride = contacts.state_size();
+  if (stride < offset + Part::kStateSize) {
+    throw std::logic_error("contact list keeps fewer scalars than the law's parts need");
+  }
+  for (std::size_t i = 0; i < contacts.rows(); ++i) {
+    const double r_i = p.radius[i];
+    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
+      const Index j = col[k];
+      const Vec3 d = separation(p, i, j, period);
+      const double dist = d.norm();
+      if (dist == 0.0) continue;
+      const double r_j = p.radius[j];
+      const double gap = dist - (r_i + r_j);
+      const double f = part.update(gap, Part::pair_radius(r_i, r_j), &state[k * stride + offset]);
+      if (f == 0.0) continue;
+      const Vec3 pull = (f / dist) * d;  // along i - j: attraction pulls i toward j
+      p.force[i] -= pull;
+      p.force[j] += pull;
+    }
+  }
+}
+
 template <class Normal>
 ContactLaw<Normal> make_law(const Normal& n, const MindlinTangential& t,
                             const RollingResistance& r) {
@@ -403,6 +438,23 @@ ContactModel::ContactModel(const SceneConfig& scene) {
   pair_rolling_ = scene.material.rolling_friction > 0.0;
   wall_tangential_ = scene.wall.friction > 0.0;
   wall_rolling_ = scene.wall.rolling_friction > 0.0;
+  if (scene.liquid.enabled) {
+    const LiquidConfig& l = scene.liquid;
+    if (!(l.surface_tension > 0.0) || !(l.bridge_volume > 0.0) || !(l.contact_angle_deg >= 0.0) ||
+        !(l.contact_angle_deg < 90.0)) {
+      throw InputError(
+          "liquid: surface_tension and bridge_volume must be > 0, contact_angle_deg in [0, 90)");
+    }
+    pair_bridge_.emplace(l.surface_tension, l.contact_angle_deg * std::numbers::pi / 180.0,
+                         l.bridge_volume);
+    pair_range_ = std::max(pair_range_, pair_bridge_->range());
+    pair_state_size_ += LiquidBridge::kStateSize;
+  }
+}
+
+double ContactModel::pair_range(std::uint8_t, std::uint8_t) const {
+  // One liquid for every class pair for now; a per-class law would look its pair up here.
+  return pair_range_;
 }
 
 std::size_t ContactModel::add_pair_forces(Particles& p, ContactList& contacts,
@@ -414,6 +466,7 @@ std::size_t ContactModel::add_pair_forces(Particles& p, ContactList& contacts,
              touching = pair_loop<N, Tangential, Rolling>(law, p, contacts, buffers, period, dt,
                                                           history_dt);
            });
+  if (pair_bridge_) beyond_contact_loop(*pair_bridge_, 0, p, contacts, period);
   return touching;
 }
 

@@ -7,6 +7,7 @@
 // inlines and a scene without friction does no tangential or rotational work.
 #include <Eigen/Geometry>
 #include <array>
+#include <optional>
 #include <span>
 #include <variant>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "engine/contact/contact_history.hpp"
 #include "engine/contact/hertz_mindlin.hpp"
 #include "engine/contact/linear_spring_dashpot.hpp"
+#include "engine/contact/liquid_bridge.hpp"
 #include "engine/contact/rolling_resistance.hpp"
 #include "engine/drum.hpp"
 #include "engine/particles.hpp"
@@ -70,6 +72,20 @@ class ContactModel {
   bool pair_rolling() const { return pair_rolling_; }
   bool wall_tangential() const { return wall_tangential_; }
   bool wall_rolling() const { return wall_rolling_; }
+  /// Interaction range of the composed particle-particle law (m): the largest surface gap
+  /// |x_i - x_j| - r_i - r_j at which some part still acts on a pair of size classes a, b (0 for
+  /// a dry law: contact only). The search margin is max_pair_range(), so every method lists the
+  /// pairs a part may act on (a Verlet list adds its skin on top).
+  double pair_range(std::uint8_t a, std::uint8_t b) const;
+  double max_pair_range() const { return pair_range_; }
+  /// The same for particle-wall contacts (m): the wall-candidate list reaches this much further.
+  /// No part acts beyond contact with the wall yet, so 0.
+  double wall_range() const { return 0.0; }
+  /// Scalars the composed law keeps per particle-particle contact (ContactList::set_state_size):
+  /// the sum over its beyond-contact parts; 0 for a dry law.
+  std::size_t pair_state_size() const { return pair_state_size_; }
+  /// The liquid bridge part, if the scene has [liquid].
+  const std::optional<LiquidBridge>& pair_bridge() const { return pair_bridge_; }
   /// True if any contact can apply a torque (else rotation need not be integrated).
   bool uses_rotation() const {
     return pair_tangential_ || pair_rolling_ || wall_tangential_ || wall_rolling_;
@@ -80,7 +96,9 @@ class ContactModel {
   /// history_dt: time since the previous evaluation (dt, or 0 for the very first one).
   /// Parallel (OpenMP) and independent of the thread count: every particle sums its contacts
   /// in the same order whatever the number of threads. A listed pair that does not overlap
-  /// (e.g. a Verlet-list entry within the skin) adds nothing and its history is reset. Returns the
+  /// (e.g. a Verlet-list entry within the skin) gets no contact force and its tangential history is
+  /// reset; a beyond-contact part (liquid bridge) then acts on it as long as the part's state
+  /// says the interaction lives, and resets that state itself when it ends. Returns the
   /// pairs within the touching tolerance (the contacts a search with margin 0 would find).
   std::size_t add_pair_forces(Particles& p, ContactList& contacts, PairForceBuffers& buffers,
                               double period, double dt, double history_dt) const;
@@ -110,6 +128,9 @@ class ContactModel {
   bool pair_rolling_ = false;
   bool wall_tangential_ = false;
   bool wall_rolling_ = false;
+  std::optional<LiquidBridge> pair_bridge_;
+  double pair_range_ = 0.0;
+  std::size_t pair_state_size_ = 0;
 };
 
 }  // namespace drumlab

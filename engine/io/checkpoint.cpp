@@ -24,6 +24,16 @@ void write_particles(hid_t file, const Particles& p) {
   h5::write(g.get(), "inv_inertia", p.inv_inertia, {n});
   h5::write(g.get(), "size_class", std::span<const std::uint8_t>(p.size_class));
   h5::write(g.get(), "id", std::span<const std::uint32_t>(p.id));
+  // The registered extra arrays (Particles::extra), by name; a dry scene has none and writes
+  // nothing more, so its checkpoint is the one from before.
+  if (p.extra.empty()) return;
+  std::string names;
+  for (const ParticleArray& a : p.extra) {
+    names += (names.empty() ? "" : ",") + a.name;
+    h5::write(g.get(), "extra_" + a.name, a.values, {n});
+    h5::write_attribute(g.get(), "extra_initial_" + a.name, a.initial);
+  }
+  h5::write_attribute(g.get(), "extra_arrays", names);
 }
 
 Particles read_particles(hid_t file) {
@@ -41,6 +51,18 @@ Particles read_particles(hid_t file) {
   p.inv_inertia = h5::read_doubles(g.get(), "inv_inertia", n);
   p.size_class = h5::read_u8(g.get(), "size_class", n);
   p.id = h5::read_u32(g.get(), "id", n);
+  if (H5Aexists(g.get(), "extra_arrays") > 0) {
+    const std::string names = h5::read_string_attribute(g.get(), "extra_arrays");
+    std::size_t begin = 0;
+    while (begin < names.size()) {
+      const std::size_t end = std::min(names.find(',', begin), names.size());
+      const std::string name = names.substr(begin, end - begin);
+      std::vector<double>& a =
+          p.add_array(name, h5::read_double_attribute(g.get(), "extra_initial_" + name));
+      a = h5::read_doubles(g.get(), "extra_" + name, n);
+      begin = end + 1;
+    }
+  }
   return p;
 }
 
@@ -52,6 +74,11 @@ void write_contacts(hid_t file, const SimulationState& s) {
   h5::write(g.get(), "row_start", std::span<const std::uint64_t>(rows));
   h5::write(g.get(), "col", std::span<const std::uint32_t>(s.contact_col));
   h5::write_vec3(g.get(), "history", s.contact_history);
+  // The law parts' per-contact scalars, only if the law keeps any (a dry checkpoint is unchanged).
+  if (s.contact_state_size > 0) {
+    h5::write_attribute(g.get(), "state_size", std::uint64_t{s.contact_state_size});
+    h5::write(g.get(), "state", s.contact_state, {s.contact_col.size(), s.contact_state_size});
+  }
   h5::Handle w = h5::create_group(file, "walls");
   const double* raw = s.wall_history.empty() ? nullptr : s.wall_history.front().front().data();
   h5::write(w.get(), "history", std::span<const double>(raw, 9 * s.wall_history.size()),
@@ -65,6 +92,11 @@ void read_contacts(hid_t file, SimulationState& s) {
   s.contact_row_start.assign(rows.begin(), rows.end());
   s.contact_col = h5::read_u32(g.get(), "col", h5::kAnySize);
   s.contact_history = h5::read_vec3(g.get(), "history", s.contact_col.size());
+  if (H5Aexists(g.get(), "state_size") > 0) {
+    s.contact_state_size = h5::read_u64_attribute(g.get(), "state_size");
+    s.contact_state =
+        h5::read_doubles(g.get(), "state", s.contact_col.size() * s.contact_state_size);
+  }
   h5::Handle w = h5::open_group(file, "walls");
   const std::vector<double> flat = h5::read_doubles(w.get(), "history", 9 * n);
   s.wall_history.resize(n);

@@ -80,6 +80,15 @@ struct PerformanceConfig {
   std::uint64_t sort_every = 100;
 };
 
+/// Pendular liquid bridges between particles ([liquid]; engine/contact/liquid_bridge.hpp).
+/// Absent: a dry scene.
+struct LiquidConfig {
+  bool enabled = false;
+  double surface_tension = 0.0;    ///< N/m, > 0
+  double contact_angle_deg = 0.0;  ///< degrees, in [0, 90)
+  double bridge_volume = 0.0;      ///< m^3 of every bridge, > 0 (no liquid migration yet)
+};
+
 struct OutputConfig {
   std::string directory = "out";
   std::uint64_t diagnostics_every = 1000;  ///< steps between stability checks / progress
@@ -95,6 +104,7 @@ struct SceneConfig {
   Material material;
   Material wall;  ///< particle-wall contact (density unused)
   ContactConfig contact;
+  LiquidConfig liquid;
   FillConfig fill;
   TimeConfig time;
   std::string search_method = "m5";

@@ -78,8 +78,15 @@ SceneFeatures scene_features(const SceneConfig& scene) {
   f.list.push_back(
       rolling("particle-particle", "material.rolling_friction", scene.material.rolling_friction));
   f.list.push_back(rolling("particle-wall", "wall.rolling_friction", scene.wall.rolling_friction));
-  f.list.push_back(
-      {"cohesion", FeatureUse::not_implemented, "the engine has no cohesion law yet: always off"});
+  f.cohesion = scene.liquid.enabled;
+  if (f.cohesion) {
+    f.list.push_back(term("cohesion", true,
+                          "[liquid]: pendular liquid bridges (Willett) between particles, kept "
+                          "beyond contact up to the rupture distance; not yet with the wall"));
+  } else {
+    f.list.push_back({"cohesion", FeatureUse::not_implemented,
+                      "no [liquid] table: dry contacts only (no other cohesion law yet)"});
+  }
   f.list.push_back(term("end-cap contacts", f.end_caps,
                         f.end_caps ? "drum.ends = caps: mantle and both caps tested per particle"
                                    : "drum.ends = periodic: only the mantle is tested"));

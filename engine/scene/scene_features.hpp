@@ -41,7 +41,7 @@ struct SceneFeatures {
   bool pair_rolling = false;
   bool wall_rolling = false;
   bool rotation = false;  ///< angular velocities integrated (some contact applies a torque)
-  bool cohesion = false;  ///< always false: not implemented
+  bool cohesion = false;  ///< [liquid]: liquid bridges
   bool end_caps = false;  ///< end-cap wall contacts (drum.ends = caps)
   bool shallow = false;   ///< depth <= kShallowDepthInDiameters largest diameters
   bool grid_2d = false;   ///< the scene's search method uses a 2D grid (m1, m2, m4, verlet:m2...)

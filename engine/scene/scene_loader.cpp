@@ -423,6 +423,27 @@ void read_output(const Scope& root, SceneConfig& scene) {
   scene.output.diagnostics_every = static_cast<std::uint64_t>(every);
 }
 
+void read_liquid(const Scope& root, SceneConfig& scene) {
+  const auto s = root.table("liquid");
+  if (!s) return;
+  s->allow_only({"surface_tension", "contact_angle_deg", "bridge_volume"});
+  LiquidConfig& l = scene.liquid;
+  l.enabled = true;
+  l.surface_tension = s->required_number("surface_tension", "N/m, > 0");
+  if (!(l.surface_tension > 0.0)) {
+    s->fail("surface_tension", fmt::format("must be > 0 (N/m), got {}", l.surface_tension));
+  }
+  l.contact_angle_deg = s->number_or("contact_angle_deg", 0.0);
+  if (!(l.contact_angle_deg >= 0.0 && l.contact_angle_deg < 90.0)) {
+    s->fail("contact_angle_deg",
+            fmt::format("must be in [0, 90) degrees, got {}", l.contact_angle_deg));
+  }
+  l.bridge_volume = s->required_number("bridge_volume", "m^3, > 0");
+  if (!(l.bridge_volume > 0.0)) {
+    s->fail("bridge_volume", fmt::format("must be > 0 (m^3), got {}", l.bridge_volume));
+  }
+}
+
 void read_performance(const Scope& root, SceneConfig& scene) {
   const auto s = root.table("performance");
   if (!s) return;
@@ -441,7 +462,7 @@ void read_performance(const Scope& root, SceneConfig& scene) {
 
 void read_top_level(const Scope& root, SceneConfig& scene) {
   root.allow_only({"name", "description", "gravity", "search", "drum", "particles", "material",
-                   "wall", "contact", "fill", "time", "performance", "output"});
+                   "wall", "contact", "liquid", "fill", "time", "performance", "output"});
   const std::string stem = std::filesystem::path(scene.source).stem().string();
   scene.name = root.string("name").value_or(stem.empty() ? "scene" : stem);
   if (scene.name.empty()) root.fail("name", "must not be empty");
@@ -476,6 +497,7 @@ SceneConfig build_scene(const toml::table& table, std::string_view source) {
     scene.wall = read_material(*wall, scene.material, true);
   }
   read_contact(root, scene);
+  read_liquid(root, scene);
   read_fill(root, scene);
   read_time(root, scene);
   read_performance(root, scene);

@@ -265,6 +265,43 @@ TEST(SceneLoader, PerformanceKnobs) {
   EXPECT_DOUBLE_EQ(s.performance.verlet_skin, 0.8);
 }
 
+TEST(SceneLoader, LiquidBridgeKeys) {
+  const SceneConfig dry = parse_scene(kGoodScene, "good.toml");
+  EXPECT_FALSE(dry.liquid.enabled);
+  const std::string liquid =
+      "[liquid]\nsurface_tension = 0.072\ncontact_angle_deg = 20\nbridge_volume = 1e-12\n[output]";
+  const SceneConfig wet = parse_scene(edited("[output]", liquid), "wet.toml");
+  EXPECT_TRUE(wet.liquid.enabled);
+  EXPECT_DOUBLE_EQ(wet.liquid.surface_tension, 0.072);
+  EXPECT_DOUBLE_EQ(wet.liquid.contact_angle_deg, 20.0);
+  EXPECT_DOUBLE_EQ(wet.liquid.bridge_volume, 1e-12);
+  const SceneConfig default_angle = parse_scene(
+      edited("[output]", "[liquid]\nsurface_tension = 0.07\nbridge_volume = 1e-12\n[output]"),
+      "wet.toml");
+  EXPECT_DOUBLE_EQ(default_angle.liquid.contact_angle_deg, 0.0);
+  const auto with = [&](const std::string& from, const std::string& to) {
+    std::string text = liquid;
+    text.replace(text.find(from), from.size(), to);
+    return edited("[output]", text);
+  };
+  const std::vector<BadCase> cases = {
+      {"zero surface tension", with("0.072", "0"), "liquid.surface_tension"},
+      {"missing surface tension", with("surface_tension = 0.072\n", ""), "liquid.surface_tension"},
+      {"angle 90", with("= 20", "= 90"), "liquid.contact_angle_deg"},
+      {"negative angle", with("= 20", "= -1"), "liquid.contact_angle_deg"},
+      {"zero volume", with("1e-12", "0"), "liquid.bridge_volume"},
+      {"missing volume", with("bridge_volume = 1e-12\n", ""), "liquid.bridge_volume"},
+      {"unknown liquid key", with("[liquid]", "[liquid]\nviscosity = 1"), "liquid.viscosity"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.what);
+    const std::string message = error_for(c.text);
+    ASSERT_FALSE(message.empty()) << "no InputError";
+    EXPECT_NE(message.find(std::string("bad.toml: ") + c.key + ":"), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+}
+
 TEST(SceneLoader, MissingRequiredTable) {
   std::string text = kGoodScene;
   text.erase(text.find("[fill]"), text.find("[time]") - text.find("[fill]"));
