@@ -245,13 +245,18 @@ void Simulation::use_search(std::unique_ptr<ContactSearch> search) {
   impl_->verlet = dynamic_cast<VerletListSearch*>(search_.get());
 }
 
-void Simulation::compute_forces(double history_dt, bool count) {
-  const auto t0 = Clock::now();
+SearchInput Simulation::search_input() const {
   SearchInput in;
   in.position = particles_.position;
   in.radius = particles_.radius;
   in.margin = 0.0;
   if (impl_->drum.periodic()) in.period_z = impl_->drum.depth();
+  return in;
+}
+
+void Simulation::compute_forces(double history_dt, bool count) {
+  const auto t0 = Clock::now();
+  const SearchInput in = search_input();
   ContactList& contacts = impl_->contacts;
   try {
     if (impl_->verlet != nullptr) {

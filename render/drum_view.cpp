@@ -480,11 +480,11 @@ std::array<double, 2> DrumView::project(const Vec3& x) {
   return {d[0], static_cast<double>(impl_->options.height) - d[1]};
 }
 
-SearchTrace DrumView::focus_trace() const {
-  if (!impl_->grid || !impl_->grid->trace()) {
-    throw std::logic_error("DrumView::focus_trace: no focus particle drawn yet");
+SearchVisit DrumView::focus_visit() const {
+  if (!impl_->grid || !impl_->grid->visit()) {
+    throw std::logic_error("DrumView::focus_visit: no focus particle drawn yet");
   }
-  return *impl_->grid->trace();
+  return *impl_->grid->visit();
 }
 
 void DrumView::set_title(std::string title) {

@@ -54,9 +54,9 @@ class DrumView {
   Image render(const Simulation& sim);
   /// Pixel (column, row from the top) where a drum-frame point appears in the last frame.
   std::array<double, 2> project(const Vec3& x);
-  /// The focus particle's search as drawn in the last frame. Throws std::logic_error without a
-  /// focus particle or before the first frame.
-  SearchTrace focus_trace() const;
+  /// The focus particle's search as drawn in the last frame (ContactSearch::visit). Throws
+  /// std::logic_error without a focus particle or before the first frame.
+  SearchVisit focus_visit() const;
   /// Replaces the title text (ViewOptions::title) for the next frame.
   void set_title(std::string title);
   /// The colour the legend assigns to `value` (RGB in [0, 1]), for tests.

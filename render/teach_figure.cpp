@@ -70,12 +70,12 @@ TeachFigure make_teach_figure(const SceneConfig& scene, std::optional<Index> par
     opt.title = " ";  // replaced below once the trace is known
     DrumView view(opt);
     view.render(*sim);
-    const auto trace = view.focus_trace();
+    const SearchVisit visit = view.focus_visit();
     TeachPanel panel;
     panel.method = methods[k];
-    panel.cells_visited = trace.cells_visited();
-    panel.pairs_tested = trace.candidates.size();
-    panel.contacts = trace.contacts.size();
+    panel.cells_visited = visit.cells_visited;
+    panel.pairs_tested = visit.pairs_tested;
+    panel.contacts = visit.contacts.size();
     view.set_title(panel_title(*sim, panel));
     blit(view.render(*sim), fig.image, panel_width * static_cast<int>(k));
     fig.panels.push_back(panel);

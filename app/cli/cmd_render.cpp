@@ -161,13 +161,14 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--camera", args->camera, "axis (along the drum axis) or iso");
   cmd->callback([opt, args] {
     const RenderOutput out = make_output(*args);
-    if (args->grid || !args->focus.empty()) {  // fail now, not after settling
+    if (args->grid) {  // fail now, not after settling; --focus shows every method's search
       const std::string method =
           opt->method.empty() ? load_dynamic_scene(opt->scene).search_method : opt->method;
       const auto parsed = parse_search_method(method);
-      if (parsed && (parsed->verlet || !parsed->method->draws_cells)) {
-        throw InputError(fmt::format("--grid/--focus: search '{}' has no cells to draw; use {}",
-                                     method, fmt::join(cell_grid_method_names(), ", ")));
+      if (parsed && !parsed->method->draws_cells) {
+        throw InputError(fmt::format(
+            "--grid: search '{}' has no cells to draw; use {} or a Verlet list built by one",
+            method, fmt::join(cell_grid_method_names(), ", ")));
       }
     }
     auto observer = make_render_observer(out);
