@@ -228,7 +228,7 @@ Index auto_focus_id(const Particles& p) {
 }
 
 struct DrumView::Impl {
-  explicit Impl(const ViewOptions& o) : options(o), context(o.width, o.height) {}
+  Impl(const ViewOptions& o, RenderTarget& t) : options(o), target(t) {}
   void build_scene();
   void build_annotations();  // legend and text overlay, in the top layer
   void build_drum(const Simulation& sim);
@@ -238,7 +238,7 @@ struct DrumView::Impl {
   bool compact_overlay() const { return options.height < kFullOverlayHeight; }
 
   ViewOptions options;
-  OffscreenContext context;  // first member: outlives every VTK object below
+  RenderTarget& target;  // outlives the view: every VTK object below
   vtkNew<vtkGenericOpenGLRenderWindow> window;
   vtkNew<vtkRenderer> renderer;
   vtkNew<vtkRenderer> top;  // layer 1: the focus particle's highlights, never hidden
@@ -262,7 +262,7 @@ void DrumView::Impl::build_scene() {
   window->SetReadyForRendering(true);
   window->SetMultiSamples(0);
   if (!window->InitializeFromCurrentContext()) {
-    throw std::runtime_error("render: VTK could not use the OSMesa context");
+    throw std::runtime_error("render: VTK could not use the target's OpenGL context");
   }
   window->AddRenderer(renderer);
   window->SetNumberOfLayers(2);  // layer 1: text, legend and the focus picture, always on top
@@ -445,20 +445,26 @@ void DrumView::Impl::place_camera(const Simulation& sim) {
   camera_placed = true;
 }
 
-DrumView::DrumView(const ViewOptions& options) : impl_(std::make_unique<Impl>(options)) {
+DrumView::DrumView(const ViewOptions& options, RenderTarget& target)
+    : impl_(std::make_unique<Impl>(options, target)) {
+  if (target.width() != options.width || target.height() != options.height) {
+    throw std::runtime_error(fmt::format("render: a {}x{} view on a {}x{} target", options.width,
+                                         options.height, target.width(), target.height()));
+  }
+  target.make_current();
   impl_->build_scene();
 }
 
 DrumView::~DrumView() {
   if (impl_) {
-    impl_->context.make_current();
+    impl_->target.make_current();
     impl_->window->Finalize();
   }
 }
 
 Image DrumView::render(const Simulation& sim) {
   Impl& m = *impl_;
-  m.context.make_current();
+  m.target.make_current();
   if (!m.drum_built) m.build_drum(sim);
   if (m.grid) {
     // Storage indices may change between frames (re-sorting); ids do not.
@@ -469,7 +475,7 @@ Image DrumView::render(const Simulation& sim) {
   m.update_overlay(sim);
   if (!m.camera_placed) m.place_camera(sim);
   m.window->Render();
-  return m.context.read_image();
+  return m.target.read_image();
 }
 
 std::array<double, 2> DrumView::project(const Vec3& x) {

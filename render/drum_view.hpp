@@ -1,8 +1,9 @@
 #pragma once
 // The drum as a picture: particles as shaded sphere impostors coloured by one quantity with a
 // legend, the drum mantle and end caps (with spokes that turn with the drum), a text overlay, and
-// optionally the active search grid and one particle's search. Reads a const Simulation; owns its
-// offscreen OpenGL context. No VTK type appears in this interface.
+// optionally the active search grid and one particle's search. Reads a const Simulation; draws
+// into an OpenGL context it is given (a RenderTarget: OSMesa for the CLI and the tests, the GUI's
+// own context). No VTK type appears in this interface.
 #include <memory>
 #include <optional>
 #include <string>
@@ -11,7 +12,8 @@
 
 #include "engine/search/cell_grid.hpp"
 #include "engine/simulation.hpp"
-#include "render/offscreen_context.hpp"
+#include "render/image.hpp"
+#include "render/render_target.hpp"
 
 namespace drumlab::render {
 
@@ -45,12 +47,14 @@ inline constexpr double kBackground[3] = {0.11, 0.12, 0.15};
 
 class DrumView {
  public:
-  explicit DrumView(const ViewOptions& options);
+  /// Draws into `target` (which must outlive the view, and be options.width x options.height).
+  /// Throws std::runtime_error if VTK cannot use the target's context.
+  DrumView(const ViewOptions& options, RenderTarget& target);
   ~DrumView();
   DrumView(const DrumView&) = delete;
   DrumView& operator=(const DrumView&) = delete;
 
-  /// Updates the scene from `sim` and renders one frame.
+  /// Updates the scene from `sim` and renders one frame (making the target's context current).
   Image render(const Simulation& sim);
   /// Pixel (column, row from the top) where a drum-frame point appears in the last frame.
   std::array<double, 2> project(const Vec3& x);

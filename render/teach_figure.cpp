@@ -7,6 +7,7 @@
 #include "engine/search/search_methods.hpp"
 #include "engine/session/run_session.hpp"
 #include "render/drum_view.hpp"
+#include "render/offscreen_context.hpp"
 
 namespace drumlab::render {
 
@@ -67,8 +68,9 @@ TeachFigure make_teach_figure(const SceneConfig& scene, std::optional<Index> par
     opt.zoom_to_focus = true;
     opt.overlay = false;
     opt.neutral_particles = true;
-    opt.title = " ";  // replaced below once the trace is known
-    DrumView view(opt);
+    opt.title = " ";                                      // replaced below once the trace is known
+    OffscreenContext context(panel_width, panel_height);  // outlives the view
+    DrumView view(opt, context);
     view.render(*sim);
     const SearchVisit visit = view.focus_visit();
     TeachPanel panel;

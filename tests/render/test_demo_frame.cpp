@@ -21,7 +21,8 @@ TEST(DemoFrame, IsNotBlankAndShowsTheThreeSizes) {
   opt.width = 640;
   opt.height = 360;
   opt.color_by = render::ColorBy::size;
-  render::DrumView view(opt);
+  render::OffscreenContext context(opt.width, opt.height);
+  render::DrumView view(opt, context);
   const render::Image img = view.render(sim);
   if (std::getenv("DRUMLAB_TEST_SAVE") != nullptr) render::write_png(img, "/tmp/demo_frame.png");
 

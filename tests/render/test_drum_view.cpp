@@ -25,7 +25,8 @@ TEST_F(DrumViewTest, OneParticleHasItsLegendColourAtItsProjectedCentre) {
   opt.width = 320;
   opt.height = 240;
   opt.color_by = render::ColorBy::speed;  // at rest: speed 0, the low end of the legend (blue)
-  render::DrumView view(opt);
+  render::OffscreenContext context(opt.width, opt.height);
+  render::DrumView view(opt, context);
   const render::Image img = view.render(sim);
   if (std::getenv("DRUMLAB_TEST_SAVE") != nullptr) render::write_png(img, "/tmp/one_particle.png");
   ASSERT_EQ(img.width, 320);
@@ -64,7 +65,8 @@ TEST_F(DrumViewTest, ColourFollowsTheChosenQuantity) {
   opt.width = 320;
   opt.height = 240;
   opt.color_by = render::ColorBy::id;  // id 0 blue, id 1 red
-  render::DrumView view(opt);
+  render::OffscreenContext context(opt.width, opt.height);
+  render::DrumView view(opt, context);
   const render::Image img = view.render(sim);
   for (Index i = 0; i < 2; ++i) {
     const auto c = view.project(sim.particles().position[i]);

@@ -55,7 +55,8 @@ TEST_P(FocusOf, FrameShowsTheFocusColours) {
   opt.zoom_to_focus = true;
   opt.overlay = false;
   opt.neutral_particles = true;
-  render::DrumView view(opt);
+  render::OffscreenContext context(opt.width, opt.height);
+  render::DrumView view(opt, context);
   const render::Image img = view.render(*sim);
   if (std::getenv("DRUMLAB_TEST_SAVE") != nullptr) {
     render::write_png(
