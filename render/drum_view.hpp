@@ -44,6 +44,9 @@ struct ViewOptions {
 
 /// Background colour of every frame (RGB in [0, 1]).
 inline constexpr double kBackground[3] = {0.11, 0.12, 0.15};
+/// Colour of the back end cap, the plate behind the bed: light enough that viridis' dark low end
+/// (slow particles) stands out against it.
+inline constexpr double kBackCapColor[3] = {0.32, 0.33, 0.37};
 
 class DrumView {
  public:
