@@ -261,14 +261,19 @@ void Simulation::use_search(std::unique_ptr<ContactSearch> search) {
   impl_->verlet = dynamic_cast<VerletListSearch*>(search_.get());
 }
 
-void Simulation::compute_forces(double history_dt, bool count) {
-  const auto t0 = Clock::now();
+SearchInput Simulation::search_input() const {
   SearchInput in;
   in.position = particles_.position;
   in.radius = particles_.radius;
   // The composed law's interaction range (0 for a dry law): every method lists the pairs up to it.
   in.margin = impl_->model.max_pair_range();
   if (impl_->drum.periodic()) in.period_z = impl_->drum.depth();
+  return in;
+}
+
+void Simulation::compute_forces(double history_dt, bool count) {
+  const auto t0 = Clock::now();
+  const SearchInput in = search_input();
   ContactList& contacts = impl_->contacts;
   try {
     if (impl_->verlet != nullptr) {

@@ -73,6 +73,9 @@ class Simulation {
   const Particles& particles() const { return particles_; }
   const SceneConfig& scene() const { return scene_; }
   const ContactSearch& search() const { return *search_; }
+  /// The search's input on the current state (positions, radii, margin, z period): what the step
+  /// searches, and what search().visit() replays one particle's search on.
+  SearchInput search_input() const;
   /// Search counters summed over all steps since construction.
   const SearchCounters& search_totals() const { return search_totals_; }
   const StepTimers& timers() const { return timers_; }

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 
 #include <fmt/format.h>
 #include <vtkActor.h>
@@ -30,6 +32,7 @@
 #include <vtkTextProperty.h>
 #include <vtkTransform.h>
 #include <vtkTransformPolyDataFilter.h>
+#include <vtkVariant.h>
 
 #include "render/grid_overlay.hpp"
 
@@ -41,11 +44,79 @@ constexpr int kSpokes = 6;
 /// Frames at least this high get the full overlay column; smaller ones two short lines.
 constexpr int kFullOverlayHeight = 480;
 
+/// Viridis (van der Walt and Smith, matplotlib 2.0's default map, perceptually uniform and
+/// readable in grey and by colour-blind readers): matplotlib's published table sampled at
+/// t = 0, 0.1, ..., 1; the 256 colours of the map are interpolated linearly between them.
+constexpr double kViridis[11][3] = {
+    {0.267004, 0.004874, 0.329415}, {0.282623, 0.140926, 0.457517}, {0.253935, 0.265254, 0.529983},
+    {0.206756, 0.371758, 0.553117}, {0.163625, 0.471133, 0.558148}, {0.127568, 0.566949, 0.550556},
+    {0.134692, 0.658636, 0.517649}, {0.266941, 0.748751, 0.440573}, {0.477504, 0.821444, 0.318195},
+    {0.741388, 0.873449, 0.149561}, {0.993248, 0.906157, 0.143936}};
+
+/// Categories (size classes): the Okabe-Ito palette (Okabe and Ito 2008, "Color Universal
+/// Design"), distinct for colour-blind readers; black is left out (the background is dark).
+constexpr double kCategories[7][3] = {
+    {0.902, 0.624, 0.000}, {0.337, 0.706, 0.914}, {0.000, 0.620, 0.451}, {0.941, 0.894, 0.259},
+    {0.000, 0.447, 0.698}, {0.835, 0.369, 0.000}, {0.800, 0.475, 0.655}};
+constexpr std::size_t kMaxCategories = std::size(kCategories);
+
 struct ColorArray {
   std::vector<double> values;
   double lo = 0.0, hi = 1.0;
   std::string title;
+  /// Distinct values with their names, drawn as swatches (size classes); empty: a continuous map.
+  std::vector<std::pair<double, std::string>> categories;
 };
+
+/// Size classes: the distinct radii (mm), named after the scene's classes where one has that
+/// radius; none if there are more radii than colours (a continuous map then).
+std::vector<std::pair<double, std::string>> size_categories(const Simulation& sim,
+                                                            const std::vector<double>& mm) {
+  std::vector<double> distinct;
+  for (const double v : mm) {
+    if (std::find(distinct.begin(), distinct.end(), v) != distinct.end()) continue;
+    if (distinct.size() == kMaxCategories) return {};
+    distinct.push_back(v);
+  }
+  std::sort(distinct.begin(), distinct.end());
+  std::vector<std::pair<double, std::string>> out;
+  for (const double v : distinct) {
+    std::string name = fmt::format("r = {:.3g} mm", v);
+    for (const ParticleClass& c : sim.scene().classes) {
+      if (1000.0 * c.radius == v) name = fmt::format("{} ({:.3g} mm)", c.name, v);
+    }
+    out.emplace_back(v, std::move(name));
+  }
+  return out;
+}
+
+/// The continuous map: 256 colours of viridis, no categories.
+void use_viridis(vtkLookupTable* lut) {
+  lut->IndexedLookupOff();
+  lut->ResetAnnotations();
+  lut->SetNumberOfTableValues(256);
+  for (int k = 0; k < 256; ++k) {
+    const double x = 10.0 * k / 255.0;
+    const int i = std::min(9, static_cast<int>(x));
+    const double f = x - i;
+    const double* a = kViridis[i];
+    const double* b = kViridis[i + 1];
+    lut->SetTableValue(k, a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1]),
+                       a[2] + f * (b[2] - a[2]), 1.0);
+  }
+}
+
+/// One colour per category, looked up by value (the legend draws them as named swatches).
+void use_categories(vtkLookupTable* lut, const std::vector<std::pair<double, std::string>>& cats) {
+  lut->ResetAnnotations();
+  lut->SetNumberOfTableValues(static_cast<vtkIdType>(cats.size()));
+  for (std::size_t k = 0; k < cats.size(); ++k) {
+    const double* c = kCategories[k];
+    lut->SetTableValue(static_cast<vtkIdType>(k), c[0], c[1], c[2], 1.0);
+    lut->SetAnnotation(vtkVariant(cats[k].first), cats[k].second);
+  }
+  lut->IndexedLookupOn();
+}
 
 ColorArray color_values(const Simulation& sim, ColorBy by) {
   const Particles& p = sim.particles();
@@ -57,7 +128,9 @@ ColorArray color_values(const Simulation& sim, ColorBy by) {
     case ColorBy::size:
       c.lo = p.empty() ? 0.0 : 1000.0 * p.min_radius();
       c.hi = p.empty() ? 1.0 : 1000.0 * p.max_radius();
-      c.title = "radius (mm)";
+      c.title = "size class";
+      c.categories = size_categories(sim, c.values);
+      if (c.categories.empty()) c.title = "radius (mm)";
       break;
     case ColorBy::speed:
       c.hi = 1.5 * v_ref;
@@ -228,7 +301,7 @@ Index auto_focus_id(const Particles& p) {
 }
 
 struct DrumView::Impl {
-  explicit Impl(const ViewOptions& o) : options(o), context(o.width, o.height) {}
+  Impl(const ViewOptions& o, RenderTarget& t) : options(o), target(t) {}
   void build_scene();
   void build_annotations();  // legend and text overlay, in the top layer
   void build_drum(const Simulation& sim);
@@ -238,7 +311,7 @@ struct DrumView::Impl {
   bool compact_overlay() const { return options.height < kFullOverlayHeight; }
 
   ViewOptions options;
-  OffscreenContext context;  // first member: outlives every VTK object below
+  RenderTarget& target;  // outlives the view: every VTK object below
   vtkNew<vtkGenericOpenGLRenderWindow> window;
   vtkNew<vtkRenderer> renderer;
   vtkNew<vtkRenderer> top;  // layer 1: the focus particle's highlights, never hidden
@@ -262,7 +335,7 @@ void DrumView::Impl::build_scene() {
   window->SetReadyForRendering(true);
   window->SetMultiSamples(0);
   if (!window->InitializeFromCurrentContext()) {
-    throw std::runtime_error("render: VTK could not use the OSMesa context");
+    throw std::runtime_error("render: VTK could not use the target's OpenGL context");
   }
   window->AddRenderer(renderer);
   window->SetNumberOfLayers(2);  // layer 1: text, legend and the focus picture, always on top
@@ -280,9 +353,7 @@ void DrumView::Impl::build_scene() {
   sphere_mapper->SelectColorArray("color");
   sphere_mapper->ScalarVisibilityOn();
   sphere_mapper->SetColorModeToMapScalars();
-  lut->SetHueRange(0.667, 0.0);
-  lut->SetNumberOfTableValues(256);
-  lut->Build();
+  use_viridis(lut);
   particle_actor->SetMapper(sphere_mapper);
   particle_actor->GetProperty()->SetAmbient(0.15);
   particle_actor->GetProperty()->SetDiffuse(0.85);
@@ -346,7 +417,7 @@ void DrumView::Impl::build_drum(const Simulation& sim) {
   disk->SetCenter(0.0, 0.0, -1e-4 * radius);
   disk->Update();
   back_cap = actor_for(disk->GetOutput());
-  back_cap->GetProperty()->SetColor(0.2, 0.21, 0.25);
+  back_cap->GetProperty()->SetColor(kBackCapColor[0], kBackCapColor[1], kBackCapColor[2]);
   back_cap->GetProperty()->LightingOff();
   renderer->AddActor(back_cap);
 
@@ -394,6 +465,11 @@ void DrumView::Impl::update_particles(const Simulation& sim) {
   if (options.neutral_particles) {
     sphere_mapper->ScalarVisibilityOff();
     particle_actor->GetProperty()->SetColor(0.55, 0.57, 0.6);
+  }
+  if (colors.categories.empty()) {
+    use_viridis(lut);
+  } else {
+    use_categories(lut, colors.categories);
   }
   lut->SetTableRange(colors.lo, colors.hi);
   sphere_mapper->SetScalarRange(colors.lo, colors.hi);
@@ -445,20 +521,26 @@ void DrumView::Impl::place_camera(const Simulation& sim) {
   camera_placed = true;
 }
 
-DrumView::DrumView(const ViewOptions& options) : impl_(std::make_unique<Impl>(options)) {
+DrumView::DrumView(const ViewOptions& options, RenderTarget& target)
+    : impl_(std::make_unique<Impl>(options, target)) {
+  if (target.width() != options.width || target.height() != options.height) {
+    throw std::runtime_error(fmt::format("render: a {}x{} view on a {}x{} target", options.width,
+                                         options.height, target.width(), target.height()));
+  }
+  target.make_current();
   impl_->build_scene();
 }
 
 DrumView::~DrumView() {
   if (impl_) {
-    impl_->context.make_current();
+    impl_->target.make_current();
     impl_->window->Finalize();
   }
 }
 
 Image DrumView::render(const Simulation& sim) {
   Impl& m = *impl_;
-  m.context.make_current();
+  m.target.make_current();
   if (!m.drum_built) m.build_drum(sim);
   if (m.grid) {
     // Storage indices may change between frames (re-sorting); ids do not.
@@ -469,7 +551,7 @@ Image DrumView::render(const Simulation& sim) {
   m.update_overlay(sim);
   if (!m.camera_placed) m.place_camera(sim);
   m.window->Render();
-  return m.context.read_image();
+  return m.target.read_image();
 }
 
 std::array<double, 2> DrumView::project(const Vec3& x) {
@@ -480,11 +562,11 @@ std::array<double, 2> DrumView::project(const Vec3& x) {
   return {d[0], static_cast<double>(impl_->options.height) - d[1]};
 }
 
-SearchTrace DrumView::focus_trace() const {
-  if (!impl_->grid || !impl_->grid->trace()) {
-    throw std::logic_error("DrumView::focus_trace: no focus particle drawn yet");
+SearchVisit DrumView::focus_visit() const {
+  if (!impl_->grid || !impl_->grid->visit()) {
+    throw std::logic_error("DrumView::focus_visit: no focus particle drawn yet");
   }
-  return *impl_->grid->trace();
+  return *impl_->grid->visit();
 }
 
 void DrumView::set_title(std::string title) {

@@ -1,8 +1,9 @@
 #pragma once
 // The drum as a picture: particles as shaded sphere impostors coloured by one quantity with a
 // legend, the drum mantle and end caps (with spokes that turn with the drum), a text overlay, and
-// optionally the active search grid and one particle's search. Reads a const Simulation; owns its
-// offscreen OpenGL context. No VTK type appears in this interface.
+// optionally the active search grid and one particle's search. Reads a const Simulation; draws
+// into an OpenGL context it is given (a RenderTarget: OSMesa for the CLI and the tests, the GUI's
+// own context). No VTK type appears in this interface.
 #include <memory>
 #include <optional>
 #include <string>
@@ -11,7 +12,8 @@
 
 #include "engine/search/cell_grid.hpp"
 #include "engine/simulation.hpp"
-#include "render/offscreen_context.hpp"
+#include "render/image.hpp"
+#include "render/render_target.hpp"
 
 namespace drumlab::render {
 
@@ -42,21 +44,26 @@ struct ViewOptions {
 
 /// Background colour of every frame (RGB in [0, 1]).
 inline constexpr double kBackground[3] = {0.11, 0.12, 0.15};
+/// Colour of the back end cap, the plate behind the bed: light enough that viridis' dark low end
+/// (slow particles) stands out against it.
+inline constexpr double kBackCapColor[3] = {0.32, 0.33, 0.37};
 
 class DrumView {
  public:
-  explicit DrumView(const ViewOptions& options);
+  /// Draws into `target` (which must outlive the view, and be options.width x options.height).
+  /// Throws std::runtime_error if VTK cannot use the target's context.
+  DrumView(const ViewOptions& options, RenderTarget& target);
   ~DrumView();
   DrumView(const DrumView&) = delete;
   DrumView& operator=(const DrumView&) = delete;
 
-  /// Updates the scene from `sim` and renders one frame.
+  /// Updates the scene from `sim` and renders one frame (making the target's context current).
   Image render(const Simulation& sim);
   /// Pixel (column, row from the top) where a drum-frame point appears in the last frame.
   std::array<double, 2> project(const Vec3& x);
-  /// The focus particle's search as drawn in the last frame. Throws std::logic_error without a
-  /// focus particle or before the first frame.
-  SearchTrace focus_trace() const;
+  /// The focus particle's search as drawn in the last frame (ContactSearch::visit). Throws
+  /// std::logic_error without a focus particle or before the first frame.
+  SearchVisit focus_visit() const;
   /// Replaces the title text (ViewOptions::title) for the next frame.
   void set_title(std::string title);
   /// The colour the legend assigns to `value` (RGB in [0, 1]), for tests.

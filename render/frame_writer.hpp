@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "render/offscreen_context.hpp"
+#include "render/image.hpp"
 
 namespace drumlab::render {
 

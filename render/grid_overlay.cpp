@@ -1,6 +1,7 @@
 #include "render/grid_overlay.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include <fmt/format.h>
@@ -19,6 +20,7 @@
 #include <vtkUnsignedCharArray.h>
 
 #include "engine/search/search_methods.hpp"
+#include "engine/search/verlet_list.hpp"
 
 namespace drumlab::render {
 
@@ -120,9 +122,34 @@ GridOverlay::~GridOverlay() {
   }
 }
 
+const CellGridSearch* drawn_cell_grid(const ContactSearch& search) {
+  if (const auto* grid = dynamic_cast<const CellGridSearch*>(&search)) return grid;
+  if (const auto* list = dynamic_cast<const VerletListSearch*>(&search)) {
+    return dynamic_cast<const CellGridSearch*>(&list->builder());
+  }
+  return nullptr;
+}
+
+namespace {
+
+/// The cell of x in g, clamped (the binning of CellGridSearch::sort_into_cells).
+CellCoord cell_in(const GridGeometry& g, const Vec3& x) {
+  const Vec3 u = (x - g.origin) / g.cell_xy;
+  CellCoord c{std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor(u.x())), 0, g.nx - 1),
+              std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor(u.y())), 0, g.ny - 1),
+              0};
+  if (g.nz > 1) {
+    const double uz = (x.z() - g.origin.z()) / g.cell_z;
+    c.z = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor(uz)), 0, g.nz - 1);
+  }
+  return c;
+}
+
+}  // namespace
+
 void GridOverlay::update(const Simulation& sim, bool occupancy, std::optional<Index> focus) {
-  const auto* grid = dynamic_cast<const CellGridSearch*>(&sim.search());
-  if (grid == nullptr) {
+  const CellGridSearch* grid = drawn_cell_grid(sim.search());
+  if (occupancy && grid == nullptr) {
     throw InputError(fmt::format("search '{}' has no cell grid to draw (methods with one: {})",
                                  sim.search().name(), fmt::join(cell_grid_method_names(), ", ")));
   }
@@ -136,21 +163,35 @@ void GridOverlay::update(const Simulation& sim, bool occupancy, std::optional<In
   summary_.clear();
   grid_summary_.clear();
   focus_box_.reset();
-  trace_.reset();
-  if (grid->geometry().nx == 0) return;  // no search yet
-  std::int64_t layer = grid->geometry().nz / 2;
-  if (focus) layer = grid->cell_of(*focus).z;
-  draw_grid(sim, *grid, layer, occupancy);
-  if (focus) draw_focus(sim, *grid, *focus);
+  visit_.reset();
+  if (grid != nullptr && grid->geometry().nx == 0) return;  // no search yet
+  std::optional<SearchVisit> v;
+  if (focus) v = sim.search().visit(*focus, sim.search_input());
+  // The grid whose lines are drawn: the cell grid, else the focus particle's own level.
+  std::optional<GridGeometry> drawn;
+  if (grid != nullptr) {
+    drawn = grid->geometry();
+  } else if (v && !v->grids.empty()) {
+    drawn = v->grids.front().geometry;
+  }
+  if (drawn) {
+    std::int64_t layer = drawn->nz / 2;
+    if (focus) {
+      layer = (v && !v->grids.empty() && v->grids.front().has_own)
+                  ? v->grids.front().own.z
+                  : cell_in(*drawn, sim.particles().position[*focus]).z;
+    }
+    draw_grid(sim, *drawn, layer, occupancy);
+  }
+  if (v) draw_focus(sim, *v, *focus);
 }
 
-void GridOverlay::draw_grid(const Simulation& sim, const CellGridSearch& grid, std::int64_t layer,
+void GridOverlay::draw_grid(const Simulation& sim, const GridGeometry& g, std::int64_t layer,
                             bool occupancy) {
-  const GridGeometry& g = grid.geometry();
   std::map<std::pair<std::int64_t, std::int64_t>, int> count;
   int most = 1;
-  for (std::size_t i = 0; i < sim.particles().size(); ++i) {
-    const CellCoord& c = grid.cell_of(static_cast<Index>(i));
+  for (const Vec3& x : sim.particles().position) {
+    const CellCoord c = cell_in(g, x);
     if (c.z != layer) continue;
     most = std::max(most, ++count[{c.x, c.y}]);
   }
@@ -197,50 +238,101 @@ void GridOverlay::draw_grid(const Simulation& sim, const CellGridSearch& grid, s
   renderer_->AddActor(lines_);
 }
 
-void GridOverlay::draw_focus(const Simulation& sim, const CellGridSearch& grid, Index focus) {
-  const GridGeometry& g = grid.geometry();
-  const SearchTrace t = grid.trace(focus);
+void GridOverlay::draw_focus(const Simulation& sim, const SearchVisit& v, Index focus) {
+  const Particles& p = sim.particles();
   const double z = front_z(sim) + 1e-4;
-  auto in_grid = [&g](const CellCoord& c) {
-    return c.x >= 0 && c.x < g.nx && c.y >= 0 && c.y < g.ny;
-  };
   auto same_as = [](const CellCoord& c) { return [c](const CellCoord& d) { return c == d; }; };
   QuadBuilder quads;
   Box box{Vec3::Constant(1e300), Vec3::Constant(-1e300)};
-  auto add_cell = [&](const CellCoord& c, const double* rgb, double alpha) {
+  bool boxed = false;
+  auto add_cell = [&](const GridGeometry& g, const CellCoord& c, const double* rgb, double alpha) {
     quads.add(g, c.x, c.y, z, rgb, alpha);
     const Vec3 lo = g.origin + Vec3(c.x * g.cell_xy, c.y * g.cell_xy, 0.0);
     box.lo = box.lo.cwiseMin(lo);
     box.hi = box.hi.cwiseMax(lo + Vec3(g.cell_xy, g.cell_xy, 0.0));
+    boxed = true;
   };
-  for (const CellCoord& c : t.forward) {
-    if (c.z != t.own.z) continue;
-    add_cell(c, kForwardCellColor, 0.5);
-    const CellCoord m{2 * t.own.x - c.x, 2 * t.own.y - c.y, t.own.z};  // the mirrored, skipped cell
-    if (in_grid(m) && std::none_of(t.backward.begin(), t.backward.end(), same_as(m))) {
-      add_cell(m, kSkippedCellColor, 0.4);
+  // Smaller levels first (finer cells, below), then the grid with the particle's own cell.
+  for (const VisitedCells& cells : v.grids) {
+    if (cells.has_own) continue;
+    const std::int64_t layer = cell_in(cells.geometry, p.position[focus]).z;
+    for (const CellCoord& c : cells.forward) {
+      if (c.z == layer) add_cell(cells.geometry, c, kSmallerLevelColor, 0.35);
     }
   }
-  for (const CellCoord& c : t.backward) {
-    if (c.z == t.own.z) add_cell(c, kBackwardRingColor, 0.5);
+  const VisitedCells* own = nullptr;
+  for (const VisitedCells& cells : v.grids) {
+    if (!cells.has_own) continue;
+    own = &cells;
+    const GridGeometry& g = cells.geometry;
+    const CellCoord& o = cells.own;
+    auto in_grid = [&g](const CellCoord& c) {
+      return c.x >= 0 && c.x < g.nx && c.y >= 0 && c.y < g.ny;
+    };
+    for (const CellCoord& c : cells.forward) {
+      if (c.z != o.z) continue;
+      add_cell(g, c, kForwardCellColor, 0.5);
+      const CellCoord m{2 * o.x - c.x, 2 * o.y - c.y, o.z};  // the mirrored, skipped cell
+      if (in_grid(m) && std::none_of(cells.backward.begin(), cells.backward.end(), same_as(m))) {
+        add_cell(g, m, kSkippedCellColor, 0.4);
+      }
+    }
+    for (const CellCoord& c : cells.backward) {
+      if (c.z == o.z) add_cell(g, c, kBackwardRingColor, 0.5);
+    }
+    add_cell(g, o, kOwnCellColor, 0.7);
+    break;
   }
-  add_cell(t.own, kOwnCellColor, 0.7);
   cells_ = direct_color_actor(quads.poly());
   renderer_->AddActor(cells_);
-  own_ = own_cell_outline(g, t.own, z);
-  top_->AddActor(own_);
-  draw_highlights(sim, t, focus, z);
+  if (own != nullptr) {
+    own_ = own_cell_outline(own->geometry, own->own, z);
+    top_->AddActor(own_);
+  }
+  draw_highlights(sim, v, focus, z);
+  if (!boxed && v.kind == SearchVisit::Kind::list) {  // no cells: frame the listed partners
+    for (Index j : v.candidates) {
+      box.lo = box.lo.cwiseMin(p.position[j] - Vec3::Constant(p.radius[j]));
+      box.hi = box.hi.cwiseMax(p.position[j] + Vec3::Constant(p.radius[j]));
+    }
+    box.lo = box.lo.cwiseMin(p.position[focus] - Vec3::Constant(2.0 * p.radius[focus]));
+    box.hi = box.hi.cwiseMax(p.position[focus] + Vec3::Constant(2.0 * p.radius[focus]));
+    boxed = true;
+  }
 
-  const Particles& p = sim.particles();
-  summary_ = fmt::format(
-      "focus id {} (r = {:.0f} mm)\n  cells visited {}\n  pairs tested {}\n  contacts {}{}",
-      p.id[focus], 1000.0 * p.radius[focus], t.cells_visited(), t.candidates.size(),
-      t.contacts.size(), g.nz > 1 ? fmt::format("\n  3D grid: layer {} of {}", t.own.z, g.nz) : "");
-  focus_box_ = box;
-  trace_ = t;
+  const std::string head =
+      fmt::format("focus id {} (r = {:.0f} mm)", p.id[focus], 1000.0 * p.radius[focus]);
+  switch (v.kind) {
+    case SearchVisit::Kind::cells: {
+      const GridGeometry& g = v.grids.front().geometry;
+      summary_ = fmt::format(
+          "{}\n  cells visited {}\n  pairs tested {}\n  contacts {}{}", head, v.cells_visited,
+          v.pairs_tested, v.contacts.size(),
+          g.nz > 1 ? fmt::format("\n  3D grid: layer {} of {}", v.grids.front().own.z, g.nz) : "");
+      break;
+    }
+    case SearchVisit::Kind::levels:
+      summary_ =
+          fmt::format("{}\n  {}\n  cells visited {}\n  pairs tested {}\n  contacts {}{}", head,
+                      own != nullptr ? own->label : "", v.cells_visited, v.pairs_tested,
+                      v.contacts.size(), v.grids.size() > 1 ? "\n  violet: smaller levels" : "");
+      break;
+    case SearchVisit::Kind::list:
+      summary_ = fmt::format("{}\n  Verlet list\n  listed partners {}\n  contacts {}{}", head,
+                             v.candidates.size(), v.contacts.size(),
+                             own != nullptr ? fmt::format("\n  cells: {}", own->label) : "");
+      break;
+    case SearchVisit::Kind::all:
+      summary_ = fmt::format(
+          "{}\n  brute force: no cells\n  tests all N-1 = {}\n  ({} by itself)\n  contacts {}",
+          head, p.size() - 1, v.pairs_tested, v.contacts.size());
+      break;
+  }
+  if (boxed) focus_box_ = box;
+  visit_ = v;
 }
 
-void GridOverlay::draw_highlights(const Simulation& sim, const SearchTrace& t, Index focus,
+void GridOverlay::draw_highlights(const Simulation& sim, const SearchVisit& v, Index focus,
                                   double z) {
   const Particles& p = sim.particles();
   vtkNew<vtkPolyData> spheres;
@@ -253,8 +345,10 @@ void GridOverlay::draw_highlights(const Simulation& sim, const SearchTrace& t, I
   append_sphere(pts, radius, colors, p.position[focus], p.radius[focus] * kMarkerScale, white);
   vtkNew<vtkPoints> link_pts;
   vtkNew<vtkCellArray> links;
-  for (Index j : t.candidates) {
-    const bool contact = std::find(t.contacts.begin(), t.contacts.end(), j) != t.contacts.end();
+  // Brute force tests everyone: its candidates would cover the bed; only its contacts are drawn.
+  const std::vector<Index>& shown = v.kind == SearchVisit::Kind::all ? v.contacts : v.candidates;
+  for (Index j : shown) {
+    const bool contact = std::find(v.contacts.begin(), v.contacts.end(), j) != v.contacts.end();
     append_sphere(pts, radius, colors, p.position[j],
                   p.radius[j] * (contact ? kMarkerScale : 0.75 * kMarkerScale),
                   contact ? kContactColor : kCandidateColor);

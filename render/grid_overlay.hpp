@@ -1,9 +1,10 @@
 #pragma once
 // The active cell grid drawn over the drum (viewed along its axis): cells coloured by occupancy,
-// and one particle's search: its own cell, the forward half-shell cells it visits, the backward
-// half it skips (its partners there find it), method 2's extra backward ring, the candidates it
-// tests and the contacts it finds. A 3D grid is shown as the layer of cells through the focus
-// particle.
+// and one particle's search (ContactSearch::visit), for every method: its own cell, the forward
+// half-shell cells it visits, the backward half it skips (its partners there find it), method 2's
+// extra backward ring, a multi-level grid's cells in the smaller levels, the candidates it tests
+// (a Verlet list: its listed pairs) and the contacts it finds; brute force has no cells, only a
+// note. A 3D grid is shown as the layer of cells through the focus particle.
 #include <optional>
 #include <string>
 
@@ -26,6 +27,11 @@ inline constexpr double kSkippedCellColor[3] = {0.85, 0.25, 0.25};
 inline constexpr double kBackwardRingColor[3] = {0.2, 0.7, 0.95};
 inline constexpr double kCandidateColor[3] = {1.0, 0.6, 0.1};
 inline constexpr double kContactColor[3] = {1.0, 0.2, 0.9};
+inline constexpr double kSmallerLevelColor[3] = {0.55, 0.45, 1.0};  ///< mlgrid: smaller levels
+
+/// The cell grid `render --grid` draws for `search`: a cell grid's own, a Verlet list's builder if
+/// that is a cell grid; nullptr for the others (brute force, a multi-level grid).
+const CellGridSearch* drawn_cell_grid(const ContactSearch& search);
 
 class GridOverlay {
  public:
@@ -36,8 +42,8 @@ class GridOverlay {
   GridOverlay(const GridOverlay&) = delete;
   GridOverlay& operator=(const GridOverlay&) = delete;
 
-  /// Redraws from the simulation's search of the last step. Throws InputError if the active
-  /// search is not a cell grid (brute force has no cells).
+  /// Redraws from the simulation's search of the last step. Throws InputError if `occupancy` is
+  /// asked for and the active search has no cell grid to draw (drawn_cell_grid).
   void update(const Simulation& sim, bool occupancy, std::optional<Index> focus_index);
   /// "focus id 12 (r = 15 mm): cells visited 41, pairs tested 63, contacts 4" (empty without one).
   const std::string& focus_summary() const { return summary_; }
@@ -46,15 +52,14 @@ class GridOverlay {
   /// Cells visited or skipped by the focus particle (for framing the camera).
   std::optional<Box> focus_box() const { return focus_box_; }
   /// The focus particle's replayed search in the last update.
-  const std::optional<SearchTrace>& trace() const { return trace_; }
+  const std::optional<SearchVisit>& visit() const { return visit_; }
 
  private:
   /// Grid lines of `layer`, and its cells coloured by occupancy if `occupancy`.
-  void draw_grid(const Simulation& sim, const CellGridSearch& grid, std::int64_t layer,
-                 bool occupancy);
-  void draw_focus(const Simulation& sim, const CellGridSearch& grid, Index focus);
+  void draw_grid(const Simulation& sim, const GridGeometry& g, std::int64_t layer, bool occupancy);
+  void draw_focus(const Simulation& sim, const SearchVisit& v, Index focus);
   /// The focus particle, its candidates and contacts as markers, and lines to the contacts.
-  void draw_highlights(const Simulation& sim, const SearchTrace& t, Index focus, double z);
+  void draw_highlights(const Simulation& sim, const SearchVisit& v, Index focus, double z);
 
   vtkRenderer* renderer_;
   vtkRenderer* top_;
@@ -62,7 +67,7 @@ class GridOverlay {
   std::string summary_;
   std::string grid_summary_;
   std::optional<Box> focus_box_;
-  std::optional<SearchTrace> trace_;
+  std::optional<SearchVisit> visit_;
 };
 
 }  // namespace drumlab::render

@@ -7,6 +7,7 @@
 #include "engine/search/search_methods.hpp"
 #include "engine/session/run_session.hpp"
 #include "render/drum_view.hpp"
+#include "render/offscreen_context.hpp"
 
 namespace drumlab::render {
 
@@ -67,15 +68,16 @@ TeachFigure make_teach_figure(const SceneConfig& scene, std::optional<Index> par
     opt.zoom_to_focus = true;
     opt.overlay = false;
     opt.neutral_particles = true;
-    opt.title = " ";  // replaced below once the trace is known
-    DrumView view(opt);
+    opt.title = " ";                                      // replaced below once the trace is known
+    OffscreenContext context(panel_width, panel_height);  // outlives the view
+    DrumView view(opt, context);
     view.render(*sim);
-    const auto trace = view.focus_trace();
+    const SearchVisit visit = view.focus_visit();
     TeachPanel panel;
     panel.method = methods[k];
-    panel.cells_visited = trace.cells_visited();
-    panel.pairs_tested = trace.candidates.size();
-    panel.contacts = trace.contacts.size();
+    panel.cells_visited = visit.cells_visited;
+    panel.pairs_tested = visit.pairs_tested;
+    panel.contacts = visit.contacts.size();
     view.set_title(panel_title(*sim, panel));
     blit(view.render(*sim), fig.image, panel_width * static_cast<int>(k));
     fig.panels.push_back(panel);

@@ -10,7 +10,7 @@
 
 #include "engine/scene/scene_config.hpp"
 #include "engine/simulation.hpp"
-#include "render/offscreen_context.hpp"
+#include "render/image.hpp"
 
 namespace drumlab::render {
 

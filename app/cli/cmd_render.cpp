@@ -13,6 +13,7 @@
 #include "engine/search/search_methods.hpp"
 #include "render/frame_writer.hpp"
 #include "render/movie_writer.hpp"
+#include "render/offscreen_context.hpp"
 
 namespace drumlab::cli {
 
@@ -51,7 +52,8 @@ class RenderObserver final : public FrameObserver {
         out_.view.focus_id =
             with_flag("--focus auto", [&] { return render::auto_focus_id(sim.particles()); });
       }
-      view_ = std::make_unique<render::DrumView>(out_.view);
+      context_ = std::make_unique<render::OffscreenContext>(out_.view.width, out_.view.height);
+      view_ = std::make_unique<render::DrumView>(out_.view, *context_);
     }
     const auto t0 = Clock::now();
     // The view's input errors come from the focus particle or the grid it was asked to draw.
@@ -87,6 +89,7 @@ class RenderObserver final : public FrameObserver {
  private:
   RenderOutput out_;
   render::FrameWriter frames_;
+  std::unique_ptr<render::OffscreenContext> context_;  // outlives view_
   std::unique_ptr<render::DrumView> view_;
   double render_s_ = 0.0;
   double write_s_ = 0.0;
@@ -161,13 +164,14 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--camera", args->camera, "axis (along the drum axis) or iso");
   cmd->callback([opt, args] {
     const RenderOutput out = make_output(*args);
-    if (args->grid || !args->focus.empty()) {  // fail now, not after settling
+    if (args->grid) {  // fail now, not after settling; --focus shows every method's search
       const std::string method =
           opt->method.empty() ? load_dynamic_scene(opt->scene).search_method : opt->method;
       const auto parsed = parse_search_method(method);
-      if (parsed && (parsed->verlet || !parsed->method->draws_cells)) {
-        throw InputError(fmt::format("--grid/--focus: search '{}' has no cells to draw; use {}",
-                                     method, fmt::join(cell_grid_method_names(), ", ")));
+      if (parsed && !parsed->method->draws_cells) {
+        throw InputError(fmt::format(
+            "--grid: search '{}' has no cells to draw; use {} or a Verlet list built by one",
+            method, fmt::join(cell_grid_method_names(), ", ")));
       }
     }
     auto observer = make_render_observer(out);

@@ -9,6 +9,8 @@ class BruteForceSearch final : public ContactSearch {
   std::string_view name() const override { return "brute"; }
   std::string_view description() const override;
   void find_pairs(const SearchInput& in, std::vector<IndexPair>& out) override;
+  /// Candidates: every particle after i in storage order (the pairs i tests); no cells.
+  SearchVisit visit(Index i, const SearchInput& in) const override;
 };
 
 }  // namespace drumlab

@@ -346,4 +346,29 @@ SearchTrace CellGridSearch::trace(Index i) const {
   return t;
 }
 
+SearchVisit CellGridSearch::visit(Index i, const SearchInput& in) const {
+  if (in.position.size() != order_.size()) {
+    throw InputError(fmt::format("visit: {} has searched {} particles, not {}", config_.name,
+                                 order_.size(), in.position.size()));
+  }
+  SearchTrace t = trace(i);
+  SearchVisit v;
+  v.kind = SearchVisit::Kind::cells;
+  v.particle = i;
+  VisitedCells cells;
+  cells.label = config_.name;
+  cells.geometry = geometry_;
+  cells.own = t.own;
+  cells.has_own = true;
+  cells.forward = std::move(t.forward);
+  cells.backward = std::move(t.backward);
+  cells.reach = t.reach;
+  v.cells_visited = cells.count();
+  v.grids.push_back(std::move(cells));
+  v.candidates = std::move(t.candidates);
+  v.pairs_tested = v.candidates.size();
+  v.contacts = std::move(t.contacts);
+  return v;
+}
+
 }  // namespace drumlab

@@ -57,16 +57,6 @@ struct SearchTrace {
   std::size_t cells_visited() const { return 1 + forward.size() + backward.size(); }
 };
 
-/// The grid laid in the last call.
-struct GridGeometry {
-  Vec3 origin = Vec3::Zero();
-  double cell_xy = 0.0;  ///< cell side in x and y (m)
-  double cell_z = 0.0;   ///< cell side along z (the whole extent for 2D grids)
-  std::int64_t nx = 0, ny = 0, nz = 0;
-  bool hashed = false;  ///< occupied cells kept in a hash (sparse input) instead of a dense array
-  bool periodic_z = false;
-};
-
 class CellGridSearch final : public ContactSearch {
  public:
   explicit CellGridSearch(const CellGridConfig& config) : config_(config) {}
@@ -85,6 +75,9 @@ class CellGridSearch final : public ContactSearch {
   /// Replays particle i's search of the last call (original index). Throws InputError if i is out
   /// of range.
   SearchTrace trace(Index i) const;
+  /// The trace as a SearchVisit (kind cells). The positions of `in` are not read: the last
+  /// call's are.
+  SearchVisit visit(Index i, const SearchInput& in) const override;
 
  private:
   void lay_grid(const SearchInput& in);

@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/search/cell_index.hpp"
 #include "engine/types.hpp"
 
 namespace drumlab {
@@ -63,6 +64,56 @@ struct SearchTuning {
   double verlet_skin = 0.5;
 };
 
+/// A cell grid laid by a search (for pictures and exports).
+struct GridGeometry {
+  Vec3 origin = Vec3::Zero();
+  double cell_xy = 0.0;  ///< cell side in x and y (m)
+  double cell_z = 0.0;   ///< cell side along z (the whole extent for 2D grids)
+  std::int64_t nx = 0, ny = 0, nz = 0;
+  bool hashed = false;  ///< occupied cells kept in a hash (sparse input) instead of a dense array
+  bool periodic_z = false;
+};
+
+/// The cells of one grid that one particle's search opened.
+struct VisitedCells {
+  std::string label;  ///< "m2", "level 1 of 2 (r <= 5 mm)", "builder m5, last rebuild"
+  GridGeometry geometry;
+  CellCoord own{0, 0, 0};
+  bool has_own = false;             ///< `own` is the particle's own cell in this grid (visited)
+  std::vector<CellCoord> forward;   ///< cells visited besides the own cell (half shell, or the
+                                    ///< cells of a smaller level within reach)
+  std::vector<CellCoord> backward;  ///< method 2: far backward cells scanned for smallest partners
+  int reach = 0;                    ///< forward reach in cells (0 where there is no stencil)
+  std::size_t count() const { return (has_own ? 1 : 0) + forward.size() + backward.size(); }
+};
+
+/// One particle's search, replayed on demand for pictures, teaching and the workbench: what the
+/// method visited for it, the candidates it tested and the pairs it found. A grid or brute force
+/// tests each pair from one of its two particles only (half shells; j > i), so a particle's
+/// contacts found by its partners' searches are not among its own candidates; a Verlet list's
+/// candidates are all of the particle's listed partners.
+struct SearchVisit {
+  enum class Kind : std::uint8_t {
+    cells,   ///< one cell grid (m1..m5): `grids` holds it
+    levels,  ///< a multi-level grid: `grids` holds the levels it visited, its own level first
+    list,    ///< a Verlet list: candidates are its listed partners; `grids` the builder's cells
+             ///< of the last rebuild where they are still valid, else empty
+    all,     ///< brute force: no cells, every later particle in storage order
+  };
+  Kind kind = Kind::all;
+  Index particle = 0;
+  std::vector<VisitedCells> grids;
+  std::vector<Index> candidates;  ///< grids, brute force: the partners this particle's search
+                                  ///< tested; a Verlet list: every listed partner of it
+  std::vector<Index> contacts;    ///< candidates within r_i + r_j + margin
+  /// Distances this particle's own search computes, as pairs_tested_per_particle() counts them
+  /// (candidates.size(), except for a Verlet list: the pairs listed under i, with j > i).
+  std::size_t pairs_tested = 0;
+  /// Cells opened, as cells_visited_per_particle() counts them (0 for a list or brute force).
+  std::size_t cells_visited = 0;
+  std::string note;  ///< one line for people ("tests all N-1 = 501 others, 250 of them itself")
+};
+
 class ContactSearch {
  public:
   virtual ~ContactSearch() = default;
@@ -76,6 +127,12 @@ class ContactSearch {
   /// order. Throws InputError for input the method cannot handle (non-finite coordinates, a grid
   /// too large to index); never returns a partial answer.
   virtual void find_pairs(const SearchInput& in, std::vector<IndexPair>& out) = 0;
+
+  /// Replays the search of particle i (storage index) on the positions `in` (the current ones,
+  /// which for a grid must be those of its last call: it reuses the grid laid then). Read-only and
+  /// for one particle (O(N) at most): never called in the step loop, it costs the step nothing.
+  /// Throws InputError if i is out of range or the method has not run on these particles yet.
+  virtual SearchVisit visit(Index i, const SearchInput& in) const = 0;
 
   /// Method-specific figures for people (e.g. Verlet rebuilds); empty if there are none.
   virtual std::string report() const { return {}; }

@@ -35,6 +35,8 @@ void MultiLevelGridSearch::find_pairs(const SearchInput& in, std::vector<IndexPa
   out.clear();
   timings_ = {};
   if (n == 0) return;
+  margin_ = in.margin;
+  period_ = in.period_z.value_or(0.0);
   assign_levels(in);
   const Box bounds = search_bounds(in);
   std::uint64_t cells_total = 0;
@@ -315,16 +317,9 @@ void MultiLevelGridSearch::visit_level(const Level& level, const Cells& cells,
   counters_.pairs_tested += pairs_tested;
 }
 
-template <class Cells>
-void MultiLevelGridSearch::visit_cross(const Level& level, std::size_t slot, const Level& small,
-                                       const Cells& cells, const SearchInput& in,
-                                       std::vector<IndexPair>& out) {
-  const Vec3& xi = level.position[slot];
-  const double ri = level.radius[slot];
-  const Index pi = level.order[slot];
-  const SortedParticles sp = small.sorted();
-  const double period = in.period_z.value_or(0.0);
-  const double margin = in.margin + kTouchTolerance;
+template <class Row>
+void MultiLevelGridSearch::cross_rows(const Level& small, const Vec3& xi, double ri, double margin,
+                                      Row&& row) const {
   // Every partner in the smaller level lies within `half` of x_i (widened against round-off).
   const double half = (ri + small.rmax + margin) * (1.0 + 1e-9);
   // x_i in cell units of the smaller level, and the cell range of the box [x - half, x + half].
@@ -360,7 +355,6 @@ void MultiLevelGridSearch::visit_cross(const Level& level, std::size_t slot, con
     return std::max(0.0, g - slack_);
   };
   const double half2 = half * half;
-  std::uint32_t my_cells = 0, my_tests = 0;
   for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
     const double gz = whole_period ? 0.0 : gap(u[2], z) * small.bz;
     if (gz * gz > half2) continue;
@@ -376,24 +370,137 @@ void MultiLevelGridSearch::visit_cross(const Level& level, std::size_t slot, con
       const std::int64_t x1 =
           std::min(hi[0], static_cast<std::int64_t>(std::floor(u[0] + w + slack_)));
       if (x0 > x1) continue;
-      if constexpr (std::is_same_v<Cells, DenseCellIndex>) {
-        my_cells += static_cast<std::uint32_t>(x1 - x0 + 1);
-        const std::uint32_t begin = cells.cell(CellCoord{x0, cy, cz}).begin;
-        const std::uint32_t end = cells.cell(CellCoord{x1, cy, cz}).end;
-        my_tests += scan_slots(sp, xi, ri, pi, begin, end, margin, period, out);
-      } else {
-        for (std::int64_t cx = x0; cx <= x1; ++cx) {
-          ++my_cells;
-          CellRange r;
-          if (cells.find(CellCoord{cx, cy, cz}, r)) {
-            my_tests += scan_slots(sp, xi, ri, pi, r.begin, r.end, margin, period, out);
-          }
-        }
-      }
+      row(x0, x1, cy, cz);
     }
   }
+}
+
+template <class Cells>
+void MultiLevelGridSearch::visit_cross(const Level& level, std::size_t slot, const Level& small,
+                                       const Cells& cells, const SearchInput& in,
+                                       std::vector<IndexPair>& out) {
+  const Vec3& xi = level.position[slot];
+  const double ri = level.radius[slot];
+  const Index pi = level.order[slot];
+  const SortedParticles sp = small.sorted();
+  const double period = in.period_z.value_or(0.0);
+  const double margin = in.margin + kTouchTolerance;
+  std::uint32_t my_cells = 0, my_tests = 0;
+  cross_rows(small, xi, ri, margin,
+             [&](std::int64_t x0, std::int64_t x1, std::int64_t cy, std::int64_t cz) {
+               if constexpr (std::is_same_v<Cells, DenseCellIndex>) {
+                 my_cells += static_cast<std::uint32_t>(x1 - x0 + 1);
+                 const std::uint32_t begin = cells.cell(CellCoord{x0, cy, cz}).begin;
+                 const std::uint32_t end = cells.cell(CellCoord{x1, cy, cz}).end;
+                 my_tests += scan_slots(sp, xi, ri, pi, begin, end, margin, period, out);
+               } else {
+                 for (std::int64_t cx = x0; cx <= x1; ++cx) {
+                   ++my_cells;
+                   CellRange r;
+                   if (cells.find(CellCoord{cx, cy, cz}, r)) {
+                     my_tests += scan_slots(sp, xi, ri, pi, r.begin, r.end, margin, period, out);
+                   }
+                 }
+               }
+             });
   cells_per_particle_[pi] += my_cells;
   tests_per_particle_[pi] += my_tests;
+}
+
+bool MultiLevelGridSearch::find_cell(const Level& level, const CellCoord& c, CellRange& r) {
+  return level.hashed ? level.hashed_index.find(c, r) : level.dense.find(c, r);
+}
+
+GridGeometry MultiLevelGridSearch::geometry_of(const Level& level) {
+  GridGeometry g;
+  g.origin = level.origin;
+  if (level.periodic) g.origin.z() = 0.0;  // periodic layers start at z = 0
+  g.cell_xy = level.b;
+  g.cell_z = level.bz;
+  g.nx = level.n[0];
+  g.ny = level.n[1];
+  g.nz = level.n[2];
+  g.hashed = level.hashed;
+  g.periodic_z = level.periodic;
+  return g;
+}
+
+SearchVisit MultiLevelGridSearch::visit(Index i, const SearchInput& in) const {
+  std::size_t n = 0;
+  for (const Level& level : levels_) n += level.order.size();
+  if (in.position.size() != n) {
+    throw InputError(
+        fmt::format("visit: mlgrid has searched {} particles, not {}", n, in.position.size()));
+  }
+  if (i >= n) throw InputError(fmt::format("visit: particle {} of {}", i, n));
+  std::size_t l = 0, s = 0;
+  for (l = 0; l < levels_.size(); ++l) {
+    const auto& order = levels_[l].order;
+    const auto it = std::find(order.begin(), order.end(), i);
+    if (it != order.end()) {
+      s = static_cast<std::size_t>(it - order.begin());
+      break;
+    }
+  }
+  const Level& level = levels_[l];
+  const Vec3 xi = level.position[s];
+  const double ri = level.radius[s];
+  const double margin = margin_ + kTouchTolerance;
+  SearchVisit v;
+  v.kind = SearchVisit::Kind::levels;
+  v.particle = i;
+  auto scan = [&](const Level& lv, std::uint32_t begin, std::uint32_t end) {
+    for (std::uint32_t u = begin; u < end; ++u) {
+      v.candidates.push_back(lv.order[u]);
+      const double cut = ri + lv.radius[u] + margin;
+      if (distance_squared(xi, lv.position[u], period_) <= cut * cut) {
+        v.contacts.push_back(lv.order[u]);
+      }
+    }
+  };
+  auto label = [this](std::size_t k) {
+    return fmt::format("level {} of {} (r <= {:.3g} mm)", k + 1, levels_.size(),
+                       1000.0 * levels_[k].rmax);
+  };
+  VisitedCells own;
+  own.label = label(l);
+  own.geometry = geometry_of(level);
+  own.own = level.cell[s];
+  own.has_own = true;
+  own.reach = level.k;
+  CellRange r;
+  find_cell(level, own.own, r);
+  scan(level, static_cast<std::uint32_t>(s) + 1, r.end);
+  const auto& offsets = level.stencil.offsets;
+  for (std::uint32_t o = 0; o < level.stencil.prefix_end[level.k]; ++o) {
+    CellCoord c{own.own.x + offsets[o].dx, own.own.y + offsets[o].dy, own.own.z + offsets[o].dz};
+    if (!wrap(level, c)) continue;
+    own.forward.push_back(c);
+    if (find_cell(level, c, r)) scan(level, r.begin, r.end);
+  }
+  v.cells_visited = own.count();
+  v.grids.push_back(std::move(own));
+  for (std::size_t h = 0; h < l; ++h) {
+    const Level& small = levels_[h];
+    VisitedCells cross;
+    cross.label = label(h);
+    cross.geometry = geometry_of(small);
+    cross_rows(small, xi, ri, margin,
+               [&](std::int64_t x0, std::int64_t x1, std::int64_t cy, std::int64_t cz) {
+                 for (std::int64_t cx = x0; cx <= x1; ++cx) {
+                   const CellCoord c{cx, cy, cz};
+                   cross.forward.push_back(c);
+                   CellRange cr;
+                   if (find_cell(small, c, cr)) scan(small, cr.begin, cr.end);
+                 }
+               });
+    v.cells_visited += cross.count();
+    v.grids.push_back(std::move(cross));
+  }
+  v.pairs_tested = v.candidates.size();
+  v.note = fmt::format("mlgrid: level {} of {}, and {} smaller level{} from the larger side", l + 1,
+                       levels_.size(), l, l == 1 ? "" : "s");
+  return v;
 }
 
 std::string MultiLevelGridSearch::report() const {

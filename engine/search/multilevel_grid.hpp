@@ -26,6 +26,9 @@ class MultiLevelGridSearch final : public ContactSearch {
   std::string_view description() const override;
   void find_pairs(const SearchInput& in, std::vector<IndexPair>& out) override;
   std::string report() const override;
+  /// Own level: own cell and half shell; each smaller level: the cells within reach of i. The
+  /// positions of `in` are not read: the last call's are.
+  SearchVisit visit(Index i, const SearchInput& in) const override;
 
   /// Levels laid in the last call.
   std::size_t levels() const { return levels_.size(); }
@@ -65,6 +68,12 @@ class MultiLevelGridSearch final : public ContactSearch {
   template <class Cells>
   void visit_level(const Level& level, const Cells& cells, const SearchInput& in,
                    std::vector<IndexPair>& out);
+  /// Calls row(x0, x1, y, z) for every row of cells [x0, x1] of level `small` that may hold a
+  /// partner of the particle at xi with radius ri (margin: the search's, plus the tolerance).
+  template <class Row>
+  void cross_rows(const Level& small, const Vec3& xi, double ri, double margin, Row&& row) const;
+  static bool find_cell(const Level& level, const CellCoord& c, CellRange& r);
+  static GridGeometry geometry_of(const Level& level);
   template <class Cells>
   void visit_cross(const Level& level, std::size_t slot, const Level& small, const Cells& cells,
                    const SearchInput& in, std::vector<IndexPair>& out);
@@ -74,6 +83,8 @@ class MultiLevelGridSearch final : public ContactSearch {
   std::vector<double> distinct_;  ///< assign_levels' buffers
   std::vector<int> raw_;
   double slack_ = 0.0;
+  double margin_ = 0.0;  ///< margin and z period of the last call (for visit())
+  double period_ = 0.0;
 };
 
 }  // namespace drumlab

@@ -38,7 +38,8 @@ struct SearchMethodInfo {
   std::string_view description;  ///< one line (ContactSearch::description of the method)
   SearchGrid grid = SearchGrid::none;
   CellRule cell = CellRule::none;
-  bool draws_cells = false;    ///< a cell grid that `render --grid/--focus` can draw
+  bool draws_cells = false;    ///< one cell grid that `render --grid` draws (also as a Verlet
+                               ///< builder); `--focus` draws every method's search
   bool builds_verlet = false;  ///< can build a Verlet list ("verlet:<name>"); auto ranks these
   bool listed_verlet = false;  ///< search_method_names() lists its Verlet list as well
   std::unique_ptr<ContactSearch> (*make)() = nullptr;

@@ -110,6 +110,7 @@ void VerletListSearch::rebuild(const SearchInput& in) {
   margin_ = in.margin;
   period_ = in.period_z.value_or(0.0);
   moved_ = 0.0;
+  builder_current_ = true;
   ++rebuilds_;
 }
 
@@ -130,6 +131,7 @@ void VerletListSearch::renumber(std::span<const Index> order, std::span<const In
   listed_per_particle_.assign(n, 0);
   for (const IndexPair& p : list_) ++listed_per_particle_[p.i];
   listed_only_ = false;  // the per-particle counters follow at the next call
+  builder_current_ = false;
 }
 
 bool VerletListSearch::refresh(const SearchInput& in, double moved) {
@@ -183,6 +185,46 @@ std::string VerletListSearch::report() const {
       rebuilds_, calls_,
       rebuilds_ > 0 ? static_cast<double>(calls_) / static_cast<double>(rebuilds_) : 0.0, checks_,
       static_cast<double>(list_.size()) / n);
+}
+
+SearchVisit VerletListSearch::visit(Index i, const SearchInput& in) const {
+  const std::size_t n = reference_.size();
+  if (in.position.size() != n || in.radius.size() != n) {
+    throw InputError(fmt::format("visit: {} holds a list of {} particles, not {}", name_, n,
+                                 in.position.size()));
+  }
+  if (i >= n) throw InputError(fmt::format("visit: particle {} of {}", i, n));
+  SearchVisit v;
+  v.kind = SearchVisit::Kind::list;
+  v.particle = i;
+  const double margin = in.margin + kTouchTolerance;
+  const double period = in.period_z.value_or(0.0);
+  for (const IndexPair& p : list_) {  // O(list): on demand only
+    if (p.i != i && p.j != i) continue;
+    const Index j = p.i == i ? p.j : p.i;
+    if (p.i == i) ++v.pairs_tested;  // the pairs under i: its row of the list
+    v.candidates.push_back(j);
+    const double cut = in.radius[i] + in.radius[j] + margin;
+    if (distance_squared(in.position[i], in.position[j], period) <= cut * cut) {
+      v.contacts.push_back(j);
+    }
+  }
+  if (builder_current_) {
+    SearchInput wide = in;
+    wide.margin = margin_ + skin_;
+    SearchVisit built = builder_->visit(i, wide);
+    for (VisitedCells& g : built.grids) {
+      g.label = fmt::format("builder {}, last rebuild{}", builder_->name(),
+                            g.label == builder_->name() ? "" : ": " + g.label);
+      v.grids.push_back(std::move(g));
+    }
+  }
+  v.note = fmt::format(
+      "Verlet list: {} listed partners ({} under this particle), {} within the "
+      "margin; skin {:.2g} mm{}",
+      v.candidates.size(), v.pairs_tested, v.contacts.size(), 1000.0 * skin_,
+      builder_current_ ? "" : "; re-ordered since the last rebuild");
+  return v;
 }
 
 }  // namespace drumlab

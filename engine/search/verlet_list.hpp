@@ -48,6 +48,9 @@ class VerletListSearch final : public ContactSearch {
   /// order[k]; particle i moved to new_index[i]): the list stays valid without a rebuild.
   void renumber(std::span<const Index> order, std::span<const Index> new_index);
   double cell_size() const override { return builder_->cell_size(); }
+  /// Candidates: i's listed partners, tested on `in`; grids: the
+  /// builder's cells for i at the last rebuild, unless the particles were re-ordered since.
+  SearchVisit visit(Index i, const SearchInput& in) const override;
 
   std::string report() const override;
   const ContactSearch& builder() const { return *builder_; }
@@ -83,7 +86,10 @@ class VerletListSearch final : public ContactSearch {
   /// Bound on the largest displacement since the last build (m): the measured one after a check,
   /// plus the callers' bounds since.
   double moved_ = kUnknownMotion;
-  bool listed_only_ = false;  ///< the per-particle counters hold the listed pairs alone
+  bool listed_only_ = false;
+  bool builder_current_ = false;  ///< no renumber() since the last rebuild: the builder's cells
+                                  ///< still refer to the current storage indices  ///< the
+                                  ///< per-particle counters hold the listed pairs alone
   std::uint64_t rebuilds_ = 0, calls_ = 0, checks_ = 0;
 };
 

@@ -21,7 +21,8 @@ TEST(DemoFrame, IsNotBlankAndShowsTheThreeSizes) {
   opt.width = 640;
   opt.height = 360;
   opt.color_by = render::ColorBy::size;
-  render::DrumView view(opt);
+  render::OffscreenContext context(opt.width, opt.height);
+  render::DrumView view(opt, context);
   const render::Image img = view.render(sim);
   if (std::getenv("DRUMLAB_TEST_SAVE") != nullptr) render::write_png(img, "/tmp/demo_frame.png");
 
@@ -40,8 +41,8 @@ TEST(DemoFrame, IsNotBlankAndShowsTheThreeSizes) {
   }
   // The upper half of the drum is empty after the fill: mostly the dark back cap there.
   const auto top = view.project(Vec3(0.0, 0.35, 0.0));
-  const double cap[3] = {0.2, 0.21, 0.25};
-  EXPECT_LE(test::color_distance(img, static_cast<int>(top[0]) + 7, static_cast<int>(top[1]), cap),
+  EXPECT_LE(test::color_distance(img, static_cast<int>(top[0]) + 7, static_cast<int>(top[1]),
+                                 render::kBackCapColor),
             12);
 }
 

@@ -24,8 +24,9 @@ TEST_F(DrumViewTest, OneParticleHasItsLegendColourAtItsProjectedCentre) {
   render::ViewOptions opt;
   opt.width = 320;
   opt.height = 240;
-  opt.color_by = render::ColorBy::speed;  // at rest: speed 0, the low end of the legend (blue)
-  render::DrumView view(opt);
+  opt.color_by = render::ColorBy::speed;  // at rest: speed 0, the low end of the legend
+  render::OffscreenContext context(opt.width, opt.height);
+  render::DrumView view(opt, context);
   const render::Image img = view.render(sim);
   if (std::getenv("DRUMLAB_TEST_SAVE") != nullptr) render::write_png(img, "/tmp/one_particle.png");
   ASSERT_EQ(img.width, 320);
@@ -41,7 +42,8 @@ TEST_F(DrumViewTest, OneParticleHasItsLegendColourAtItsProjectedCentre) {
   ASSERT_LT(cx, img.width);
   const auto expected = view.legend_color(0.0);
   const double rgb[3] = {expected[0], expected[1], expected[2]};
-  EXPECT_EQ(rgb[2] > 0.9 && rgb[0] < 0.1, true) << "the low end of the legend is blue";
+  // The low end of viridis: dark purple (0.267, 0.005, 0.329).
+  EXPECT_EQ(rgb[2] > 0.3 && rgb[1] < 0.05 && rgb[0] < 0.3, true) << "the low end is viridis'";
   // Head-on light: the sphere's centre shows its full diffuse colour (plus a little ambient).
   EXPECT_LE(test::color_distance(img, cx, cy, rgb), 40)
       << "pixel " << int(img.pixel(cx, cy)[0]) << "," << int(img.pixel(cx, cy)[1]) << ","
@@ -64,7 +66,8 @@ TEST_F(DrumViewTest, ColourFollowsTheChosenQuantity) {
   opt.width = 320;
   opt.height = 240;
   opt.color_by = render::ColorBy::id;  // id 0 blue, id 1 red
-  render::DrumView view(opt);
+  render::OffscreenContext context(opt.width, opt.height);
+  render::DrumView view(opt, context);
   const render::Image img = view.render(sim);
   for (Index i = 0; i < 2; ++i) {
     const auto c = view.project(sim.particles().position[i]);

@@ -27,7 +27,8 @@ TEST(FocusGeometry, MarkerSitsInsideTheOwnCellOutline) {
   opt.zoom_to_focus = true;
   opt.overlay = false;
   opt.neutral_particles = true;
-  render::DrumView view(opt);
+  render::OffscreenContext context(opt.width, opt.height);
+  render::DrumView view(opt, context);
   const render::Image img = view.render(sim);
   if (std::getenv("DRUMLAB_TEST_SAVE") != nullptr) render::write_png(img, "/tmp/focus.png");
   const Vec3 x = sim.particles().position[1];
