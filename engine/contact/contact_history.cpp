@@ -201,47 +201,57 @@ void ContactList::build_rows(std::span<const IndexPair> pairs, std::size_t n) {
   }
 }
 
-void ContactList::transfer_history() {
-  history_.resize(col_.size());
-  const std::size_t old_rows = old_row_start_.empty() ? 0 : old_row_start_.size() - 1;
-  const auto rows = static_cast<std::int64_t>(row_start_.empty() ? 0 : row_start_.size() - 1);
-  // Rows are independent: each merges its own old and new partners.
+namespace {
+
+/// The linear merge of each new row with its old row (both sorted by partner): calls
+/// carry(k, ko) for a new entry k whose pair was listed before at ko, fresh(k) for a new pair.
+/// Rows are independent, so they are merged in parallel.
+template <class Carry, class Fresh>
+void merge_rows(std::span<const std::size_t> row_start, std::span<const Index> col,
+                std::span<const std::size_t> old_row_start, std::span<const Index> old_col,
+                Carry carry, Fresh fresh) {
+  const std::size_t old_rows = old_row_start.empty() ? 0 : old_row_start.size() - 1;
+  const auto rows = static_cast<std::int64_t>(row_start.empty() ? 0 : row_start.size() - 1);
 #pragma omp parallel for schedule(static)
   for (std::int64_t ii = 0; ii < rows; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
-    std::size_t ko = i < old_rows ? old_row_start_[i] : 0;
-    const std::size_t ko_end = i < old_rows ? old_row_start_[i + 1] : 0;
-    for (std::size_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {
-      const Index j = col_[k];
-      while (ko < ko_end && old_col_[ko] < j) ++ko;
-      if (ko < ko_end && old_col_[ko] == j) {
-        history_[k] = old_history_[ko];
+    std::size_t ko = i < old_rows ? old_row_start[i] : 0;
+    const std::size_t ko_end = i < old_rows ? old_row_start[i + 1] : 0;
+    for (std::size_t k = row_start[i]; k < row_start[i + 1]; ++k) {
+      const Index j = col[k];
+      while (ko < ko_end && old_col[ko] < j) ++ko;
+      if (ko < ko_end && old_col[ko] == j) {
+        carry(k, ko);
       } else {
-        history_[k].setZero();
+        fresh(k);
       }
     }
   }
 }
 
-// The same merge as transfer_history(), for the law's scalars (only with state_size() > 0, so a
-// dry scene's update is the one from before). old_state_ still matches old_col_ here.
+}  // namespace
+
+void ContactList::transfer_history() {
+  history_.resize(col_.size());
+  merge_rows(
+      row_start_, col_, old_row_start_, old_col_,
+      [this](std::size_t k, std::size_t ko) { history_[k] = old_history_[ko]; },
+      [this](std::size_t k) { history_[k].setZero(); });
+}
+
+// The same merge for the law's scalars (only with state_size() > 0, so a dry scene's update is
+// the one from before). old_state_ still matches old_col_ here.
 void ContactList::transfer_state() {
   const std::size_t s = state_size_;
   state_.resize(col_.size() * s);
-  const std::size_t old_rows = old_row_start_.empty() ? 0 : old_row_start_.size() - 1;
-  const auto rows = static_cast<std::int64_t>(row_start_.empty() ? 0 : row_start_.size() - 1);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t ii = 0; ii < rows; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    std::size_t ko = i < old_rows ? old_row_start_[i] : 0;
-    const std::size_t ko_end = i < old_rows ? old_row_start_[i + 1] : 0;
-    for (std::size_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {
-      const Index j = col_[k];
-      while (ko < ko_end && old_col_[ko] < j) ++ko;
-      const bool kept = ko < ko_end && old_col_[ko] == j;
-      for (std::size_t c = 0; c < s; ++c) state_[k * s + c] = kept ? old_state_[ko * s + c] : 0.0;
-    }
-  }
+  merge_rows(
+      row_start_, col_, old_row_start_, old_col_,
+      [this, s](std::size_t k, std::size_t ko) {
+        for (std::size_t c = 0; c < s; ++c) state_[k * s + c] = old_state_[ko * s + c];
+      },
+      [this, s](std::size_t k) {
+        for (std::size_t c = 0; c < s; ++c) state_[k * s + c] = 0.0;
+      });
 }
 
 std::size_t ContactList::locate(Index i, Index j) const {
