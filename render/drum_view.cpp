@@ -34,6 +34,7 @@
 #include <vtkTransformPolyDataFilter.h>
 #include <vtkVariant.h>
 
+#include "engine/analysis/agglomerates.hpp"
 #include "render/grid_overlay.hpp"
 
 namespace drumlab::render {
@@ -66,7 +67,11 @@ struct ColorArray {
   std::string title;
   /// Distinct values with their names, drawn as swatches (size classes); empty: a continuous map.
   std::vector<std::pair<double, std::string>> categories;
+  bool first_grey = false;  ///< category 0 is grey, the palette starts at category 1
 };
+
+/// Grey of a particle alone in its agglomerate.
+constexpr double kGrey[3] = {0.55, 0.57, 0.6};
 
 /// Size classes: the distinct radii (mm), named after the scene's classes where one has that
 /// radius; none if there are more radii than colours (a continuous map then).
@@ -107,23 +112,24 @@ void use_viridis(vtkLookupTable* lut) {
 }
 
 /// One colour per category, looked up by value (the legend draws them as named swatches).
-void use_categories(vtkLookupTable* lut, const std::vector<std::pair<double, std::string>>& cats) {
+void use_categories(vtkLookupTable* lut, const std::vector<std::pair<double, std::string>>& cats,
+                    bool first_grey) {
   lut->ResetAnnotations();
   lut->SetNumberOfTableValues(static_cast<vtkIdType>(cats.size()));
   for (std::size_t k = 0; k < cats.size(); ++k) {
-    const double* c = kCategories[k];
+    const double* c = first_grey ? (k == 0 ? kGrey : kCategories[k - 1]) : kCategories[k];
     lut->SetTableValue(static_cast<vtkIdType>(k), c[0], c[1], c[2], 1.0);
     lut->SetAnnotation(vtkVariant(cats[k].first), cats[k].second);
   }
   lut->IndexedLookupOn();
 }
 
-ColorArray color_values(const Simulation& sim, ColorBy by) {
+ColorArray color_values(const Simulation& sim, ColorBy by, double granule_age) {
   const Particles& p = sim.particles();
   const double drum_r = 0.5 * sim.scene().drum.diameter;
   const double v_ref = std::max(0.1, std::abs(sim.scene().drum.omega) * drum_r);
   ColorArray c;
-  c.values = particle_color_values(sim, by);
+  c.values = particle_color_values(sim, by, granule_age);
   switch (by) {
     case ColorBy::size:
       c.lo = p.empty() ? 0.0 : 1000.0 * p.min_radius();
@@ -147,6 +153,15 @@ ColorArray color_values(const Simulation& sim, ColorBy by) {
     case ColorBy::coordination:
       c.hi = 12.0;
       c.title = "contacts";
+      break;
+    case ColorBy::agglomerate:
+      c.hi = static_cast<double>(kMaxCategories);
+      c.title = "agglomerate";
+      c.first_grey = true;
+      c.categories.emplace_back(0.0, "alone");
+      for (std::size_t k = 1; k <= kMaxCategories; ++k) {
+        c.categories.emplace_back(static_cast<double>(k), fmt::format("id mod 7 = {}", k - 1));
+      }
       break;
   }
   if (!(c.hi > c.lo)) c.hi = c.lo + 1.0;
@@ -227,8 +242,20 @@ std::string grid_text(const GridOverlay& grid, bool focus) {
 
 }  // namespace
 
-std::vector<double> particle_color_values(const Simulation& sim, ColorBy by) {
+std::vector<double> particle_color_values(const Simulation& sim, ColorBy by, double granule_age) {
   const Particles& p = sim.particles();
+  if (by == ColorBy::agglomerate) {
+    const std::vector<std::uint32_t> label = agglomerate_labels(sim, granule_age);
+    std::vector<std::uint32_t> sorted(label);
+    std::sort(sorted.begin(), sorted.end());
+    std::vector<double> values(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const auto range = std::equal_range(sorted.begin(), sorted.end(), label[i]);
+      const bool alone = range.second - range.first == 1;
+      values[i] = alone ? 0.0 : 1.0 + static_cast<double>(label[i] % kMaxCategories);
+    }
+    return values;
+  }
   if (by == ColorBy::coordination) {  // the engine's count, as the VTU's coordination array
     std::vector<std::uint32_t> count;
     sim.coordination_numbers(count);
@@ -250,6 +277,7 @@ std::vector<double> particle_color_values(const Simulation& sim, ColorBy by) {
         values[i] = static_cast<double>(p.id[i]);
         break;
       case ColorBy::coordination:
+      case ColorBy::agglomerate:
         break;
     }
   }
@@ -262,8 +290,9 @@ ColorBy parse_color_by(std::string_view s) {
   if (s == "omega") return ColorBy::omega;
   if (s == "id") return ColorBy::id;
   if (s == "coordination") return ColorBy::coordination;
-  throw InputError(
-      fmt::format("unknown colour mode '{}' (size, speed, omega, id, coordination)", s));
+  if (s == "agglomerate") return ColorBy::agglomerate;
+  throw InputError(fmt::format(
+      "unknown colour mode '{}' (size, speed, omega, id, coordination, agglomerate)", s));
 }
 
 CameraMode parse_camera(std::string_view s) {
@@ -436,7 +465,7 @@ void DrumView::Impl::build_drum(const Simulation& sim) {
 
 void DrumView::Impl::update_particles(const Simulation& sim) {
   const Particles& p = sim.particles();
-  const ColorArray colors = color_values(sim, options.color_by);
+  const ColorArray colors = color_values(sim, options.color_by, options.granule_age);
   const auto n = static_cast<vtkIdType>(p.size());
   vtkPoints* pts = particles->GetPoints();
   pts->SetNumberOfPoints(n);
@@ -469,7 +498,7 @@ void DrumView::Impl::update_particles(const Simulation& sim) {
   if (colors.categories.empty()) {
     use_viridis(lut);
   } else {
-    use_categories(lut, colors.categories);
+    use_categories(lut, colors.categories, colors.first_grey);
   }
   lut->SetTableRange(colors.lo, colors.hi);
   sphere_mapper->SetScalarRange(colors.lo, colors.hi);
