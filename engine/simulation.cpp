@@ -80,6 +80,9 @@ struct Simulation::Impl {
   /// per-particle displacement checks.
   double moved = std::numeric_limits<double>::infinity();
   bool forces_cleared = false;  ///< by kick_drift(), for the force evaluation that follows
+  /// Each particle's liquid not put in its film at the start (LiquidConfig::film_share < 1), for
+  /// the bridges of the first evaluation (seed_bridges); empty afterwards.
+  std::vector<double> liquid_reserve;
 };
 
 Simulation::Simulation(const SceneConfig& scene, Particles particles, SimulationOptions options)
@@ -92,6 +95,7 @@ Simulation::Simulation(const SceneConfig& scene, Particles particles, Simulation
   choose_time_step(options);
   impl_->wall_history.assign(particles_.size(), {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
   impl_->contacts.set_state_size(impl_->model.pair_state_size());
+  register_liquid_arrays(true);
   // Forces of the initial state, for the first half kick (no history increment, not counted).
   compute_forces(0.0, false);
 }
@@ -124,6 +128,7 @@ Simulation::Simulation(const SceneConfig& scene, SimulationState state)
         "scene do not mix)",
         state.contact_state_size, impl_->model.pair_state_size()));
   }
+  register_liquid_arrays(false);
   impl_->contacts.set_state_size(state.contact_state_size);
   impl_->contacts.assign(state.contact_row_start, state.contact_col, state.contact_history,
                          state.contact_state);
@@ -162,10 +167,35 @@ SimulationState Simulation::state() const {
 void Simulation::contact_forces(std::vector<ContactForce>& out) const {
   const double period = impl_->drum.period();
   impl_->model.pair_forces(particles_, impl_->contacts, period, dt_, out);
+  impl_->model.add_cohesive_forces(particles_, impl_->contacts, period, out);
 }
 
 void Simulation::bonds(std::vector<Bond>& out) const {
   impl_->model.bonds(particles_, impl_->contacts, impl_->drum.period(), out);
+}
+
+LiquidTotals Simulation::liquid() const {
+  return liquid_totals(impl_->model.cohesive_parts(), particles_, impl_->contacts);
+}
+
+void Simulation::register_liquid_arrays(bool fresh) {
+  const auto& bridge = impl_->model.pair_bridge();
+  if (!bridge) return;
+  Particles& p = particles_;
+  bool new_films = false;
+  const std::size_t parts = impl_->drum.periodic() ? 1 : kWallParts;
+  for (const std::string_view name : liquid_array_names(*bridge, parts)) {
+    if (p.find_array(name) != nullptr) continue;
+    if (!fresh) {
+      throw InputError(
+          fmt::format("restart state: the scene's liquid needs the particle array "
+                      "'{}', which the checkpoint lacks",
+                      name));
+    }
+    p.add_array(name, 0.0);
+    new_films = new_films || name == kLiquidFilmArray;
+  }
+  if (new_films) fill_films(scene_.liquid, p, impl_->liquid_reserve);
 }
 
 void Simulation::coordination_numbers(std::vector<std::uint32_t>& out) const {
@@ -298,6 +328,10 @@ void Simulation::compute_forces(double history_dt, bool count) {
   if (!impl_->forces_cleared) particles_.clear_forces();
   impl_->forces_cleared = false;
   const double period = impl_->drum.period();
+  if (!impl_->liquid_reserve.empty()) {
+    seed_bridges(impl_->model.cohesive_parts(), particles_, contacts, period,
+                 impl_->liquid_reserve);
+  }
   const std::size_t touching = impl_->model.add_pair_forces(
       particles_, contacts, impl_->pair_buffers, period, dt_, history_dt);
   if (impl_->verlet != nullptr) impl_->verlet->record_found(touching);
@@ -460,6 +494,10 @@ Diagnostics Simulation::diagnostics() const {
           std::max(d.max_overlap_ratio, delta / std::min(p.radius[i], p.radius[j]));
     }
   }
+  const LiquidTotals liquid = this->liquid();
+  d.bridges = liquid.bridge_count;
+  d.wall_bridges = liquid.wall_bridge_count;
+  d.liquid_volume = liquid.total();
   return d;
 }
 

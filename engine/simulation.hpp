@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "engine/contact/bond.hpp"
+#include "engine/contact/cohesion_loops.hpp"
 #include "engine/particles.hpp"
 #include "engine/scene/scene_config.hpp"
 #include "engine/search/contact_search.hpp"
@@ -34,6 +35,9 @@ struct Diagnostics {
   std::size_t non_finite = 0;      ///< particles with a non-finite position or velocity
   std::size_t contacts = 0;        ///< particle-particle contacts
   std::size_t wall_contacts = 0;
+  std::size_t bridges = 0;       ///< live particle-particle liquid bridges
+  std::size_t wall_bridges = 0;  ///< live particle-wall liquid bridges
+  double liquid_volume = 0.0;    ///< films + bridges + wall bridges, m^3 (0 for a dry scene)
 };
 
 struct SimulationOptions {
@@ -92,11 +96,16 @@ class Simulation {
   /// Everything the next step depends on (for checkpoints); see SimulationState.
   SimulationState state() const;
   /// Force on i of every overlapping particle-particle contact at the current state (i < j),
-  /// evaluated read-only with the stored tangential history. Replaces `out`.
+  /// evaluated read-only with the stored tangential history, and of every live liquid bridge or
+  /// adhesive contact (their capillary / adhesive force added; a bridged pair apart has an entry
+  /// of its own). Replaces `out`, by increasing (i, j).
   void contact_forces(std::vector<ContactForce>& out) const;
   /// The cohesive links (liquid bridges, adhesive contacts) at the current state, by increasing
   /// (i, j) in storage slots; replaces `out` (empty for a dry scene). See engine/contact/bond.hpp.
   void bonds(std::vector<Bond>& out) const;
+  /// Liquid in films, bridges and wall bridges (m^3), with the live bridge counts; zeros for a
+  /// dry scene. Films + bridges + wall bridges is conserved by every step (round-off).
+  LiquidTotals liquid() const;
   /// Particle-particle contacts (overlap > 0) of each particle; replaces `out` (size N).
   void coordination_numbers(std::vector<std::uint32_t>& out) const;
 
@@ -108,6 +117,10 @@ class Simulation {
  private:
   struct Impl;
   void validate_particles();
+  /// Registers the liquid's per-particle arrays (films, wall bridges) if the scene has them and
+  /// the particles do not; `fresh`: fill the films from the liquid content (else: a restart,
+  /// which must bring them).
+  void register_liquid_arrays(bool fresh);
   void choose_time_step(const SimulationOptions& options);
   /// Search, contact list update, pair and wall forces. history_dt: time since the last call
   /// (0 for the initial state); count: add to the timers and search totals.

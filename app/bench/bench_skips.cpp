@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "app/cli/output_observers.hpp"
+#include "engine/contact/contact_model.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/scene/scene_features.hpp"
 #include "engine/simulation.hpp"
@@ -74,6 +75,12 @@ RunResult run_variant(const RollingState& rolling, const Variant& v, const Skips
                       bool walls_only, const std::filesystem::path& scratch) {
   SimulationState state = rolling.state;
   state.search_method = v.method;
+  // A law that keeps per-contact state (the zero-strength cohesion) starts from none.
+  const std::size_t state_size = ContactModel(v.scene).pair_state_size();
+  if (state.contact_state_size == 0 && state_size > 0) {
+    state.contact_state_size = state_size;
+    state.contact_state.assign(state.contact_col.size() * state_size, 0.0);
+  }
   Simulation sim(v.scene, std::move(state));
   std::vector<std::unique_ptr<FrameObserver>> writers;
   if (v.writers) {
@@ -174,6 +181,18 @@ std::vector<SkipCase> make_cases(const SceneConfig& base, const std::string& met
     c.same_physics = false;
     c.walls_only = true;
     c.note = "different physics: wall-phase time only";
+    cases.push_back(std::move(c));
+  }
+  if (!base.liquid.enabled && !base.cohesion.enabled) {
+    SkipCase c;
+    c.name = "cohesion off";
+    c.general = "[cohesion] sjkr, energy_density 0";
+    SceneConfig s = base;
+    c.with_skip = {s, method, false};
+    s.cohesion.enabled = true;
+    s.cohesion.energy_density = 0.0;
+    c.without_skip = {s, method, false};
+    c.note = "zero-strength adhesion: the cohesive pass runs, adds nothing";
     cases.push_back(std::move(c));
   }
   {

@@ -68,7 +68,7 @@ std::uint64_t verlet_rebuilds(const Simulation& sim) {
 
 ThroughputRow measure(const RollingState& rolling, const std::string& method,
                       std::uint64_t sort_every, int threads, std::uint64_t steps,
-                      std::uint64_t warmup) {
+                      std::uint64_t warmup, bool dry) {
   set_thread_count(threads);
   if (threads > max_threads()) {
     fmt::print("note: built without OpenMP: {} threads asked, 1 runs\n", threads);
@@ -83,6 +83,13 @@ ThroughputRow measure(const RollingState& rolling, const std::string& method,
   {
     SimulationState state = rolling.state;  // counted: the copy becomes the simulation's
     state.search_method = method;
+    if (dry) {  // the same particles without the cohesive laws and their state
+      scene.liquid.enabled = false;
+      scene.cohesion.enabled = false;
+      state.contact_state_size = 0;
+      state.contact_state.clear();
+      state.particles.extra.clear();
+    }
     Simulation sim(scene, std::move(state));
     row.particles = sim.particles().size();
     sim.advance(warmup);
@@ -211,28 +218,39 @@ void run_bench_throughput(const ThroughputOptions& opt) {
       "integr%", "tested/p", "tst/cont", "rebuilds", "heap B/p");
   std::vector<ThroughputRow> rows;
   std::vector<std::string> labels;
+  const bool cohesive = rolling.scene.liquid.enabled || rolling.scene.cohesion.enabled;
+  std::vector<bool> dry_runs{false};
+  if (opt.dry_too && cohesive) dry_runs.push_back(true);
   for (const std::string& m : methods) {
     const std::uint64_t steps = m == "brute" ? std::min(opt.steps, kBruteMaxSteps) : opt.steps;
     for (const std::uint64_t k : sorts) {
-      const std::string label = sorts.size() > 1 ? fmt::format("{} sort {}", m, k) : m;
-      labels.push_back(label);
-      // The thread counts take turns within each repeat, so that the speed-up compares runs
-      // made in the same minutes of a machine whose speed drifts.
-      std::vector<ThroughputRow> best(threads.size());
-      for (int rep = 0; rep < std::max(1, opt.repeats); ++rep) {
-        for (std::size_t q = 0; q < threads.size(); ++q) {
-          ThroughputRow run =
-              measure(rolling, m, k, threads[q], steps, m == "brute" ? 1 : opt.warmup);
-          if (rep == 0 || run.rate() > best[q].rate()) best[q] = std::move(run);
+      for (const bool dry : dry_runs) {
+        std::string label = sorts.size() > 1 ? fmt::format("{} sort {}", m, k) : m;
+        if (dry) label += " dry";
+        labels.push_back(label);
+        // The thread counts take turns within each repeat, so that the speed-up compares runs
+        // made in the same minutes of a machine whose speed drifts.
+        std::vector<ThroughputRow> best(threads.size());
+        for (int rep = 0; rep < std::max(1, opt.repeats); ++rep) {
+          for (std::size_t q = 0; q < threads.size(); ++q) {
+            ThroughputRow run =
+                measure(rolling, m, k, threads[q], steps, m == "brute" ? 1 : opt.warmup, dry);
+            if (rep == 0 || run.rate() > best[q].rate()) best[q] = std::move(run);
+          }
         }
-      }
-      const double base_rate = best.front().rate();
-      for (ThroughputRow& row : best) {
-        row.label = label;
-        row.speedup = base_rate > 0.0 ? row.rate() / base_rate : 0.0;
-        print_row(row);
-        std::fflush(stdout);  // rows as they come, also into a pipe or file
-        rows.push_back(std::move(row));
+        const double base_rate = best.front().rate();
+        for (ThroughputRow& row : best) {
+          row.label = label;
+          row.speedup = base_rate > 0.0 ? row.rate() / base_rate : 0.0;
+          print_row(row);
+          std::fflush(stdout);  // rows as they come, also into a pipe or file
+          rows.push_back(std::move(row));
+        }
+        if (dry) {
+          const ThroughputRow& wet = rows[rows.size() - 2 * threads.size()];
+          fmt::print("{:<20} wet costs {:.3f}x dry per particle-step (1 thread)\n", "",
+                     rows[rows.size() - threads.size()].rate() / wet.rate());
+        }
       }
     }
   }

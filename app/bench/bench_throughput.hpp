@@ -19,6 +19,9 @@ struct ThroughputOptions {
   /// Particle re-ordering intervals to compare (performance.sort_every); empty: the scene's.
   std::vector<std::int64_t> sort_every;
   int repeats = 1;  ///< runs per row; the fastest is kept (a noisy machine only slows runs down)
+  /// Also run each method on the same rolling state without the cohesive laws ([liquid],
+  /// [cohesion]): rows "METHOD dry", the wet/dry cost ratio printed.
+  bool dry_too = false;
   std::string out = "out/bench";  ///< CSV + PNG folder
   RollingPlan plan;
 };

@@ -106,6 +106,9 @@ void add_bench_command(CLI::App& app) {
                    "default: the scene's performance.sort_every)")
       ->delimiter(',')
       ->check(CLI::NonNegativeNumber);
+  throughput->add_flag("--dry-too", t->dry_too,
+                       "also run each method dry: the scene without [liquid] and [cohesion], on "
+                       "the same particles");
   throughput->add_option("--repeats", t->repeats, "runs per row, the fastest kept")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();

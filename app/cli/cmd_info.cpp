@@ -6,6 +6,8 @@
 
 #include "app/cli/commands.hpp"
 #include "app/cli/scene_setup.hpp"
+#include "engine/contact/hertz_mindlin.hpp"
+#include "engine/contact/sjkr_cohesion.hpp"
 #include "engine/fill/file_fill.hpp"
 #include "engine/fill/paper_packing.hpp"
 #include "engine/fill/random_fill.hpp"
@@ -28,6 +30,32 @@ void print_features(const SceneConfig& scene) {
       "measures each skip)\n");
   for (const SceneFeature& x : f.list) {
     fmt::print("  {:<15} {:<39} {}\n", feature_use_name(x.use), x.term, x.why);
+  }
+}
+
+/// Bond numbers of the liquid, and the sjkr pull-off force, per class.
+void print_cohesion(const SceneConfig& scene) {
+  const double g = scene.gravity.norm();
+  for (std::size_t c = 0; c < scene.classes.size() && scene.liquid.enabled; ++c) {
+    const double r = scene.classes[c].radius;
+    const double weight = scene.material.density * 4.0 / 3.0 * std::numbers::pi * r * r * r * g;
+    fmt::print(
+        "Bond number       {}: Bo = F0 / (m g) = {:.3g} (F0 = 2 pi r gamma cos(theta) = "
+        "{:.3g} N, m g = {:.3g} N)\n",
+        scene.classes[c].name, bond_number(scene, c), bond_number(scene, c) * weight, weight);
+  }
+  if (!scene.cohesion.enabled) return;
+  const SjkrCohesion sjkr{scene.cohesion.energy_density};
+  const Material& m = scene.material;
+  const double e_star = effective_youngs_modulus(m, m);
+  for (std::size_t c = 0; c < scene.classes.size(); ++c) {
+    const double r = scene.classes[c].radius;
+    const double weight = m.density * 4.0 / 3.0 * std::numbers::pi * r * r * r * g;
+    const double pull = sjkr.pull_off_force(e_star, 0.5 * r);
+    fmt::print(
+        "sjkr pull-off     {}: {:.3g} N = {:.3g} m g (rest overlap {:.3g} m; Hertz, two "
+        "spheres of the class)\n",
+        scene.classes[c].name, pull, pull / weight, sjkr.rest_overlap(e_star, 0.5 * r));
   }
 }
 
@@ -124,6 +152,7 @@ void print_info(const std::string& file) {
                  parsed->method->description);
     }
   }
+  print_cohesion(scene);
   if (dynamic) print_features(scene);
   if (!dynamic) fmt::print("note              static packing: use `drumlab paper-table`\n");
 }

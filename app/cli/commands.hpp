@@ -10,6 +10,7 @@ void add_contacts_command(CLI::App& app);
 void add_paper_table_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_info_command(CLI::App& app);
+void add_law_command(CLI::App& app);
 void add_stress_command(CLI::App& app);
 // Built only with DRUMLAB_WITH_RENDER:
 void add_render_command(CLI::App& app);

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   drumlab::cli::add_run_command(app);
   drumlab::cli::add_info_command(app);
+  drumlab::cli::add_law_command(app);
   drumlab::cli::add_contacts_command(app);
   drumlab::cli::add_analyze_command(app);
   drumlab::cli::add_paper_table_command(app);

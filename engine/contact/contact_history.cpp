@@ -11,6 +11,7 @@ void ContactList::clear() {
   col_.clear();
   history_.clear();
   state_.clear();
+  clear_dropped();
   cross_receivers_.clear();
   cross_start_.clear();
   cross_k_.clear();
@@ -252,6 +253,30 @@ void ContactList::transfer_state() {
       [this, s](std::size_t k) {
         for (std::size_t c = 0; c < s; ++c) state_[k * s + c] = 0.0;
       });
+  collect_dropped();
+}
+
+// The old entries missing from the new rows (the same merge, the other way round), one thread.
+void ContactList::collect_dropped() {
+  clear_dropped();
+  const std::size_t s = state_size_;
+  const std::size_t old_rows = old_row_start_.empty() ? 0 : old_row_start_.size() - 1;
+  const std::size_t new_rows = rows();
+  for (std::size_t i = 0; i < old_rows; ++i) {
+    std::size_t k = i < new_rows ? row_start_[i] : 0;
+    const std::size_t k_end = i < new_rows ? row_start_[i + 1] : 0;
+    for (std::size_t ko = old_row_start_[i]; ko < old_row_start_[i + 1]; ++ko) {
+      const Index j = old_col_[ko];
+      while (k < k_end && col_[k] < j) ++k;
+      if (k < k_end && col_[k] == j) continue;
+      const double* st = &old_state_[ko * s];
+      bool held = false;
+      for (std::size_t c = 0; c < s; ++c) held = held || st[c] != 0.0;
+      if (!held) continue;
+      dropped_.push_back({static_cast<Index>(i), j});
+      dropped_state_.insert(dropped_state_.end(), st, st + s);
+    }
+  }
 }
 
 std::size_t ContactList::locate(Index i, Index j) const {

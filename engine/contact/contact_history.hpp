@@ -62,11 +62,22 @@ class ContactList {
   const Vec3* find(Index i, Index j) const;
   /// The state_size() scalars of pair (i, j), i < j, or nullptr if it is not a contact.
   const double* find_state(Index i, Index j) const;
+  /// The contacts the last update() dropped (listed before, not now) whose state held a non-zero
+  /// scalar, by increasing (i, j), and their state (state_size() each): a law part that keeps
+  /// something in its state (a bridge's liquid) settles them. Emptied by the next update() and
+  /// by clear_dropped(); always empty with state_size() == 0.
+  std::span<const IndexPair> dropped() const { return dropped_; }
+  std::span<const double> dropped_state() const { return dropped_state_; }
+  void clear_dropped() {
+    dropped_.clear();
+    dropped_state_.clear();
+  }
 
  private:
   void build_rows(std::span<const IndexPair> pairs, std::size_t n);
   void transfer_history();
   void transfer_state();
+  void collect_dropped();
   /// Contact k of the list, or npos if (i, j) is not listed.
   std::size_t locate(Index i, Index j) const;
   void build_cross_block(std::size_t block_rows);
@@ -80,6 +91,8 @@ class ContactList {
   std::size_t state_size_ = 0;
   std::vector<double> state_;
   std::vector<double> old_state_;
+  std::vector<IndexPair> dropped_;
+  std::vector<double> dropped_state_;
   std::vector<std::size_t> fill_;  // scratch: next free slot per row
   std::vector<Index> cross_receivers_;
   std::vector<std::size_t> cross_start_;

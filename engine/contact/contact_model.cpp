@@ -350,40 +350,6 @@ void wall_loop(const ContactLaw<Normal>& law, Particles& p, std::span<const Inde
   }
 }
 
-// The beyond-contact part `part` (see liquid_bridge.hpp for the contract) on every listed pair,
-// after the contact forces: it advances each pair's state (its scalars from `offset` on) and adds
-// its attractive normal force to both particles. One thread, by increasing k: the sums do not
-// depend on the thread count. Instantiated only for a scene that has the part, so a dry scene
-// runs none of it.
-template <class Part>
-void beyond_contact_loop(const Part& part, std::size_t offset, Particles& p, ContactList& contacts,
-                         double period, double dt) {
-  const auto row = contacts.row_start();
-  const auto col = contacts.col();
-  const auto state = contacts.state();
-  const std::size_t stride = contacts.state_size();
-  if (stride < offset + Part::kStateSize) {
-    throw std::logic_error("contact list keeps fewer scalars than the law's parts need");
-  }
-  for (std::size_t i = 0; i < contacts.rows(); ++i) {
-    const double r_i = p.radius[i];
-    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
-      const Index j = col[k];
-      const Vec3 d = separation(p, i, j, period);
-      const double dist = d.norm();
-      if (dist == 0.0) continue;
-      const double r_j = p.radius[j];
-      const double gap = dist - (r_i + r_j);
-      const double f =
-          part.update(gap, Part::pair_radius(r_i, r_j), dt, &state[k * stride + offset]);
-      if (f == 0.0) continue;
-      const Vec3 pull = (f / dist) * d;  // along i - j: attraction pulls i toward j
-      p.force[i] -= pull;
-      p.force[j] += pull;
-    }
-  }
-}
-
 template <class Normal>
 ContactLaw<Normal> make_law(const Normal& n, const MindlinTangential& t,
                             const RollingResistance& r) {
@@ -439,18 +405,49 @@ ContactModel::ContactModel(const SceneConfig& scene) {
   pair_rolling_ = scene.material.rolling_friction > 0.0;
   wall_tangential_ = scene.wall.friction > 0.0;
   wall_rolling_ = scene.wall.rolling_friction > 0.0;
+  constexpr double kDegree = std::numbers::pi / 180.0;
   if (scene.liquid.enabled) {
     const LiquidConfig& l = scene.liquid;
-    if (!(l.surface_tension > 0.0) || !(l.bridge_volume > 0.0) || !(l.contact_angle_deg >= 0.0) ||
-        !(l.contact_angle_deg < 90.0)) {
+    if (!(l.surface_tension > 0.0) || !(l.wall_surface_tension > 0.0) ||
+        !(l.contact_angle_deg >= 0.0 && l.contact_angle_deg < 90.0) ||
+        !(l.wall_contact_angle_deg >= 0.0 && l.wall_contact_angle_deg < 90.0) ||
+        !(l.migration ? l.max_bridge_volume > 0.0 && l.liquid_content >= 0.0
+                      : l.bridge_volume > 0.0) ||
+        !(l.viscosity >= 0.0) || (l.viscosity > 0.0 && !(l.min_gap > 0.0))) {
       throw InputError(
-          "liquid: surface_tension and bridge_volume must be > 0, contact_angle_deg in [0, 90)");
+          "liquid: surface_tension and the bridge volume must be > 0, contact angles in [0, 90), "
+          "liquid_content and viscosity >= 0, min_gap > 0 with viscosity");
     }
-    pair_bridge_.emplace(l.surface_tension, l.contact_angle_deg * std::numbers::pi / 180.0,
-                         l.bridge_volume);
-    pair_range_ = std::max(pair_range_, pair_bridge_->range());
+    LiquidBridge& b = bridge_.emplace();
+    b.pair = {l.surface_tension, l.contact_angle_deg * kDegree};
+    b.wall = {l.wall_surface_tension, l.wall_contact_angle_deg * kDegree};
+    b.migration = l.migration;
+    b.fixed_volume = l.migration ? 0.0 : l.bridge_volume;
+    b.max_volume = l.migration ? l.max_bridge_volume : l.bridge_volume;
+    b.wall_bridges = l.wall_bridges;
+    b.viscosity = l.viscosity;
+    b.min_gap = l.min_gap;
+    pair_range_ = std::max(pair_range_, b.range());
     pair_state_size_ += LiquidBridge::kStateSize;
   }
+  if (scene.cohesion.enabled) {
+    if (!(scene.cohesion.energy_density >= 0.0)) {
+      throw InputError("cohesion.energy_density must be >= 0 (J/m^3)");
+    }
+    sjkr_ = SjkrCohesion{scene.cohesion.energy_density};
+    sjkr_offset_ = pair_state_size_;
+    pair_state_size_ += SjkrCohesion::kStateSize;
+  }
+}
+
+CohesiveParts ContactModel::cohesive_parts() const {
+  CohesiveParts parts;
+  if (bridge_) parts.bridge = &*bridge_;
+  if (sjkr_) {
+    parts.sjkr = &*sjkr_;
+    parts.sjkr_offset = sjkr_offset_;
+  }
+  return parts;
 }
 
 double ContactModel::pair_range(std::uint8_t, std::uint8_t) const {
@@ -467,7 +464,9 @@ std::size_t ContactModel::add_pair_forces(Particles& p, ContactList& contacts,
              touching = pair_loop<N, Tangential, Rolling>(law, p, contacts, buffers, period, dt,
                                                           history_dt);
            });
-  if (pair_bridge_) beyond_contact_loop(*pair_bridge_, 0, p, contacts, period, history_dt);
+  if (const CohesiveParts parts = cohesive_parts(); parts.any()) {
+    cohesion_pair_loop(parts, p, contacts, period, history_dt);
+  }
   return touching;
 }
 
@@ -479,6 +478,9 @@ void ContactModel::add_wall_forces(Particles& p, std::span<const Index> candidat
              wall_loop<N, Tangential, Rolling>(law, p, candidates, drum, omega, history, dt,
                                                history_dt);
            });
+  if (const CohesiveParts parts = cohesive_parts(); parts.any()) {
+    cohesion_wall_loop(parts, p, candidates, drum, omega, history_dt);
+  }
 }
 
 void ContactModel::pair_forces(const Particles& p, const ContactList& contacts, double period,
@@ -495,28 +497,37 @@ void ContactModel::pair_forces(const Particles& p, const ContactList& contacts, 
       },
       pair_.normal);
 }
+// The cohesive forces (bridges, adhesion) merged into the contact forces by (i, j).
+void ContactModel::add_cohesive_forces(const Particles& p, const ContactList& contacts,
+                                       double period, std::vector<ContactForce>& out) const {
+  const CohesiveParts parts = cohesive_parts();
+  if (!parts.any()) return;
+  std::vector<Bond> bonds;
+  cohesion_bonds(parts, p, contacts, period, bonds);
+  if (bonds.empty()) return;
+  std::vector<ContactForce> merged;
+  merged.reserve(out.size() + bonds.size());
+  std::size_t a = 0;
+  for (const Bond& b : bonds) {
+    for (; a < out.size() && std::pair(out[a].i, out[a].j) < std::pair(b.i, b.j); ++a) {
+      merged.push_back(out[a]);
+    }
+    const Vec3 d = separation(p, b.i, b.j, period);
+    const Vec3 pull = (-b.force / d.norm()) * d;  // on i, towards j
+    if (a < out.size() && out[a].i == b.i && out[a].j == b.j) {
+      merged.push_back({b.i, b.j, out[a].force + pull});
+      ++a;
+    } else {
+      merged.push_back({b.i, b.j, pull});
+    }
+  }
+  merged.insert(merged.end(), out.begin() + static_cast<std::ptrdiff_t>(a), out.end());
+  out.swap(merged);
+}
 
 void ContactModel::bonds(const Particles& p, const ContactList& contacts, double period,
                          std::vector<Bond>& out) const {
-  out.clear();
-  if (!pair_bridge_) return;
-  const LiquidBridge& bridge = *pair_bridge_;
-  const auto row = contacts.row_start();
-  const auto col = contacts.col();
-  const auto state = contacts.state();
-  const std::size_t stride = contacts.state_size();
-  for (std::size_t i = 0; i < contacts.rows(); ++i) {
-    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
-      const double* s = &state[k * stride];
-      if (!LiquidBridge::bond(s)) continue;
-      const Index j = col[k];
-      const double gap = separation(p, i, j, period).norm() - (p.radius[i] + p.radius[j]);
-      const double r_eff = LiquidBridge::pair_radius(p.radius[i], p.radius[j]);
-      out.push_back({static_cast<Index>(i), j, LiquidBridge::bond_volume(s),
-                     bridge.force(gap, r_eff, LiquidBridge::bond_volume(s)),
-                     LiquidBridge::bond_age(s)});
-    }
-  }
+  cohesion_bonds(cohesive_parts(), p, contacts, period, out);
 }
 
 double ContactModel::pair_elastic_energy(double delta, double r_eff) const {

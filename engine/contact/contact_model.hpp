@@ -13,11 +13,13 @@
 #include <vector>
 
 #include "engine/contact/bond.hpp"
+#include "engine/contact/cohesion_loops.hpp"
 #include "engine/contact/contact_history.hpp"
 #include "engine/contact/hertz_mindlin.hpp"
 #include "engine/contact/linear_spring_dashpot.hpp"
 #include "engine/contact/liquid_bridge.hpp"
 #include "engine/contact/rolling_resistance.hpp"
+#include "engine/contact/sjkr_cohesion.hpp"
 #include "engine/drum.hpp"
 #include "engine/particles.hpp"
 #include "engine/scene/scene_config.hpp"
@@ -79,14 +81,18 @@ class ContactModel {
   /// pairs a part may act on (a Verlet list adds its skin on top).
   double pair_range(std::uint8_t a, std::uint8_t b) const;
   double max_pair_range() const { return pair_range_; }
-  /// The same for particle-wall contacts (m): the wall-candidate list reaches this much further.
-  /// No part acts beyond contact with the wall yet, so 0.
-  double wall_range() const { return 0.0; }
+  /// The same for particle-wall contacts (m): the wall-candidate list reaches this much further
+  /// (the rupture distance of a wall bridge of the largest volume; 0 without wall bridges).
+  double wall_range() const { return bridge_ ? bridge_->wall_range() : 0.0; }
   /// Scalars the composed law keeps per particle-particle contact (ContactList::set_state_size):
-  /// the sum over its beyond-contact parts; 0 for a dry law.
+  /// the sum over its beyond-contact and adhesive parts; 0 for a dry law.
   std::size_t pair_state_size() const { return pair_state_size_; }
   /// The liquid bridge part, if the scene has [liquid].
-  const std::optional<LiquidBridge>& pair_bridge() const { return pair_bridge_; }
+  const std::optional<LiquidBridge>& pair_bridge() const { return bridge_; }
+  /// The sjkr adhesion part, if the scene has [cohesion].
+  const std::optional<SjkrCohesion>& adhesion() const { return sjkr_; }
+  /// The cohesive parts with their state offsets (none for a dry law).
+  CohesiveParts cohesive_parts() const;
   /// True if any contact can apply a torque (else rotation need not be integrated).
   bool uses_rotation() const {
     return pair_tangential_ || pair_rolling_ || wall_tangential_ || wall_rolling_;
@@ -99,7 +105,8 @@ class ContactModel {
   /// in the same order whatever the number of threads. A listed pair that does not overlap
   /// (e.g. a Verlet-list entry within the skin) gets no contact force and its tangential history is
   /// reset; a beyond-contact part (liquid bridge) then acts on it as long as the part's state
-  /// says the interaction lives, and resets that state itself when it ends. Returns the
+  /// says the interaction lives, and resets that state itself when it ends (cohesion_loops.hpp).
+  /// Returns the
   /// pairs within the touching tolerance (the contacts a search with margin 0 would find).
   std::size_t add_pair_forces(Particles& p, ContactList& contacts, PairForceBuffers& buffers,
                               double period, double dt, double history_dt) const;
@@ -114,6 +121,11 @@ class ContactModel {
   /// force); contacts only touching within the search tolerance are left out.
   void pair_forces(const Particles& p, const ContactList& contacts, double period, double dt,
                    std::vector<ContactForce>& out) const;
+  /// Adds the cohesive forces at the current state (live bridges' capillary force, sjkr
+  /// adhesion; not the velocity-dependent viscous term) to `out` (sorted by (i, j), as
+  /// pair_forces leaves it): a bridged pair apart gets its own entry. Nothing for a dry law.
+  void add_cohesive_forces(const Particles& p, const ContactList& contacts, double period,
+                           std::vector<ContactForce>& out) const;
 
   /// The cohesive links (live bridges, adhesive contacts) among `contacts` at the current state,
   /// by increasing (i, j); read-only. Replaces `out` (empty for a dry law).
@@ -134,7 +146,9 @@ class ContactModel {
   bool pair_rolling_ = false;
   bool wall_tangential_ = false;
   bool wall_rolling_ = false;
-  std::optional<LiquidBridge> pair_bridge_;
+  std::optional<LiquidBridge> bridge_;
+  std::optional<SjkrCohesion> sjkr_;
+  std::size_t sjkr_offset_ = 0;
   double pair_range_ = 0.0;
   std::size_t pair_state_size_ = 0;
 };

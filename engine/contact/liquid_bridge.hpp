@@ -1,74 +1,129 @@
 #pragma once
-// Pendular liquid bridge between two spheres: a law part that acts beyond contact.
+// Pendular liquid bridge between two spheres, or a sphere and the drum wall: a law part that acts
+// beyond contact.
 //
 // Force: Willett, Adams, Johnson & Seville (2000), "Capillary bridges between two spheres",
 // Langmuir 16, closed form for a bridge of volume V, with the conventions of MercuryDPM's
 // LiquidMigrationWilletInteraction: effective radius R = 2 R1 R2 / (R1 + R2) (a wall: R = 2 Rp),
 //     touching (s <= 0):  F = F0 = 2 pi R gamma cos(theta),
 //     gap s > 0:          F = F0 / (1 + (1.05 + 2.5 s~) s~),   s~ = s sqrt(R / V),
-// attractive, along the line of centres. Gap convention: s is the surface separation
-// |x_i - x_j| - (r_i + r_j), negative while the spheres overlap. The bridge forms only on contact
-// (s <= 0) and ruptures once s > s_rup = (1 + theta / 2) V^(1/3) (Lian, Thornton & Adams 1993, as
-// in MercuryDPM): at s = s_rup it still pulls, beyond it the bridge is gone until the spheres
-// touch again.
+// attractive, along the line of centres (the wall normal). Gap convention: s is the surface
+// separation |x_i - x_j| - (r_i + r_j) (a wall: the particle's distance to the wall minus r),
+// negative while they overlap. A bridge forms only on contact (s <= 0) and ruptures once
+// s > s_rup = (1 + theta / 2) V^(1/3) (Lian, Thornton & Adams 1993, as in MercuryDPM): at
+// s = s_rup it still pulls, beyond it the bridge is gone until they touch again.
 //
-// The beyond-contact part contract (what ContactModel reads from any such part):
-//   kStateSize              scalars it keeps per contact (ContactList::state());
-//   range()                 the largest surface gap at which it can act (m): the search margin;
-//   update(gap, R, dt, state)  advances the contact's state at gap `gap` by dt (s, the time since
-//                           the previous evaluation) and returns the attractive normal force
-//                           (N), 0 when the interaction has ended;
-//   bond(state)             whether the state holds a live link (engine/contact/bond.hpp), and
-//   bond_volume / bond_age  what a Bond reports of it.
+// Optional viscous term (off with viscosity 0): the normal lubrication force of two spheres
+// approaching in a liquid (Reynolds; Pitois, Moucheront & Chateau 2000),
+//     F_v = 6 pi eta R*^2 v_n / max(s, s_min),   R* = R1 R2 / (R1 + R2) (a wall: R* = Rp),
+// with v_n the normal relative velocity (> 0 separating), opposing it, while a bridge lives.
+//
+// Liquid migration (LiquidConfig::migration; MercuryDPM's LiquidMigrationWilletInteraction
+// form()/rupture(), Mohan, Kloss, Khinast & Radl 2014 use the same bookkeeping): every particle
+// carries a film volume (Particles array kLiquidFilmArray).
+//   forming between particles: the bridge takes V = min(film_i + film_j, V_max), half from each
+//     film; a film holding less than half gives all it has and the other gives the rest. Both
+//     films empty: no bridge (the pair touches dry and tries again at the next step it touches).
+//   forming with the wall: V = min(film_i, V_max), all from the particle's film.
+//   rupture between particles: half of V to each film (the equal split); with the wall: all of V
+//     back to the particle's film.
+// Without migration every bridge has the fixed volume LiquidConfig::bridge_volume and no film.
+// State per contact: [0] V (m^3, 0: no bridge), [1] its age (s since it formed).
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <numbers>
+#include <string_view>
 
 namespace drumlab {
 
-struct LiquidBridge {
-  /// state[0]: the bridge's liquid volume (m^3), 0: no bridge; state[1]: its age, the time (s)
-  /// since it formed (0 without a bridge).
-  static constexpr std::size_t kStateSize = 2;
+/// Names of the per-particle arrays (Particles::extra) that keep each particle's bridge with
+/// each wall part (mantle, low cap, high cap): its volume (m^3) and its age (s). Registered by
+/// a scene with wall bridges; re-ordering and checkpoints carry them like every array.
+inline constexpr std::array<std::string_view, 3> kWallBridgeVolumeArrays = {
+    "wall_bridge_volume_mantle", "wall_bridge_volume_low_cap", "wall_bridge_volume_high_cap"};
+inline constexpr std::array<std::string_view, 3> kWallBridgeAgeArrays = {
+    "wall_bridge_age_mantle", "wall_bridge_age_low_cap", "wall_bridge_age_high_cap"};
 
+/// Surface tension and contact angle of one kind of bridge (particle-particle or -wall).
+struct BridgeLiquid {
   double surface_tension = 0.0;  ///< gamma, N/m
   double contact_angle = 0.0;    ///< theta, rad
-  double volume = 0.0;           ///< V of every bridge (no liquid migration yet), m^3
 
-  LiquidBridge(double gamma, double theta, double v)
-      : surface_tension(gamma), contact_angle(theta), volume(v) {}
+  /// F0 = 2 pi R gamma cos(theta), N.
+  double touching_force(double r_eff) const {
+    return 2.0 * std::numbers::pi * r_eff * surface_tension * std::cos(contact_angle);
+  }
+  /// s_rup = (1 + theta / 2) V^(1/3), m.
+  double rupture_distance(double v) const { return (1.0 + 0.5 * contact_angle) * std::cbrt(v); }
+  /// Force of a bridge of volume v at gap s (N, attractive, >= 0), for s <= s_rup.
+  double force(double gap, double r_eff, double v) const {
+    const double f0 = touching_force(r_eff);
+    if (gap <= 0.0) return f0;
+    const double s = gap * std::sqrt(r_eff / v);
+    return f0 / (1.0 + (1.05 + 2.5 * s) * s);
+  }
+};
+
+struct LiquidBridge {
+  static constexpr std::size_t kStateSize = 2;
+
+  BridgeLiquid pair;  ///< particle-particle
+  BridgeLiquid wall;  ///< particle-wall
+  /// Fixed volume of every bridge (m^3) without migration; 0 with migration.
+  double fixed_volume = 0.0;
+  /// Largest bridge volume (m^3): the fixed volume, or the migration's maximum.
+  double max_volume = 0.0;
+  bool migration = false;
+  bool wall_bridges = false;
+  double viscosity = 0.0;  ///< eta, Pa s; 0: no viscous term
+  double min_gap = 0.0;    ///< s_min of the viscous term, m
 
   /// Willett's effective radius (m) of two spheres, and of a sphere against a wall.
   static double pair_radius(double r1, double r2) { return 2.0 * r1 * r2 / (r1 + r2); }
   static double wall_radius(double r) { return 2.0 * r; }
 
-  /// s_rup = (1 + theta / 2) V^(1/3), m.
-  double rupture_distance() const { return (1.0 + 0.5 * contact_angle) * std::cbrt(volume); }
-  double range() const { return rupture_distance(); }
+  /// The largest gap at which a particle-particle / particle-wall bridge can live (m).
+  double range() const { return pair.rupture_distance(max_volume); }
+  double wall_range() const { return wall_bridges ? wall.rupture_distance(max_volume) : 0.0; }
 
-  /// Force of an existing bridge of volume v at gap s (N, attractive), for s <= s_rup.
-  double force(double gap, double r_eff, double v) const {
-    const double f0 = 2.0 * std::numbers::pi * r_eff * surface_tension * std::cos(contact_angle);
-    if (gap <= 0.0) return f0;
-    const double s = gap * std::sqrt(r_eff / v);
-    return f0 / (1.0 + (1.05 + 2.5 * s) * s);
+  /// Viscous normal force (N, along the normal towards i: positive repulsive) of a live bridge:
+  /// -6 pi eta R*^2 v_n / max(s, s_min); r_star = R1 R2 / (R1 + R2) or Rp at a wall.
+  double viscous_force(double gap, double r_star, double vn) const {
+    return -6.0 * std::numbers::pi * viscosity * r_star * r_star * vn / std::max(gap, min_gap);
   }
 
-  /// Forms the bridge on contact, ruptures it beyond s_rup, ages a live one by dt; returns its
-  /// force (0 without one).
-  double update(double gap, double r_eff, double dt, double* state) const {
-    const bool lived = state[0] > 0.0;
-    if (gap <= 0.0) {
-      state[0] = volume;
-    } else if (gap > rupture_distance()) {
-      state[0] = 0.0;
+  /// Volume of a new particle-particle bridge, drawn from the films fi, fj (migration) as the
+  /// header says; 0: no bridge. Without migration: the fixed volume.
+  double take_from_films(double& fi, double& fj) const {
+    if (!migration) return fixed_volume;
+    const double available = fi + fj;
+    if (!(available > 0.0)) return 0.0;
+    if (available <= max_volume) {
+      fi = 0.0;
+      fj = 0.0;
+      return available;
     }
-    if (state[0] == 0.0) {
-      state[1] = 0.0;
-      return 0.0;
+    const double half = 0.5 * max_volume;
+    if (fi <= half) {
+      fj -= max_volume - fi;
+      fi = 0.0;
+    } else if (fj <= half) {
+      fi -= max_volume - fj;
+      fj = 0.0;
+    } else {
+      fi -= half;
+      fj -= half;
     }
-    state[1] = lived ? state[1] + dt : 0.0;
-    return force(gap, r_eff, state[0]);
+    return max_volume;
+  }
+  /// Volume of a new bridge with the wall, from the particle's film fi alone.
+  double take_from_film(double& fi) const {
+    if (!migration) return fixed_volume;
+    const double v = std::min(fi, max_volume);
+    fi -= v;
+    return v;
   }
 
   static bool bond(const double* state) { return state[0] > 0.0; }

@@ -94,15 +94,36 @@ struct PerformanceConfig {
   friend bool operator==(const PerformanceConfig&, const PerformanceConfig&) = default;
 };
 
-/// Pendular liquid bridges between particles ([liquid]; engine/contact/liquid_bridge.hpp).
-/// Absent: a dry scene.
+/// Pendular liquid bridges ([liquid]; engine/contact/liquid_bridge.hpp). Absent: a dry scene.
+/// Two ways to give the liquid: `bridge_volume` (every bridge holds V, no films, no migration) or
+/// `liquid_content` + `max_bridge_volume` (liquid migration: each particle carries a film, a
+/// new bridge draws from the films, a ruptured one returns its liquid to them).
 struct LiquidConfig {
   bool enabled = false;
   double surface_tension = 0.0;    ///< N/m, > 0
   double contact_angle_deg = 0.0;  ///< degrees, in [0, 90)
-  double bridge_volume = 0.0;      ///< m^3 of every bridge, > 0 (no liquid migration yet)
+  double bridge_volume = 0.0;      ///< m^3 of every bridge (no migration); 0 with migration
+  bool migration = false;          ///< liquid_content given: films and migration
+  double liquid_content = 0.0;     ///< liquid volume / solid volume of each particle, >= 0
+  /// Share of each particle's liquid in its film at the start, in [0, 1]; the rest forms the
+  /// bridges of the contacts present at the start (none: all stays in the film).
+  double film_share = 1.0;
+  double max_bridge_volume = 0.0;       ///< m^3, > 0 (migration)
+  double viscosity = 0.0;               ///< eta of the liquid, Pa s; 0: no viscous term
+  double min_gap = 0.0;                 ///< m, > 0 with viscosity: the viscous term's smallest gap
+  bool wall_bridges = true;             ///< particle-wall bridges (R = 2 Rp)
+  double wall_surface_tension = 0.0;    ///< N/m; defaults to surface_tension
+  double wall_contact_angle_deg = 0.0;  ///< degrees; defaults to contact_angle_deg
 
   friend bool operator==(const LiquidConfig&, const LiquidConfig&) = default;
+};
+
+/// Dry adhesion ([cohesion] model = "sjkr"; engine/contact/sjkr_cohesion.hpp). Absent: none.
+struct CohesionConfig {
+  bool enabled = false;
+  double energy_density = 0.0;  ///< k_c, J/m^3 (= Pa), >= 0 (0: the part runs, adds nothing)
+
+  friend bool operator==(const CohesionConfig&, const CohesionConfig&) = default;
 };
 
 struct OutputConfig {
@@ -123,6 +144,7 @@ struct SceneConfig {
   Material wall;  ///< particle-wall contact (density unused)
   ContactConfig contact;
   LiquidConfig liquid;
+  CohesionConfig cohesion;
   FillConfig fill;
   TimeConfig time;
   std::string search_method = "m5";

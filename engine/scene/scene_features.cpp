@@ -2,6 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <limits>
+#include <numbers>
+
 #include "engine/search/search_methods.hpp"
 
 namespace drumlab {
@@ -53,7 +57,64 @@ SceneFeature grid_feature(const SceneConfig& scene, const SceneFeatures& f) {
                       grid == "auto" ? "decided at run time" : grid)};
 }
 
+// The cohesive law parts: what [liquid] and [cohesion] switch on (engine/contact/cohesion_loops).
+void add_cohesion_terms(const SceneConfig& scene, SceneFeatures& f) {
+  const LiquidConfig& l = scene.liquid;
+  const CohesionConfig& c = scene.cohesion;
+  f.cohesion = l.enabled || c.enabled;
+  if (!f.cohesion) {
+    f.list.push_back({"cohesion", FeatureUse::skipped,
+                      "no [liquid] and no [cohesion] table: dry contacts only, no cohesive pass, "
+                      "search margin 0"});
+    return;
+  }
+  f.list.push_back(
+      term("cohesion", true,
+           fmt::format("{}{}{}: one serial pass over the listed pairs after the "
+                       "contact forces",
+                       l.enabled ? "[liquid]" : "", l.enabled && c.enabled ? " + " : "",
+                       c.enabled ? "[cohesion]" : "")));
+  f.list.push_back(
+      term("liquid bridges", l.enabled,
+           l.enabled ? "Willett bridges formed on contact, kept up to s_rup (the search margin)"
+                     : "no [liquid]: no bridges, search margin 0"));
+  f.list.push_back(term(
+      "liquid migration", l.migration,
+      l.migration ? fmt::format("liquid_content = {}: films give and take the bridges' liquid",
+                                l.liquid_content)
+      : l.enabled
+          ? fmt::format("bridge_volume = {} m^3: every bridge the same, no films", l.bridge_volume)
+          : std::string("no [liquid]")));
+  f.list.push_back(term("wall bridges", l.enabled && l.wall_bridges,
+                        !l.enabled       ? "no [liquid]"
+                        : l.wall_bridges ? "particle-wall bridges (R = 2 Rp) on mantle and caps"
+                                         : "liquid.wall_bridges = false"));
+  f.list.push_back(term(
+      "viscous bridge force", l.viscosity > 0.0,
+      l.viscosity > 0.0 ? fmt::format("viscosity = {} Pa s, min_gap = {} m", l.viscosity, l.min_gap)
+                        : "viscosity = 0: capillary force only"));
+  f.list.push_back(term("dry adhesion (sjkr)", c.enabled,
+                        c.enabled ? fmt::format("cohesion.energy_density = {} J/m^3 (k_c pi a^2 "
+                                                "while overlapping)",
+                                                c.energy_density)
+                                  : "no [cohesion]"));
+}
+
 }  // namespace
+
+double bond_number(const SceneConfig& scene, std::size_t cls) {
+  const double g = scene.gravity.norm();
+  const double r = scene.classes.at(cls).radius;
+  const double m = scene.material.density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  if (!(g > 0.0) || !(m > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  double f0 = 0.0;
+  if (scene.liquid.enabled) {
+    // Willett's R = 2 r r / (r + r) = r for two spheres of the class.
+    f0 += 2.0 * std::numbers::pi * r * scene.liquid.surface_tension *
+          std::cos(scene.liquid.contact_angle_deg * std::numbers::pi / 180.0);
+  }
+  return f0 / (m * g);
+}
 
 SceneFeatures scene_features(const SceneConfig& scene) {
   SceneFeatures f;
@@ -78,15 +139,7 @@ SceneFeatures scene_features(const SceneConfig& scene) {
   f.list.push_back(
       rolling("particle-particle", "material.rolling_friction", scene.material.rolling_friction));
   f.list.push_back(rolling("particle-wall", "wall.rolling_friction", scene.wall.rolling_friction));
-  f.cohesion = scene.liquid.enabled;
-  if (f.cohesion) {
-    f.list.push_back(term("cohesion", true,
-                          "[liquid]: pendular liquid bridges (Willett) between particles, kept "
-                          "beyond contact up to the rupture distance; not yet with the wall"));
-  } else {
-    f.list.push_back({"cohesion", FeatureUse::not_implemented,
-                      "no [liquid] table: dry contacts only (no other cohesion law yet)"});
-  }
+  add_cohesion_terms(scene, f);
   f.list.push_back(term("end-cap contacts", f.end_caps,
                         f.end_caps ? "drum.ends = caps: mantle and both caps tested per particle"
                                    : "drum.ends = periodic: only the mantle is tested"));

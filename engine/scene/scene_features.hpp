@@ -6,7 +6,9 @@
 //   rolling resistance   pair: material.rolling_friction > 0; wall: wall.rolling_friction > 0
 //   rotation             integrated only if one of the four terms above can apply a torque
 //   end-cap contacts     only with drum.ends = caps (periodic ends test the mantle only)
-// Cohesion is not implemented in the engine: it is always off. A 2D search grid (cells spanning
+//   cohesion             [liquid] (bridges, migration, wall bridges, viscous term) and/or
+//                        [cohesion] (sjkr): one serial pass after the contact forces
+// A 2D search grid (cells spanning
 // the depth) suffices for a shallow drum; whether the run uses one depends on its search method.
 // Output writers and VTK objects are not known from the scene: the command line creates them.
 #include <string>
@@ -41,7 +43,7 @@ struct SceneFeatures {
   bool pair_rolling = false;
   bool wall_rolling = false;
   bool rotation = false;  ///< angular velocities integrated (some contact applies a torque)
-  bool cohesion = false;  ///< [liquid]: liquid bridges
+  bool cohesion = false;  ///< [liquid] or [cohesion]: a cohesive pass
   bool end_caps = false;  ///< end-cap wall contacts (drum.ends = caps)
   bool shallow = false;   ///< depth <= kShallowDepthInDiameters largest diameters
   bool grid_2d = false;   ///< the scene's search method uses a 2D grid (m1, m2, m4, verlet:m2...)
@@ -51,6 +53,11 @@ struct SceneFeatures {
 
 /// Decides the features of `scene` (no simulation, no fill).
 SceneFeatures scene_features(const SceneConfig& scene);
+
+/// Bond number of class `cls`: the bridge's touching force F0 = 2 pi r gamma cos(theta) between
+/// two spheres of the class (Willett's R = r) over the sphere's weight m g; 0 for a scene without
+/// [liquid], NaN without gravity.
+double bond_number(const SceneConfig& scene, std::size_t cls);
 
 /// "needed", "skipped", "available", "not implemented", "command line".
 const char* feature_use_name(FeatureUse use);

@@ -424,25 +424,86 @@ void read_output(const Scope& root, SceneConfig& scene) {
   scene.output.diagnostics_every = static_cast<std::uint64_t>(every);
 }
 
+// [liquid]: Willett's closed form holds for 0 <= theta < 90 degrees (cos theta > 0: a bridge that
+// pulls); the liquid is given as one fixed bridge volume or as a content with films (migration).
 void read_liquid(const Scope& root, SceneConfig& scene) {
   const auto s = root.table("liquid");
   if (!s) return;
-  s->allow_only({"surface_tension", "contact_angle_deg", "bridge_volume"});
+  s->allow_only({"surface_tension", "contact_angle_deg", "bridge_volume", "liquid_content",
+                 "film_share", "max_bridge_volume", "viscosity", "min_gap", "wall_bridges",
+                 "wall_surface_tension", "wall_contact_angle_deg"});
   LiquidConfig& l = scene.liquid;
   l.enabled = true;
+  const auto angle = [&](std::string_view key, double fallback) {
+    const double v = s->number_or(key, fallback);
+    if (!(v >= 0.0 && v < 90.0)) s->fail(key, fmt::format("must be in [0, 90) degrees, got {}", v));
+    return v;
+  };
   l.surface_tension = s->required_number("surface_tension", "N/m, > 0");
   if (!(l.surface_tension > 0.0)) {
     s->fail("surface_tension", fmt::format("must be > 0 (N/m), got {}", l.surface_tension));
   }
-  l.contact_angle_deg = s->number_or("contact_angle_deg", 0.0);
-  if (!(l.contact_angle_deg >= 0.0 && l.contact_angle_deg < 90.0)) {
-    s->fail("contact_angle_deg",
-            fmt::format("must be in [0, 90) degrees, got {}", l.contact_angle_deg));
+  l.contact_angle_deg = angle("contact_angle_deg", 0.0);
+  l.wall_surface_tension = s->number_or("wall_surface_tension", l.surface_tension);
+  if (!(l.wall_surface_tension > 0.0)) {
+    s->fail("wall_surface_tension",
+            fmt::format("must be > 0 (N/m), got {}", l.wall_surface_tension));
   }
-  l.bridge_volume = s->required_number("bridge_volume", "m^3, > 0");
-  if (!(l.bridge_volume > 0.0)) {
-    s->fail("bridge_volume", fmt::format("must be > 0 (m^3), got {}", l.bridge_volume));
+  l.wall_contact_angle_deg = angle("wall_contact_angle_deg", l.contact_angle_deg);
+  if (const toml::node* w = s->raw().get("wall_bridges")) {
+    if (!w->as_boolean()) s->fail("wall_bridges", "expected true or false");
+    l.wall_bridges = w->as_boolean()->get();
   }
+  l.migration = s->has("liquid_content");
+  if (s->has("bridge_volume") && l.migration) {
+    s->fail("bridge_volume",
+            "give either bridge_volume (fixed bridges) or liquid_content with max_bridge_volume "
+            "(liquid migration), not both");
+  }
+  if (!l.migration) {
+    l.bridge_volume = s->required_number(
+        "bridge_volume", "m^3, > 0; or liquid_content with max_bridge_volume for migration");
+    if (!(l.bridge_volume > 0.0)) {
+      s->fail("bridge_volume", fmt::format("must be > 0 (m^3), got {}", l.bridge_volume));
+    }
+    for (const char* key : {"film_share", "max_bridge_volume"}) {
+      if (s->has(key)) s->fail(key, "only with liquid_content (liquid migration)");
+    }
+  } else {
+    l.liquid_content = s->required_number("liquid_content", "liquid / solid volume, >= 0");
+    if (!(l.liquid_content >= 0.0 && l.liquid_content <= 1.0)) {
+      s->fail("liquid_content", fmt::format("must be in [0, 1] (liquid volume / solid volume), "
+                                            "got {}",
+                                            l.liquid_content));
+    }
+    l.film_share = s->number_or("film_share", 1.0);
+    if (!(l.film_share >= 0.0 && l.film_share <= 1.0)) {
+      s->fail("film_share", fmt::format("must be in [0, 1], got {}", l.film_share));
+    }
+    l.max_bridge_volume = s->required_number("max_bridge_volume", "m^3, > 0");
+    if (!(l.max_bridge_volume > 0.0)) {
+      s->fail("max_bridge_volume", fmt::format("must be > 0 (m^3), got {}", l.max_bridge_volume));
+    }
+  }
+  l.viscosity = s->number_or("viscosity", 0.0);
+  check_non_negative(*s, "viscosity", l.viscosity);
+  l.min_gap = s->number_or("min_gap", 0.0);
+  if (l.viscosity > 0.0 && !(l.min_gap > 0.0)) {
+    s->fail("min_gap", fmt::format("must be > 0 (m) with viscosity > 0, got {}", l.min_gap));
+  }
+  if (l.viscosity == 0.0 && s->has("min_gap")) s->fail("min_gap", "only with viscosity > 0");
+}
+
+// [cohesion]: LIGGGHTS' simplified JKR, the only dry adhesion law for now.
+void read_cohesion(const Scope& root, SceneConfig& scene) {
+  const auto s = root.table("cohesion");
+  if (!s) return;
+  s->allow_only({"model", "energy_density"});
+  const std::string model = s->string("model").value_or("sjkr");
+  if (model != "sjkr") s->fail("model", fmt::format("unknown model '{}' (valid: sjkr)", model));
+  scene.cohesion.enabled = true;
+  scene.cohesion.energy_density = s->required_number("energy_density", "k_c, J/m^3, >= 0");
+  check_non_negative(*s, "energy_density", scene.cohesion.energy_density);
 }
 
 void read_performance(const Scope& root, SceneConfig& scene) {
@@ -463,7 +524,8 @@ void read_performance(const Scope& root, SceneConfig& scene) {
 
 void read_top_level(const Scope& root, SceneConfig& scene) {
   root.allow_only({"name", "description", "gravity", "search", "drum", "particles", "material",
-                   "wall", "contact", "liquid", "fill", "time", "performance", "output"});
+                   "wall", "contact", "liquid", "cohesion", "fill", "time", "performance",
+                   "output"});
   const std::string stem = std::filesystem::path(scene.source).stem().string();
   scene.name = root.string("name").value_or(stem.empty() ? "scene" : stem);
   if (scene.name.empty()) root.fail("name", "must not be empty");
@@ -499,6 +561,7 @@ SceneConfig build_scene(const toml::table& table, std::string_view source) {
   }
   read_contact(root, scene);
   read_liquid(root, scene);
+  read_cohesion(root, scene);
   read_fill(root, scene);
   read_time(root, scene);
   read_performance(root, scene);

@@ -134,7 +134,27 @@ void write_liquid(Writer& w, const LiquidConfig& l) {
   w.table("[liquid]");
   w.line("surface_tension", number(l.surface_tension));
   w.line("contact_angle_deg", number(l.contact_angle_deg));
-  w.line("bridge_volume", number(l.bridge_volume));
+  if (l.migration) {
+    w.line("liquid_content", number(l.liquid_content));
+    w.line("film_share", number(l.film_share));
+    w.line("max_bridge_volume", number(l.max_bridge_volume));
+  } else {
+    w.line("bridge_volume", number(l.bridge_volume));
+  }
+  if (l.viscosity > 0.0) {
+    w.line("viscosity", number(l.viscosity));
+    w.line("min_gap", number(l.min_gap));
+  }
+  w.line("wall_bridges", l.wall_bridges ? "true" : "false");
+  w.line("wall_surface_tension", number(l.wall_surface_tension));
+  w.line("wall_contact_angle_deg", number(l.wall_contact_angle_deg));
+}
+
+void write_cohesion(Writer& w, const CohesionConfig& c) {
+  if (!c.enabled) return;
+  w.table("[cohesion]");
+  w.line("model", string("sjkr"));
+  w.line("energy_density", number(c.energy_density));
 }
 
 void write_fill(Writer& w, const FillConfig& f, const fs::path& folder) {
@@ -195,6 +215,7 @@ std::string scene_to_toml(const SceneConfig& scene, const fs::path& folder) {
   write_materials(w, scene.material, scene.wall);
   write_contact(w, scene.contact);
   write_liquid(w, scene.liquid);
+  write_cohesion(w, scene.cohesion);
   write_fill(w, scene.fill, folder);
   write_time(w, scene.time);
   write_performance(w, scene.performance);

@@ -129,10 +129,9 @@ TEST(ParticleArrays, RegisteredOnceAndCarriedByReorderAndCheckpoint) {
 
 TEST(LiquidBridge, ForceFollowsWillettsClosedForm) {
   const double gamma = 0.072, theta = 20.0 * std::numbers::pi / 180.0, v = 1e-12;
-  const LiquidBridge bridge(gamma, theta, v);
-  EXPECT_DOUBLE_EQ(bridge.rupture_distance(), (1.0 + 0.5 * theta) * std::cbrt(v));
-  EXPECT_DOUBLE_EQ(bridge.range(), bridge.rupture_distance());
-  const double s_rup = bridge.rupture_distance();
+  const BridgeLiquid bridge{gamma, theta};
+  EXPECT_DOUBLE_EQ(bridge.rupture_distance(v), (1.0 + 0.5 * theta) * std::cbrt(v));
+  const double s_rup = bridge.rupture_distance(v);
   for (const auto& [r1, r2] :
        {std::pair{1e-3, 1e-3}, std::pair{1e-3, 3e-3}, std::pair{5e-4, 4e-3}}) {
     const double r = 2.0 * r1 * r2 / (r1 + r2);
@@ -150,32 +149,6 @@ TEST(LiquidBridge, ForceFollowsWillettsClosedForm) {
     }
   }
   EXPECT_DOUBLE_EQ(LiquidBridge::wall_radius(1e-3), 2e-3);
-}
-
-TEST(LiquidBridge, FormsOnContactOnlyAndRupturesBeyondSrup) {
-  const LiquidBridge bridge(0.072, 0.0, 1e-12);
-  const double s_rup = bridge.rupture_distance();
-  const double r = 1e-3;
-  double state[LiquidBridge::kStateSize] = {0.0, 0.0};
-  // Never touched: no bridge at any gap within the range.
-  for (const double s : {0.9 * s_rup, 0.5 * s_rup, 1e-9}) {
-    EXPECT_EQ(bridge.update(s, r, 1e-6, state), 0.0);
-    EXPECT_EQ(state[0], 0.0);
-  }
-  // Contact forms it; it survives separation up to s_rup.
-  EXPECT_GT(bridge.update(-1e-7, r, 1e-6, state), 0.0);
-  EXPECT_EQ(state[0], 1e-12);
-  EXPECT_EQ(state[1], 0.0);  // just formed
-  EXPECT_GT(bridge.update(0.5 * s_rup, r, 1e-6, state), 0.0);
-  EXPECT_GT(bridge.update(s_rup * (1.0 - 1e-9), r, 1e-6, state), 0.0);
-  EXPECT_GT(bridge.update(s_rup, r, 1e-6, state), 0.0);
-  EXPECT_NEAR(state[1], 3e-6, 1e-20);  // aged by three evaluations
-  // Beyond it: gone, and it stays gone when the gap closes again until contact.
-  EXPECT_EQ(bridge.update(s_rup * (1.0 + 1e-9), r, 1e-6, state), 0.0);
-  EXPECT_EQ(state[0], 0.0);
-  EXPECT_EQ(state[1], 0.0);
-  EXPECT_EQ(bridge.update(0.5 * s_rup, r, 1e-6, state), 0.0);
-  EXPECT_GT(bridge.update(0.0, r, 1e-6, state), 0.0);
 }
 
 // ---------------------------------------------------------------- in a simulation
@@ -291,7 +264,7 @@ TEST(BeyondContact, BridgeSurvivesSeparationWithinTheRangeAndIsDroppedBeyond) {
       if (gap > 0.0 && gap <= s_rup) {
         ASSERT_TRUE(listed) << "pair not listed at gap " << gap;
         EXPECT_GT(bridge, 0.0) << "bridge lost at gap " << gap;
-        const double pull = LiquidBridge(0.072, 0.0, 1e-9).force(gap, r, 1e-9);
+        const double pull = BridgeLiquid{0.072, 0.0}.force(gap, r, 1e-9);
         EXPECT_GT(pull, 0.0);
         // The bond graph reports the bridge: its volume, its force (R = 2 r r / 2r = r), an age
         // that grows by one time step per step.

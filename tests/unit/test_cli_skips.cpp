@@ -50,7 +50,7 @@ TEST(CliInfo, PrintsNeedsAndSkipsWithReasons) {
            "skipped         tangential history (particle-wall)",
            "skipped         rotation (angular velocity)",
            "skipped         rolling resistance (particle-particle)",
-           "not implemented cohesion",
+           "skipped         cohesion",
            "skipped         end-cap contacts",
            "available       3D search grid",
            "command line    output writers / VTK objects",

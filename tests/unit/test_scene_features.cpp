@@ -64,7 +64,7 @@ TEST(SceneFeatures, ContactTermsAgreeWithTheComposedContactModel) {
     EXPECT_EQ(f.rotation, model.uses_rotation());
     EXPECT_EQ(f.rotation, mask != 0);
     EXPECT_FALSE(f.cohesion);
-    EXPECT_EQ(line(f, "cohesion").use, FeatureUse::not_implemented);
+    EXPECT_EQ(line(f, "cohesion").use, FeatureUse::skipped);
     EXPECT_EQ(line(f, "tangential history (particle-particle)").use,
               f.pair_tangential ? FeatureUse::needed : FeatureUse::skipped);
     EXPECT_EQ(line(f, "rotation").use, f.rotation ? FeatureUse::needed : FeatureUse::skipped);

@@ -291,7 +291,7 @@ TEST(SceneLoader, LiquidBridgeKeys) {
       {"negative angle", with("= 20", "= -1"), "liquid.contact_angle_deg"},
       {"zero volume", with("1e-12", "0"), "liquid.bridge_volume"},
       {"missing volume", with("bridge_volume = 1e-12\n", ""), "liquid.bridge_volume"},
-      {"unknown liquid key", with("[liquid]", "[liquid]\nviscosity = 1"), "liquid.viscosity"},
+      {"unknown liquid key", with("[liquid]", "[liquid]\nvolume = 1"), "liquid.volume"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.what);

@@ -275,19 +275,23 @@ TEST(SceneWriter, SeedBeyondTomlIntegersIsRefusedNamingTheKey) {
 /// The number of fields of each config struct, checked by a structured binding: adding a field
 /// makes this fail to compile. Then give the field a setter in `field_setters()`, write it in
 /// engine/scene/scene_writer.cpp and raise its count here.
-constexpr int kSceneFields = 15, kDrumFields = 5, kClassFields = 3, kMaterialFields = 6,
-              kContactFields = 2, kLiquidFields = 4, kFillFields = 7, kTimeFields = 4,
-              kPerformanceFields = 2, kOutputFields = 2;
+constexpr int kSceneFields = 16, kDrumFields = 5, kClassFields = 3, kMaterialFields = 6,
+              kContactFields = 2, kLiquidFields = 13, kCohesionFields = 2, kFillFields = 7,
+              kTimeFields = 4, kPerformanceFields = 2, kOutputFields = 2;
 
 [[maybe_unused]] void field_counts(const SceneConfig& s) {
   [[maybe_unused]] const auto& [name, source, description, gravity, drum, classes, material, wall,
-                                contact, liquid, fill, time, search, performance, output] = s;
+                                contact, liquid, cohesion, fill, time, search, performance,
+                                output] = s;
   [[maybe_unused]] const auto& [diameter, depth, omega, tilt, ends] = s.drum;
   [[maybe_unused]] const auto& [class_name, radius, class_fraction] = s.classes.front();
   [[maybe_unused]] const auto& [density, youngs, poisson, restitution, friction, rolling] =
       s.material;
   [[maybe_unused]] const auto& [normal, stiffness] = s.contact;
-  [[maybe_unused]] const auto& [enabled, tension, angle, volume] = s.liquid;
+  [[maybe_unused]] const auto& [enabled, tension, angle, volume, migration, content, film_share,
+                                max_volume, viscosity, min_gap, wall_bridges, wall_tension,
+                                wall_angle] = s.liquid;
+  [[maybe_unused]] const auto& [cohesive, energy_density] = s.cohesion;
   [[maybe_unused]] const auto& [kind, count, fraction, seed, settle, box, file] = s.fill;
   [[maybe_unused]] const auto& [dt, dt_factor, duration, revolutions] = s.time;
   [[maybe_unused]] const auto& [skin, sort_every] = s.performance;
@@ -301,6 +305,14 @@ struct FieldSetter {
   Base base;
   std::function<void(SceneConfig&)> set;
 };
+
+/// Liquid given as a content with films (migration) instead of one bridge volume.
+void migrate(SceneConfig& s, double content, double max_bridge_volume) {
+  s.liquid.migration = true;
+  s.liquid.bridge_volume = 0.0;
+  s.liquid.liquid_content = content;
+  s.liquid.max_bridge_volume = max_bridge_volume;
+}
 
 std::vector<FieldSetter> field_setters(const fs::path& other_csv) {
   using B = Base;
@@ -353,6 +365,35 @@ std::vector<FieldSetter> field_setters(const fs::path& other_csv) {
       {"liquid.contact_angle_deg", B::every_key,
        [](SceneConfig& s) { s.liquid.contact_angle_deg = 0.0; }},
       {"liquid.bridge_volume", B::every_key, [](SceneConfig& s) { s.liquid.bridge_volume = 3e-9; }},
+      {"liquid.migration", B::every_key, [](SceneConfig& s) { migrate(s, 0.05, 1e-9); }},
+      {"liquid.liquid_content", B::every_key, [](SceneConfig& s) { migrate(s, 0.02, 1e-9); }},
+      {"liquid.film_share", B::every_key,
+       [](SceneConfig& s) {
+         migrate(s, 0.05, 1e-9);
+         s.liquid.film_share = 0.75;
+       }},
+      {"liquid.max_bridge_volume", B::every_key, [](SceneConfig& s) { migrate(s, 0.05, 4e-9); }},
+      {"liquid.viscosity", B::every_key,
+       [](SceneConfig& s) {
+         s.liquid.viscosity = 1e-3;
+         s.liquid.min_gap = 1e-6;
+       }},
+      {"liquid.min_gap", B::every_key,
+       [](SceneConfig& s) {
+         s.liquid.viscosity = 2e-3;
+         s.liquid.min_gap = 3e-6;
+       }},
+      {"liquid.wall_bridges", B::every_key, [](SceneConfig& s) { s.liquid.wall_bridges = false; }},
+      {"liquid.wall_surface_tension", B::every_key,
+       [](SceneConfig& s) { s.liquid.wall_surface_tension = 0.03; }},
+      {"liquid.wall_contact_angle_deg", B::every_key,
+       [](SceneConfig& s) { s.liquid.wall_contact_angle_deg = 45.0; }},
+      {"cohesion.enabled", B::every_key, [](SceneConfig& s) { s.cohesion.enabled = true; }},
+      {"cohesion.energy_density", B::every_key,
+       [](SceneConfig& s) {
+         s.cohesion.enabled = true;
+         s.cohesion.energy_density = 2.5e4;
+       }},
       {"fill.kind", B::file_fill,
        [](SceneConfig& s) {
          s.fill.kind = FillKind::random;
@@ -402,13 +443,14 @@ TEST(SceneWriter, EveryFieldChangesTheTextAndRoundTrips) {
     return std::count_if(setters.begin(), setters.end(),
                          [&](const FieldSetter& s) { return s.field.starts_with(prefix); });
   };
-  EXPECT_EQ(count("scene."), kSceneFields - 11);  // name, description, gravity, search
+  EXPECT_EQ(count("scene."), kSceneFields - 12);  // name, description, gravity, search
   EXPECT_EQ(count("drum."), kDrumFields);
   EXPECT_EQ(count("classes."), kClassFields);
   EXPECT_EQ(count("material."), kMaterialFields);
   EXPECT_EQ(count("wall."), kMaterialFields - 1);
   EXPECT_EQ(count("contact."), kContactFields);
   EXPECT_EQ(count("liquid."), kLiquidFields);
+  EXPECT_EQ(count("cohesion."), kCohesionFields);
   EXPECT_EQ(count("fill."), kFillFields);
   EXPECT_EQ(count("time."), kTimeFields);
   EXPECT_EQ(count("performance."), kPerformanceFields);

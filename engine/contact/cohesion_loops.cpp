@@ -1,0 +1,307 @@
+#include "engine/contact/cohesion_loops.hpp"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+#include "engine/periodic.hpp"
+
+namespace drumlab {
+namespace {
+
+double* film_of(const CohesiveParts& parts, Particles& p) {
+  if (parts.bridge == nullptr || !parts.bridge->migration) return nullptr;
+  std::vector<double>* film = p.find_array(kLiquidFilmArray);
+  if (film == nullptr) throw std::logic_error("liquid migration without a film array");
+  return film->data();
+}
+
+// A bridge between i and j ends: its liquid goes back, half to each film (migration).
+void rupture(double* state, double* film, Index i, Index j) {
+  if (film != nullptr) {
+    film[i] += 0.5 * state[0];
+    film[j] += 0.5 * state[0];
+  }
+  state[0] = 0.0;
+  state[1] = 0.0;
+}
+
+// One listed pair at centre separation d (i - j): advances its state, returns the attraction
+// (N, > 0 pulls i towards j).
+double pair_attraction(const CohesiveParts& parts, Particles& p, double* film, Index i, Index j,
+                       const Vec3& d, double dist, double* state, double dt) {
+  const double r_i = p.radius[i];
+  const double r_j = p.radius[j];
+  const double gap = dist - (r_i + r_j);
+  double pull = 0.0;
+  if (const LiquidBridge* b = parts.bridge) {
+    double* s = state + parts.bridge_offset;
+    if (s[0] > 0.0 && gap > b->pair.rupture_distance(s[0])) rupture(s, film, i, j);
+    if (s[0] > 0.0) {
+      s[1] += dt;
+    } else if (gap <= 0.0) {
+      double none = 0.0;
+      const double v =
+          film != nullptr ? b->take_from_films(film[i], film[j]) : b->take_from_films(none, none);
+      s[0] = v;
+      s[1] = 0.0;
+    }
+    if (s[0] > 0.0) {
+      pull += b->pair.force(gap, LiquidBridge::pair_radius(r_i, r_j), s[0]);
+      if (b->viscosity > 0.0) {
+        const double vn = (p.velocity[i] - p.velocity[j]).dot(d) / dist;
+        pull -= b->viscous_force(gap, r_i * r_j / (r_i + r_j), vn);
+      }
+    }
+  }
+  if (const SjkrCohesion* c = parts.sjkr) {
+    double* s = state + parts.sjkr_offset;
+    if (gap < 0.0) {
+      pull += c->force(SjkrCohesion::lens_area(dist, r_i, r_j));
+      s[1] = s[0] > 0.0 ? s[1] + dt : 0.0;
+      s[0] = 1.0;
+    } else {
+      s[0] = 0.0;
+      s[1] = 0.0;
+    }
+  }
+  return pull;
+}
+
+}  // namespace
+
+WallGap wall_gap(const Drum& drum, WallPart part, const Vec3& x, double r) {
+  if (part == WallPart::cap_low) return {x.z() - r, Vec3(0.0, 0.0, 1.0)};
+  if (part == WallPart::cap_high) return {drum.depth() - x.z() - r, Vec3(0.0, 0.0, -1.0)};
+  const double rho = std::hypot(x.x(), x.y());
+  if (rho == 0.0) return {drum.radius() - r, Vec3::Zero()};
+  return {drum.radius() - rho - r, Vec3(-x.x() / rho, -x.y() / rho, 0.0)};
+}
+
+void cohesion_pair_loop(const CohesiveParts& parts, Particles& p, ContactList& contacts,
+                        double period, double dt) {
+  const auto row = contacts.row_start();
+  const auto col = contacts.col();
+  const auto state = contacts.state();
+  const std::size_t stride = contacts.state_size();
+  double* film = film_of(parts, p);
+  const auto dropped = contacts.dropped();
+  const auto dropped_state = contacts.dropped_state();
+  std::size_t q = 0;
+  // The dropped pairs before (i, j): beyond every rupture distance, so their bridges end.
+  const auto settle_dropped = [&](IndexPair until) {
+    for (; q < dropped.size() && dropped[q] < until; ++q) {
+      if (parts.bridge == nullptr) continue;
+      double s[LiquidBridge::kStateSize] = {dropped_state[q * stride + parts.bridge_offset], 0.0};
+      if (s[0] > 0.0) rupture(s, film, dropped[q].i, dropped[q].j);
+    }
+  };
+  for (std::size_t i = 0; i < contacts.rows(); ++i) {
+    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
+      const Index j = col[k];
+      settle_dropped({static_cast<Index>(i), j});
+      const Vec3 d = nearest_image(p.position[i], p.position[j], period);
+      const double dist = d.norm();
+      if (dist == 0.0) continue;
+      const double pull = pair_attraction(parts, p, film, static_cast<Index>(i), j, d, dist,
+                                          &state[k * stride], dt);
+      if (pull == 0.0) continue;
+      const Vec3 f = (pull / dist) * d;  // along i - j: attraction pulls i toward j
+      p.force[i] -= f;
+      p.force[j] += f;
+    }
+  }
+  constexpr Index kLast = std::numeric_limits<Index>::max();
+  settle_dropped({kLast, kLast});
+  contacts.clear_dropped();
+}
+
+void cohesion_wall_loop(const CohesiveParts& parts, Particles& p, std::span<const Index> candidates,
+                        const Drum& drum, double omega, double dt) {
+  const LiquidBridge* b =
+      parts.bridge != nullptr && parts.bridge->wall_bridges ? parts.bridge : nullptr;
+  if (b == nullptr && parts.sjkr == nullptr) return;
+  const std::size_t n_parts = drum.periodic() ? 1 : kWallParts;
+  double* film = film_of(parts, p);
+  double* volume[kWallParts] = {};
+  double* age[kWallParts] = {};
+  if (b != nullptr) {
+    for (std::size_t w = 0; w < n_parts; ++w) {
+      std::vector<double>* v = p.find_array(kWallBridgeVolumeArrays[w]);
+      std::vector<double>* a = p.find_array(kWallBridgeAgeArrays[w]);
+      if (v == nullptr || a == nullptr) throw std::logic_error("wall bridges without arrays");
+      volume[w] = v->data();
+      age[w] = a->data();
+    }
+  }
+  for (const Index i : candidates) {
+    const Vec3& x = p.position[i];
+    const double r = p.radius[i];
+    for (std::size_t w = 0; w < n_parts; ++w) {
+      const WallGap g = wall_gap(drum, static_cast<WallPart>(w), x, r);
+      double pull = 0.0;
+      if (b != nullptr) {
+        double& v = volume[w][i];
+        if (v > 0.0 && g.gap > b->wall.rupture_distance(v)) {
+          if (film != nullptr) film[i] += v;
+          v = 0.0;
+          age[w][i] = 0.0;
+        }
+        if (v > 0.0) {
+          age[w][i] += dt;
+        } else if (g.gap <= 0.0) {
+          double none = 0.0;
+          v = b->take_from_film(film != nullptr ? film[i] : none);
+          age[w][i] = 0.0;
+        }
+        if (v > 0.0) {
+          pull += b->wall.force(g.gap, LiquidBridge::wall_radius(r), v);
+          if (b->viscosity > 0.0) {
+            const Vec3 point = x - (r + std::max(g.gap, 0.0)) * g.normal;
+            const double vn = (p.velocity[i] - Drum::wall_velocity(point, omega)).dot(g.normal);
+            pull -= b->viscous_force(g.gap, r, vn);
+          }
+        }
+      }
+      if (parts.sjkr != nullptr && g.gap < 0.0) {
+        pull += parts.sjkr->force(SjkrCohesion::wall_lens_area(-g.gap, r));
+      }
+      if (pull != 0.0) p.force[i] -= pull * g.normal;  // the normal points into the particle
+    }
+  }
+}
+
+void cohesion_bonds(const CohesiveParts& parts, const Particles& p, const ContactList& contacts,
+                    double period, std::vector<Bond>& out) {
+  out.clear();
+  const bool adhesive = parts.sjkr != nullptr && parts.sjkr->energy_density > 0.0;
+  if (parts.bridge == nullptr && !adhesive) return;
+  const auto row = contacts.row_start();
+  const auto col = contacts.col();
+  const auto state = contacts.state();
+  const std::size_t stride = contacts.state_size();
+  for (std::size_t i = 0; i < contacts.rows(); ++i) {
+    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
+      const double* s = &state[k * stride];
+      const double* sb = parts.bridge != nullptr ? s + parts.bridge_offset : nullptr;
+      const double* sc = adhesive ? s + parts.sjkr_offset : nullptr;
+      const bool bridged = sb != nullptr && LiquidBridge::bond(sb);
+      const bool stuck = sc != nullptr && SjkrCohesion::bond(sc);
+      if (!bridged && !stuck) continue;
+      const Index j = col[k];
+      const double dist = nearest_image(p.position[i], p.position[j], period).norm();
+      const double r_i = p.radius[i];
+      const double r_j = p.radius[j];
+      Bond bond{static_cast<Index>(i), j, 0.0, 0.0, 0.0};
+      if (bridged) {
+        bond.volume = LiquidBridge::bond_volume(sb);
+        bond.force = parts.bridge->pair.force(dist - (r_i + r_j),
+                                              LiquidBridge::pair_radius(r_i, r_j), bond.volume);
+        bond.age = LiquidBridge::bond_age(sb);
+      }
+      if (stuck) {
+        bond.force += parts.sjkr->force(SjkrCohesion::lens_area(dist, r_i, r_j));
+        if (!bridged) bond.age = SjkrCohesion::bond_age(sc);
+      }
+      out.push_back(bond);
+    }
+  }
+}
+
+void seed_bridges(const CohesiveParts& parts, Particles& p, ContactList& contacts, double period,
+                  std::vector<double>& reserve) {
+  double* film = film_of(parts, p);
+  if (film == nullptr || reserve.size() != p.size()) throw std::logic_error("no films to seed");
+  const auto row = contacts.row_start();
+  const auto col = contacts.col();
+  const auto state = contacts.state();
+  const std::size_t stride = contacts.state_size();
+  const auto touching = [&](std::size_t i, Index j) {
+    const double dist = nearest_image(p.position[i], p.position[j], period).norm();
+    return dist > 0.0 && dist <= p.radius[i] + p.radius[j];
+  };
+  std::vector<double> share(p.size(), 0.0);
+  for (std::size_t i = 0; i < contacts.rows(); ++i) {
+    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
+      if (!touching(i, col[k])) continue;
+      share[i] += 1.0;
+      share[col[k]] += 1.0;
+    }
+  }
+  for (std::size_t i = 0; i < share.size(); ++i) {
+    share[i] = share[i] > 0.0 ? reserve[i] / share[i] : 0.0;
+  }
+  const double v_max = parts.bridge->max_volume;
+  for (std::size_t i = 0; i < contacts.rows(); ++i) {
+    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
+      const Index j = col[k];
+      if (!touching(i, j)) continue;
+      double gi = share[i], gj = share[j];
+      if (gi + gj > v_max) {
+        gi = share[i] * (v_max / (share[i] + share[j]));
+        gj = v_max - gi;
+      }
+      if (!(gi + gj > 0.0)) continue;
+      double* s = &state[k * stride + parts.bridge_offset];
+      s[0] = gi + gj;
+      s[1] = 0.0;
+      reserve[i] -= gi;
+      reserve[j] -= gj;
+    }
+  }
+  for (std::size_t i = 0; i < reserve.size(); ++i) film[i] += reserve[i];
+  reserve.clear();
+}
+
+std::vector<std::string_view> liquid_array_names(const LiquidBridge& bridge,
+                                                 std::size_t wall_parts) {
+  std::vector<std::string_view> names;
+  if (bridge.migration) names.push_back(kLiquidFilmArray);
+  if (!bridge.wall_bridges) return names;
+  for (std::size_t w = 0; w < wall_parts; ++w) {
+    names.push_back(kWallBridgeVolumeArrays[w]);
+    names.push_back(kWallBridgeAgeArrays[w]);
+  }
+  return names;
+}
+
+void fill_films(const LiquidConfig& liquid, Particles& p, std::vector<double>& reserve) {
+  std::vector<double>* film = p.find_array(kLiquidFilmArray);
+  if (film == nullptr) throw std::logic_error("fill_films: no film array");
+  reserve.assign(p.size(), 0.0);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double r = p.radius[i];
+    const double v = liquid.liquid_content * (4.0 / 3.0) * std::numbers::pi * r * r * r;
+    (*film)[i] = liquid.film_share * v;
+    reserve[i] = v - (*film)[i];
+  }
+  if (liquid.film_share == 1.0) reserve.clear();
+}
+
+LiquidTotals liquid_totals(const CohesiveParts& parts, const Particles& p,
+                           const ContactList& contacts) {
+  LiquidTotals t;
+  if (parts.bridge == nullptr) return t;
+  if (const std::vector<double>* film = p.find_array(kLiquidFilmArray)) {
+    for (double v : *film) t.films += v;
+  }
+  const auto state = contacts.state();
+  const std::size_t stride = contacts.state_size();
+  for (std::size_t k = 0; k < contacts.size(); ++k) {
+    const double v = state[k * stride + parts.bridge_offset];
+    t.bridges += v;
+    t.bridge_count += v > 0.0;
+  }
+  for (std::size_t w = 0; w < kWallParts; ++w) {
+    const std::vector<double>* v = p.find_array(kWallBridgeVolumeArrays[w]);
+    if (v == nullptr) continue;
+    for (double x : *v) {
+      t.wall_bridges += x;
+      t.wall_bridge_count += x > 0.0;
+    }
+  }
+  return t;
+}
+
+}  // namespace drumlab

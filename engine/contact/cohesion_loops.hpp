@@ -1,0 +1,87 @@
+#pragma once
+// The loops of the cohesive law parts (engine/contact/liquid_bridge.hpp, sjkr_cohesion.hpp), run
+// after the contact forces of a scene that has one (a dry scene runs none of this).
+//
+// One thread, by increasing (i, j) (particles by increasing slot, then wall part): liquid
+// migration reads and writes the films of both particles of a pair, so the result depends on the
+// order in which the pairs are visited; this fixed order makes it independent of the thread count.
+// Pairs the contact list dropped since the last step (ContactList::dropped(), beyond every
+// bridge's rupture distance) are settled in the same (i, j) order, merged with the listed ones,
+// so every search method (whatever extra pairs it lists within its skin) makes the same changes
+// to the films in the same order.
+#include <cstddef>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "engine/contact/bond.hpp"
+#include "engine/contact/contact_history.hpp"
+#include "engine/contact/liquid_bridge.hpp"
+#include "engine/contact/sjkr_cohesion.hpp"
+#include "engine/drum.hpp"
+#include "engine/particles.hpp"
+#include "engine/scene/scene_config.hpp"
+
+namespace drumlab {
+
+/// The cohesive parts of a composed law and where each keeps its scalars in a contact's state.
+struct CohesiveParts {
+  const LiquidBridge* bridge = nullptr;  ///< nullptr: no liquid
+  std::size_t bridge_offset = 0;
+  const SjkrCohesion* sjkr = nullptr;  ///< nullptr: no dry adhesion
+  std::size_t sjkr_offset = 0;
+  bool any() const { return bridge != nullptr || sjkr != nullptr; }
+};
+
+/// Advances every listed pair's cohesive state by dt (bridges form, age, rupture; films give and
+/// take liquid) and adds the attractive forces to p.force. Settles and forgets the dropped pairs.
+void cohesion_pair_loop(const CohesiveParts& parts, Particles& p, ContactList& contacts,
+                        double period, double dt);
+
+/// The same for the particles `candidates` (increasing) against the drum wall turning at omega:
+/// wall bridges (state in the kWallBridge*Arrays of p) and sjkr with the wall (no state).
+void cohesion_wall_loop(const CohesiveParts& parts, Particles& p, std::span<const Index> candidates,
+                        const Drum& drum, double omega, double dt);
+
+/// The live links among `contacts`: one Bond per pair with a live bridge or an adhesive
+/// (overlapping, k_c > 0) sjkr contact; force = bridge + adhesion at the current state.
+void cohesion_bonds(const CohesiveParts& parts, const Particles& p, const ContactList& contacts,
+                    double period, std::vector<Bond>& out);
+
+/// The initial split (LiquidConfig::film_share < 1): every touching listed pair gets a bridge from
+/// the reserves of both particles (m^3 each, not in their films): each particle's reserve divided
+/// equally among its touching pairs, the bridge capped at the maximum volume (both shares scaled
+/// down alike); what a particle's reserve does not give goes to its film. Emptied on return.
+void seed_bridges(const CohesiveParts& parts, Particles& p, ContactList& contacts, double period,
+                  std::vector<double>& reserve);
+
+/// The per-particle arrays the liquid needs (the film with migration, the wall bridges'
+/// volume and age per wall part with wall bridges; `wall_parts`: 1 with periodic ends, else 3).
+std::vector<std::string_view> liquid_array_names(const LiquidBridge& bridge,
+                                                 std::size_t wall_parts);
+/// Fills the film array (registered) from the scene's liquid content: film_share of each
+/// particle's liquid (content x its solid volume) in its film, the rest in `reserve`
+/// (seed_bridges).
+void fill_films(const LiquidConfig& liquid, Particles& p, std::vector<double>& reserve);
+
+/// Liquid held (m^3): in films, in particle-particle bridges, in wall bridges.
+struct LiquidTotals {
+  double films = 0.0;
+  double bridges = 0.0;
+  double wall_bridges = 0.0;
+  std::size_t bridge_count = 0;
+  std::size_t wall_bridge_count = 0;
+  double total() const { return films + bridges + wall_bridges; }
+};
+LiquidTotals liquid_totals(const CohesiveParts& parts, const Particles& p,
+                           const ContactList& contacts);
+
+/// Gap (m, negative: overlap) and unit normal (from the wall into the particle) of a sphere
+/// against one wall part, also when apart (Drum::contact reports only overlaps).
+struct WallGap {
+  double gap = 0.0;
+  Vec3 normal = Vec3::Zero();
+};
+WallGap wall_gap(const Drum& drum, WallPart part, const Vec3& x, double r);
+
+}  // namespace drumlab

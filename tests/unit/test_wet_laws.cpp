@@ -1,0 +1,360 @@
+// The granulation laws of issue 13 §2 through the code path the simulation runs: the liquid
+// bridge (pair and wall) against Willett's closed form and its rupture, seen with the law probe
+// (engine/contact/law_probe.hpp); the viscous term against its formula; liquid migration (films
+// give and take, total liquid conserved through re-ordering and restart, the same on every search
+// method); wall bridges restarted bit for bit; LIGGGHTS' sjkr adhesion (a cohesive pair at rest
+// stays bound, a dry one separates, the pull-off force of the probe against the stated formula).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numbers>
+
+#include "engine/contact/contact_model.hpp"
+#include "engine/contact/law_probe.hpp"
+#include "engine/io/checkpoint.hpp"
+#include "engine/search/contact_search.hpp"
+#include "tests/unit/cli_runner.hpp"
+#include "tests/unit/output_test_scene.hpp"
+
+namespace drumlab::test {
+namespace {
+
+constexpr double kGamma = 0.072;
+constexpr double kPi = std::numbers::pi;
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+}
+bool same_bits(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0);
+}
+
+// The small drum (radii 4 and 8 mm) with a [liquid] table of `liquid` lines (and `extra` after).
+SceneConfig scene_with(const std::string& tables, const std::string& method = "m5") {
+  SceneConfig s = parse_scene(output_scene_text() + tables, "wet-laws-test");
+  s.search_method = method;
+  return s;
+}
+
+// Liquid migration: 1 % liquid, bridges up to 1e-9 m^3 (s_rup = 1 mm, a quarter of the small
+// radius; the small particle's film holds 2.7e-9 m^3).
+const std::string kMigration =
+    "[liquid]\nsurface_tension = 0.072\ncontact_angle_deg = 10\nliquid_content = 0.01\n"
+    "max_bridge_volume = 1e-9\n";
+
+// ---------------------------------------------------------------- the bridge, probed
+
+TEST(WetLaws, ProbedBridgeForceFollowsWillettAtEveryGapRadiusPairAndWall) {
+  const SceneConfig scene = scene_with(kMigration);
+  const double theta = 10.0 * kPi / 180.0;
+  struct Case {
+    std::uint8_t a, b;
+    bool wall;
+  };
+  for (const Case c : {Case{0, 0, false}, Case{0, 1, false}, Case{1, 1, false}, Case{0, 0, true},
+                       Case{1, 0, true}}) {
+    LawProbeOptions o;
+    o.class_a = c.a;
+    o.class_b = c.b;
+    o.wall = c.wall;
+    const LawCurve curve = probe_law(scene, o);
+    SCOPED_TRACE(curve.label);
+    const double r1 = scene.classes[c.a].radius, r2 = scene.classes[c.b].radius;
+    const double r = c.wall ? 2.0 * r1 : 2.0 * r1 * r2 / (r1 + r2);
+    const double f0 = 2.0 * kPi * r * kGamma * std::cos(theta);
+    // The films (1 % of each particle's volume) exceed V_max: every bridge holds V_max.
+    const double v = 1e-9;
+    const double s_rup = (1.0 + 0.5 * theta) * std::cbrt(v);
+    std::size_t apart = 0;
+    for (const LawSample& s : curve.samples) {
+      if (!s.retreat) {
+        // Never touched on the way in: no bridge, no force while apart.
+        if (s.gap > 0.0) {
+          EXPECT_EQ(s.normal_force, 0.0) << s.gap;
+          EXPECT_EQ(s.bridge_volume, 0.0) << s.gap;
+        }
+        continue;
+      }
+      if (s.gap <= 0.0) continue;  // overlapping: Hertz + F0
+      if (s.gap <= s_rup) {
+        const double st = s.gap * std::sqrt(r / v);
+        const double expected = f0 / (1.0 + (1.05 + 2.5 * st) * st);
+        // Summed forces of one pair: round-off of a few operations.
+        EXPECT_NEAR(s.normal_force, -expected, 1e-12 * f0) << s.gap;
+        EXPECT_EQ(s.bridge_volume, v);
+        ++apart;
+      } else {
+        EXPECT_EQ(s.normal_force, 0.0) << s.gap;  // ruptured: nothing beyond s_rup
+        EXPECT_EQ(s.bridge_volume, 0.0);
+      }
+    }
+    EXPECT_GT(apart, 50u);
+    // Rupture: the last bridged sample lies just before s_rup, the first free one after it.
+    EXPECT_NEAR(curve.predicted_rupture, s_rup, 1e-15);
+    EXPECT_LE(curve.last_bridged_gap, s_rup);
+    EXPECT_GT(curve.rupture_gap, s_rup);
+    const std::size_t n = curve.samples.size() / 2;  // the retreat's first sample
+    const double spacing = curve.samples[n + 1].gap - curve.samples[n].gap;
+    EXPECT_LT(curve.rupture_gap - curve.last_bridged_gap, 1.001 * spacing);
+  }
+}
+
+TEST(WetLaws, RuptureIsSharpAtSrup) {
+  const SceneConfig scene = scene_with(kMigration);
+  const double s_rup = (1.0 + 0.5 * 10.0 * kPi / 180.0) * std::cbrt(1e-9);
+  for (const bool wall : {false, true}) {
+    LawProbeOptions o;
+    o.wall = wall;
+    o.end_gap = s_rup * (1.0 + 1e-9);
+    o.steps = 2000;
+    const LawCurve just_before = probe_law(scene, o);
+    // The last sample (at s_rup (1 + 1e-9)) has no bridge, the one before (s_rup - spacing) has.
+    const LawSample& last = just_before.samples.back();
+    const LawSample& before = just_before.samples[just_before.samples.size() - 2];
+    EXPECT_GT(last.gap, s_rup);
+    EXPECT_EQ(last.normal_force, 0.0);
+    EXPECT_LT(before.gap, s_rup);
+    EXPECT_LT(before.normal_force, 0.0) << "no pull just before s_rup";
+  }
+}
+
+// ---------------------------------------------------------------- viscous term
+
+TEST(WetLaws, ViscousTermFollowsItsFormula) {
+  const SceneConfig scene =
+      scene_with(kMigration + "viscosity = 0.05\nmin_gap = 1e-5\nwall_bridges = false\n");
+  const ContactModel model(scene);
+  const double r1 = 0.004, r2 = 0.008, theta = 10.0 * kPi / 180.0;
+  for (const double gap : {-1e-6, 5e-6, 2e-4, 6e-4}) {
+    for (const double vn : {-0.02, 0.0, 0.03}) {
+      Particles p;
+      p.add(Vec3(r1 + r2 + gap, 0.0, 0.025), r1, 2500.0, 0);
+      p.add(Vec3(0.0, 0.0, 0.025), r2, 2500.0, 1);
+      p.add_array(kLiquidFilmArray, 1e-9);
+      p.velocity[0] = Vec3(vn, 0.0, 0.0);  // v_n > 0: separating
+      ContactList contacts;
+      contacts.set_state_size(model.pair_state_size());
+      // Touch first (the bridge forms at contact), then the gap under test.
+      const Vec3 x0 = p.position[0];
+      p.position[0] = Vec3(r1 + r2 - 1e-7, 0.0, 0.025);
+      const std::vector<IndexPair> pair = {{0, 1}};
+      PairForceBuffers buf;
+      contacts.update(pair, 2);
+      model.add_pair_forces(p, contacts, buf, 0.0, 1e-6, 1e-6);
+      p.position[0] = x0;
+      p.clear_forces();
+      contacts.update(pair, 2);
+      model.add_pair_forces(p, contacts, buf, 0.0, 1e-6, 1e-6);
+      const double v = contacts.find_state(0, 1)[0];
+      ASSERT_GT(v, 0.0);
+      const double r = 2.0 * r1 * r2 / (r1 + r2), r_star = r1 * r2 / (r1 + r2);
+      double capillary = 2.0 * kPi * r * kGamma * std::cos(theta);
+      if (gap > 0.0) {
+        const double st = gap * std::sqrt(r / v);
+        capillary /= 1.0 + (1.05 + 2.5 * st) * st;
+      }
+      const double viscous = -6.0 * kPi * 0.05 * r_star * r_star * vn / std::max(gap, 1e-5);
+      double expected = viscous - capillary;  // along +x (towards particle 0)
+      if (gap < 0.0) {
+        // Overlapping: the contact force adds; compare its difference to the dry part's share.
+        continue;
+      }
+      EXPECT_NEAR(p.force[0].x(), expected, 1e-12 * std::abs(expected) + 1e-18) << gap << " " << vn;
+    }
+  }
+}
+
+// ---------------------------------------------------------------- migration in a drum
+
+double total_liquid(const SceneConfig& scene) {
+  double v = 0.0;
+  const Particles fill = random_fill(scene);
+  for (double r : fill.radius) v += scene.liquid.liquid_content * 4.0 / 3.0 * kPi * r * r * r;
+  return v;
+}
+
+TEST(WetLaws, LiquidIsConservedThroughReorderingAndRestart) {
+  TempDir dir("wet-laws-conservation");
+  const SceneConfig scene = scene_with(kMigration + "[performance]\nsort_every = 20\n");
+  const double total = total_liquid(scene);
+  constexpr std::uint64_t kN = 300;
+  auto first = settled_simulation(scene, kN);
+  const LiquidTotals mid = first->liquid();
+  EXPECT_GT(mid.bridge_count, 10u);
+  EXPECT_GT(mid.wall_bridge_count, 3u);
+  EXPECT_GT(mid.bridges, 0.0);
+  EXPECT_NEAR(mid.total(), total, 1e-12 * total);
+  write_checkpoint(dir.path() / "half.h5", first->state(), scene.name);
+  const Checkpoint c = read_checkpoint(dir.path() / "half.h5");
+  Simulation continued(scene, c.state);
+  continued.advance(kN);
+  const LiquidTotals end = continued.liquid();
+  EXPECT_NEAR(end.total(), total, 1e-12 * total);
+  EXPECT_NEAR(continued.diagnostics().liquid_volume, total, 1e-12 * total);
+  EXPECT_EQ(continued.diagnostics().bridges, end.bridge_count);
+  // The restart is bit-identical to the run that did not stop (pair and wall bridges, films).
+  first->advance(kN);
+  const SimulationState a = first->state(), b = continued.state();
+  EXPECT_TRUE(same_bits(a.particles.position, b.particles.position));
+  EXPECT_TRUE(same_bits(a.contact_state, b.contact_state));
+  for (const char* name : {"liquid_film", "wall_bridge_volume_mantle", "wall_bridge_age_low_cap"}) {
+    ASSERT_NE(a.particles.find_array(name), nullptr) << name;
+    EXPECT_TRUE(same_bits(*a.particles.find_array(name), *b.particles.find_array(name))) << name;
+  }
+}
+
+TEST(WetLaws, EverySearchMethodMakesTheSameBridgesAndFilms) {
+  const SceneConfig base = scene_with(kMigration);
+  const Particles start = random_fill(base);
+  std::vector<double> films;
+  std::vector<Bond> reference, bonds;
+  for (const std::string& method : search_method_names()) {
+    SCOPED_TRACE(method);
+    SceneConfig scene = base;
+    scene.search_method = method;
+    Simulation sim(scene, start);
+    sim.advance(300);
+    sim.bonds(bonds);
+    const std::vector<double>& f = *sim.particles().find_array(kLiquidFilmArray);
+    if (films.empty()) {
+      films = f;
+      reference = bonds;
+      ASSERT_GT(reference.size(), 5u);
+      continue;
+    }
+    EXPECT_TRUE(same_bits(films, f));
+    ASSERT_EQ(bonds.size(), reference.size());
+    for (std::size_t k = 0; k < bonds.size(); ++k) {
+      EXPECT_EQ(bonds[k].i, reference[k].i);
+      EXPECT_EQ(bonds[k].j, reference[k].j);
+      EXPECT_EQ(bonds[k].volume, reference[k].volume);
+    }
+  }
+}
+
+TEST(WetLaws, NoFilmNoBridgeAndTheInitialSplit) {
+  // No liquid at all: bridges never form, though the spheres touch.
+  const SceneConfig dry_films = scene_with(
+      "[liquid]\nsurface_tension = 0.072\nliquid_content = 0\nmax_bridge_volume = 1e-9\n");
+  auto sim = settled_simulation(dry_films, 200);
+  EXPECT_EQ(sim->liquid().bridge_count, 0u);
+  EXPECT_EQ(sim->liquid().wall_bridge_count, 0u);
+  EXPECT_GT(sim->diagnostics().contacts, 0u);
+  // Half the liquid reserved for bridges at the start: the random fill has no contacts, so it
+  // all goes to the films.
+  const SceneConfig split = scene_with(kMigration + "film_share = 0.5\n");
+  Simulation s(split, random_fill(split));
+  EXPECT_NEAR(s.liquid().films, total_liquid(split), 1e-12 * total_liquid(split));
+}
+
+// ---------------------------------------------------------------- sjkr adhesion
+
+// Two spheres of radius r at rest, slightly overlapped, no gravity, no drum motion.
+std::unique_ptr<Simulation> resting_pair(const SceneConfig& scene, double overlap) {
+  const double r = 0.004;
+  Particles p;
+  p.add(Vec3(-r + 0.5 * overlap, 0.0, 0.025), r, 2500.0);
+  p.add(Vec3(r - 0.5 * overlap, 0.0, 0.025), r, 2500.0);
+  return std::make_unique<Simulation>(scene, std::move(p));
+}
+
+TEST(WetLaws, CohesivePairAtRestStaysBoundDryOneSeparates) {
+  SceneConfig dry = scene_with("");
+  dry.gravity = Vec3::Zero();
+  dry.drum.omega = 0.0;
+  SceneConfig sticky = scene_with("[cohesion]\nmodel = \"sjkr\"\nenergy_density = 5e4\n");
+  sticky.gravity = Vec3::Zero();
+  sticky.drum.omega = 0.0;
+  const ContactModel model(sticky);
+  const double r_star = 0.002;
+  const double e_star = std::get<HertzNormal>(model.pair_normal()).e_star;
+  const double delta_eq = model.adhesion()->rest_overlap(e_star, r_star);
+  ASSERT_GT(delta_eq, 1e-6);
+  const double overlap = 0.2 * delta_eq;  // inside the attractive basin (delta < delta_eq)
+  auto a = resting_pair(dry, overlap);
+  auto b = resting_pair(sticky, overlap);
+  const auto gap = [](const Simulation& s) {
+    const Particles& p = s.particles();
+    return (p.position[1] - p.position[0]).norm() - p.radius[0] - p.radius[1];
+  };
+  std::vector<Bond> bonds;
+  a->advance(20000);
+  b->advance(20000);
+  EXPECT_GT(gap(*a), 0.0) << "the dry pair stayed together";
+  EXPECT_LT(gap(*b), 0.0) << "the cohesive pair came apart";
+  // Damped towards the rest overlap delta_eq (a^2 = 2 R* delta to first order: 1 %).
+  EXPECT_NEAR(-gap(*b), delta_eq, 0.02 * delta_eq);
+  b->bonds(bonds);
+  ASSERT_EQ(bonds.size(), 1u);
+  EXPECT_EQ(bonds[0].volume, 0.0);
+  EXPECT_GT(bonds[0].force, 0.0);
+  EXPECT_NEAR(bonds[0].age, 20000 * b->dt(), 1e-6 * 20000 * b->dt());
+  a->bonds(bonds);
+  EXPECT_TRUE(bonds.empty());
+}
+
+TEST(WetLaws, ProbedPullOffMatchesTheStatedFormula) {
+  const SceneConfig sticky = scene_with("[cohesion]\nmodel = \"sjkr\"\nenergy_density = 5e4\n");
+  const ContactModel model(sticky);
+  const double e_star = std::get<HertzNormal>(model.pair_normal()).e_star;
+  const double r_star = 0.002;
+  const SjkrCohesion& c = *model.adhesion();
+  LawProbeOptions o;
+  o.overlap = 1.5 * c.rest_overlap(e_star, r_star);
+  o.steps = 4000;
+  const LawCurve curve = probe_law(sticky, o);
+  double most_tensile = 0.0;
+  for (const LawSample& s : curve.samples) most_tensile = std::min(most_tensile, s.normal_force);
+  // F_pull from a^2 ~ 2 R* delta; the exact lens area differs by O(delta / r) ~ 1e-3.
+  EXPECT_NEAR(-most_tensile, c.pull_off_force(e_star, r_star),
+              0.01 * c.pull_off_force(e_star, r_star));
+}
+
+// ---------------------------------------------------------------- bad parameters
+
+TEST(WetLaws, BadWetParametersAreRefusedWithOneLine) {
+  TempDir dir("wet-laws-bad");
+  struct Case {
+    const char* what;
+    std::string tables;
+    const char* key;
+  };
+  const std::string liquid = "[liquid]\nsurface_tension = 0.072\n";
+  const std::vector<Case> cases = {
+      {"negative tension", "[liquid]\nsurface_tension = -0.07\nbridge_volume = 1e-9\n",
+       "liquid.surface_tension"},
+      {"angle 90", liquid + "contact_angle_deg = 90\nbridge_volume = 1e-9\n",
+       "liquid.contact_angle_deg"},
+      {"negative content", liquid + "liquid_content = -0.01\nmax_bridge_volume = 1e-9\n",
+       "liquid.liquid_content"},
+      {"zero max volume", liquid + "liquid_content = 0.01\nmax_bridge_volume = 0\n",
+       "liquid.max_bridge_volume"},
+      {"split above 1",
+       liquid + "liquid_content = 0.01\nmax_bridge_volume = 1e-9\nfilm_share = 2\n",
+       "liquid.film_share"},
+      {"both volumes", liquid + "liquid_content = 0.01\nbridge_volume = 1e-9\n",
+       "liquid.bridge_volume"},
+      {"viscosity without gap", liquid + "bridge_volume = 1e-9\nviscosity = 0.01\n",
+       "liquid.min_gap"},
+      {"wall angle", liquid + "bridge_volume = 1e-9\nwall_contact_angle_deg = 95\n",
+       "liquid.wall_contact_angle_deg"},
+      {"negative cohesion", "[cohesion]\nenergy_density = -5\n", "cohesion.energy_density"},
+      {"unknown cohesion", "[cohesion]\nmodel = \"jkr\"\nenergy_density = 5\n", "cohesion.model"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.what);
+    const auto file = dir.write("bad.toml", output_scene_text() + c.tables);
+    const CliResult r = run_cli("info " + file.string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.output.find(file.string()), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(c.key), std::string::npos) << r.output;
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  }
+}
+
+}  // namespace
+}  // namespace drumlab::test
