@@ -186,7 +186,7 @@ std::vector<SkipCase> make_cases(const SceneConfig& base, const std::string& met
   if (!base.liquid.enabled && !base.cohesion.enabled) {
     SkipCase c;
     c.name = "cohesion off";
-    c.general = "[cohesion] sjkr, energy_density 0";
+    c.general = "[cohesion] sjkr with energy_density 0";
     SceneConfig s = base;
     c.with_skip = {s, method, false};
     s.cohesion.enabled = true;

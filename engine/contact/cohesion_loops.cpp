@@ -37,7 +37,9 @@ double pair_attraction(const CohesiveParts& parts, Particles& p, double* film, I
   double pull = 0.0;
   if (const LiquidBridge* b = parts.bridge) {
     double* s = state + parts.bridge_offset;
-    if (s[0] > 0.0 && gap > b->pair.rupture_distance(s[0])) rupture(s, film, i, j);
+    if (s[0] > 0.0 && gap > 0.0 && gap > b->pair_rupture(s[0])) {
+      rupture(s, film, i, j);
+    }
     if (s[0] > 0.0) {
       s[1] += dt;
     } else if (gap <= 0.0) {
@@ -74,7 +76,7 @@ double pair_attraction(const CohesiveParts& parts, Particles& p, double* film, I
 WallGap wall_gap(const Drum& drum, WallPart part, const Vec3& x, double r) {
   if (part == WallPart::cap_low) return {x.z() - r, Vec3(0.0, 0.0, 1.0)};
   if (part == WallPart::cap_high) return {drum.depth() - x.z() - r, Vec3(0.0, 0.0, -1.0)};
-  const double rho = std::hypot(x.x(), x.y());
+  const double rho = std::sqrt(x.x() * x.x() + x.y() * x.y());
   if (rho == 0.0) return {drum.radius() - r, Vec3::Zero()};
   return {drum.radius() - rho - r, Vec3(-x.x() / rho, -x.y() / rho, 0.0)};
 }
@@ -102,10 +104,18 @@ void cohesion_pair_loop(const CohesiveParts& parts, Particles& p, ContactList& c
       const Index j = col[k];
       settle_dropped({static_cast<Index>(i), j});
       const Vec3 d = nearest_image(p.position[i], p.position[j], period);
-      const double dist = d.norm();
-      if (dist == 0.0) continue;
-      const double pull = pair_attraction(parts, p, film, static_cast<Index>(i), j, d, dist,
-                                          &state[k * stride], dt);
+      const double dist2 = d.squaredNorm();
+      double* st = &state[k * stride];
+      // Most listed pairs are apart, with no bridge and no adhesive contact: nothing to do (a
+      // bridge forms only on contact; sjkr acts only while overlapping).
+      const double sum_r = p.radius[i] + p.radius[j];
+      const bool bridged = parts.bridge != nullptr && st[parts.bridge_offset] > 0.0;
+      const bool stuck = parts.sjkr != nullptr && st[parts.sjkr_offset] > 0.0;
+      if (dist2 > sum_r * sum_r && !bridged && !stuck) continue;
+      if (dist2 == 0.0) continue;
+      const double dist = std::sqrt(dist2);
+      const double pull =
+          pair_attraction(parts, p, film, static_cast<Index>(i), j, d, dist, st, dt);
       if (pull == 0.0) continue;
       const Vec3 f = (pull / dist) * d;  // along i - j: attraction pulls i toward j
       p.force[i] -= f;
@@ -140,6 +150,7 @@ void cohesion_wall_loop(const CohesiveParts& parts, Particles& p, std::span<cons
     const double r = p.radius[i];
     for (std::size_t w = 0; w < n_parts; ++w) {
       const WallGap g = wall_gap(drum, static_cast<WallPart>(w), x, r);
+      if (g.gap > 0.0 && (b == nullptr || !(volume[w][i] > 0.0))) continue;  // nothing acts
       double pull = 0.0;
       if (b != nullptr) {
         double& v = volume[w][i];

@@ -50,11 +50,16 @@ inline constexpr std::array<std::string_view, 3> kWallBridgeAgeArrays = {
 struct BridgeLiquid {
   double surface_tension = 0.0;  ///< gamma, N/m
   double contact_angle = 0.0;    ///< theta, rad
+  double f0_per_radius = 0.0;    ///< 2 pi gamma cos(theta), N/m
+
+  BridgeLiquid() = default;
+  BridgeLiquid(double gamma, double theta)
+      : surface_tension(gamma),
+        contact_angle(theta),
+        f0_per_radius(2.0 * std::numbers::pi * gamma * std::cos(theta)) {}
 
   /// F0 = 2 pi R gamma cos(theta), N.
-  double touching_force(double r_eff) const {
-    return 2.0 * std::numbers::pi * r_eff * surface_tension * std::cos(contact_angle);
-  }
+  double touching_force(double r_eff) const { return f0_per_radius * r_eff; }
   /// s_rup = (1 + theta / 2) V^(1/3), m.
   double rupture_distance(double v) const { return (1.0 + 0.5 * contact_angle) * std::cbrt(v); }
   /// Force of a bridge of volume v at gap s (N, attractive, >= 0), for s <= s_rup.
@@ -86,6 +91,10 @@ struct LiquidBridge {
 
   /// The largest gap at which a particle-particle / particle-wall bridge can live (m).
   double range() const { return pair.rupture_distance(max_volume); }
+  /// s_rup of a particle-particle bridge of volume v (m); no cube root for the (common) largest.
+  double pair_rupture(double v) const {
+    return v == max_volume ? range() : pair.rupture_distance(v);
+  }
   double wall_range() const { return wall_bridges ? wall.rupture_distance(max_volume) : 0.0; }
 
   /// Viscous normal force (N, along the normal towards i: positive repulsive) of a live bridge:

@@ -78,13 +78,14 @@ TEST(CliBench, SkipsWritesOneRowPerSkipAndSamePhysicsAgrees) {
   const auto r = run_bench([&] { bench::run_bench_skips(opt); });
   ASSERT_TRUE(r.ok) << r.output;
   const auto lines = read_lines(out / "skips_tiny_skips.csv");
-  ASSERT_EQ(lines.size(), 7u) << r.output;
+  ASSERT_EQ(lines.size(), 8u) << r.output;
   EXPECT_EQ(lines[0],
             "scene,skip,general_path,measure,steps,repeats,with_skip_cpu_s_per_step,"
             "without_skip_cpu_s_per_step,gain_cpu,with_skip_wall_s_per_step,"
             "without_skip_wall_s_per_step,gain_wall,same_physics,max_dx_over_rmin,note");
   const std::vector<std::string> skips = {"friction 0",       "rolling 0",     "2D grid m2 vs m3",
-                                          "2D grid m2 vs m5", "periodic ends", "no writers"};
+                                          "2D grid m2 vs m5", "periodic ends", "cohesion off",
+                                          "no writers"};
   for (std::size_t k = 0; k < skips.size(); ++k) {
     const auto f = fields(lines[k + 1]);
     ASSERT_EQ(f.size(), 15u) << lines[k + 1];

@@ -9,11 +9,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
 
 #include "engine/contact/contact_model.hpp"
 #include "engine/contact/law_probe.hpp"
 #include "engine/io/checkpoint.hpp"
+#include "engine/scene/scene_features.hpp"
 #include "engine/search/contact_search.hpp"
 #include "tests/unit/cli_runner.hpp"
 #include "tests/unit/output_test_scene.hpp"
@@ -354,6 +357,55 @@ TEST(WetLaws, BadWetParametersAreRefusedWithOneLine) {
     EXPECT_NE(r.output.find(c.key), std::string::npos) << r.output;
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
   }
+}
+
+}  // namespace
+}  // namespace drumlab::test
+
+namespace drumlab::test {
+namespace {
+
+// ---------------------------------------------------------------- the shipped wet scenes
+
+TEST(WetScenes, GranulationScenesStateTheirBondNumberAndFormBridges) {
+  for (const char* name : {"granulation.toml", "granulation_small.toml"}) {
+    SCOPED_TRACE(name);
+    const SceneConfig scene = load_scene(std::string(DRUMLAB_SCENES_DIR) + "/" + name);
+    // The files' comments state Bo = 4.9 and Fr = 0.010.
+    EXPECT_NEAR(bond_number(scene, 0), 4.9, 0.05);
+    EXPECT_NEAR(scene.drum.omega * scene.drum.omega * 0.5 * scene.drum.diameter / 9.81, 0.010,
+                0.0005);
+  }
+  const SceneConfig small = load_scene(std::string(DRUMLAB_SCENES_DIR) + "/granulation_small.toml");
+  Simulation sim(small, random_fill(small));
+  const double total = sim.liquid().total();
+  sim.advance(1500);
+  const LiquidTotals t = sim.liquid();
+  EXPECT_GT(t.bridge_count, sim.particles().size());  // more than one bridge per particle
+  EXPECT_GT(t.wall_bridge_count, 10u);
+  EXPECT_NEAR(t.total(), total, 1e-12 * total);
+}
+
+TEST(WetScenes, LawCommandWritesCsvAndRefusesBadClasses) {
+  TempDir dir("wet-laws-cli");
+  const std::string scene = std::string(DRUMLAB_SCENES_DIR) + "/granulation_small.toml";
+  const CliResult ok = run_cli("law " + scene + " --wall granule --out " + dir.path().string());
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  EXPECT_NE(ok.output.find("rupture           between"), std::string::npos) << ok.output;
+  std::ifstream csv(dir.path() / "law.csv");
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header, "gap_or_overlap_m,normal_force_N,bridge_volume_m3,branch");
+  std::size_t rows = 0, retreat = 0;
+  for (std::string line; std::getline(csv, line); ++rows) retreat += line.ends_with(",retreat");
+  EXPECT_EQ(rows, 800u);
+  EXPECT_EQ(retreat, 400u);
+  const CliResult bad =
+      run_cli("law " + scene + " --pair granule,pebble --out " + (dir.path() / "bad").string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.output.find("no particle class 'pebble'"), std::string::npos) << bad.output;
+  EXPECT_EQ(std::count(bad.output.begin(), bad.output.end(), '\n'), 1) << bad.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "bad" / "law.csv"));
 }
 
 }  // namespace
