@@ -74,6 +74,18 @@ TEST(AgglomerateOutputs, SeriesStoresTheBondGraphOfAWetDrum) {
   const std::string x = read_text(dir.path() / "wet.xdmf");
   EXPECT_EQ(count_of(x, "/frame_000000/agglomerate_id"), 1u);
   EXPECT_EQ(count_of(x, "/frame_000000/liquid_volume"), 1u);
+
+  // With a film array (liquid migration registers one), liquid_volume is the film.
+  Particles with_film = sim->particles();
+  std::vector<double>& film = with_film.add_array(kLiquidFilmArray);
+  for (std::size_t i = 0; i < film.size(); ++i) film[i] = 1e-12 * static_cast<double>(i);
+  {
+    H5Series series(dir.path() / "film.h5");
+    const SeriesBondFrame b{bonds, frame.label, 0.0, scene.drum.omega};
+    series.write_frame(with_film, sim->time(), sim->steps(), &b);
+    series.finish();
+  }
+  EXPECT_EQ(read_series_frame(dir.path() / "film.h5", 0).film, film);
 }
 
 TEST(AgglomerateOutputs, AnalyzeOfTheRunsSeriesEqualsTheRunsTable) {
