@@ -134,6 +134,13 @@ Handle create_disk_file(const std::filesystem::path& path) {
   return f;
 }
 
+Handle open_file_rw(const std::filesystem::path& path) {
+  quiet();
+  Handle f(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose);
+  if (f.get() < 0) throw InputError(fmt::format("{}: cannot open for writing", path.string()));
+  return f;
+}
+
 void flush(hid_t file) {
   if (H5Fflush(file, H5F_SCOPE_LOCAL) < 0) {
     throw InputError(fmt::format("{}: write failed (disk full?)", file_of(file)));
@@ -188,6 +195,13 @@ Handle create_group(hid_t loc, const std::string& name) {
   Handle g(H5Gcreate2(loc, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
   if (g.get() < 0) fail(loc, name, "cannot create group");
   return g;
+}
+
+Handle open_dataset(hid_t loc, const std::string& name) {
+  if (!exists(loc, name)) fail(loc, name, "missing dataset");
+  Handle set(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (set.get() < 0) fail(loc, name, "cannot open dataset");
+  return set;
 }
 
 Handle open_group(hid_t loc, const std::string& name) {
