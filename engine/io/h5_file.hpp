@@ -43,7 +43,8 @@ Handle create_memory_file(const std::string& label);
 /// Writes the image of a memory file to `path` (temporary name, then rename) and closes it.
 /// Throws InputError naming the path if it cannot be written; nothing is left under that name.
 void save_memory_file(Handle& file, const std::filesystem::path& path);
-/// Creates (truncates) an HDF5 file on disk for a series streamed frame by frame (sec2 driver).
+/// Creates (truncates) an HDF5 file on disk for a series streamed frame by frame (sec2 driver,
+/// without HDF5's file lock, as open_file_rw: a reader between frames must not stop the writer).
 /// Throws InputError naming the path.
 Handle create_disk_file(const std::filesystem::path& path);
 /// Opens an existing file for appending (sec2 driver). Throws InputError naming the path.
