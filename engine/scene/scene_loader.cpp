@@ -274,7 +274,7 @@ void read_drum(const Scope& root, SceneConfig& scene) {
   if (!(tilt_deg >= 0.0 && tilt_deg < 90.0)) {
     s.fail("tilt_deg", fmt::format("must be in [0, 90) degrees, got {}", tilt_deg));
   }
-  d.tilt = tilt_deg * std::numbers::pi / 180.0;
+  d.tilt = tilt_from_degrees(tilt_deg);
   const std::string ends = s.string("ends").value_or("caps");
   if (ends == "caps") {
     d.ends = DrumEnds::caps;
@@ -348,6 +348,7 @@ void read_file_fill(const Scope& s, SceneConfig& scene) {
   if (file->empty()) s.fail("file", "must not be empty");
   std::filesystem::path path(*file);
   if (path.is_relative()) path = std::filesystem::path(scene.source).parent_path() / path;
+  path = path.lexically_normal();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
     s.fail("file", fmt::format("cannot read particle file {}", path.string()));
@@ -412,7 +413,7 @@ void read_time(const Scope& root, SceneConfig& scene) {
 }
 
 void read_output(const Scope& root, SceneConfig& scene) {
-  scene.output.directory = "out/" + scene.name;
+  scene.output.directory = default_output_directory(scene.name);
   const auto s = root.table("output");
   if (!s) return;
   s->allow_only({"directory", "diagnostics_every"});

@@ -1,0 +1,427 @@
+// The scene writer (engine/scene/scene_writer.hpp): every shipped scene and every key written loads
+// back to the same SceneConfig, bit for bit; every field of SceneConfig changes the written text
+// (the field table below fails to compile when a field is added without being listed); a failed
+// save leaves no file.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "engine/scene/scene_config.hpp"
+#include "engine/scene/scene_writer.hpp"
+#include "tests/unit/cli_runner.hpp"
+
+namespace drumlab {
+namespace {
+
+namespace fs = std::filesystem;
+using test::TempDir;
+
+/// Parses `scene`'s text under the same source name and expects the same config; prints both
+/// texts when they differ (the difference shows as a differing line).
+void expect_round_trip(const SceneConfig& scene) {
+  const std::string text = scene_to_toml(scene);
+  SceneConfig back;
+  try {
+    back = parse_scene(text, scene.source);
+  } catch (const InputError& e) {
+    ADD_FAILURE() << "written scene does not load: " << e.what() << "\n" << text;
+    return;
+  }
+  EXPECT_TRUE(back == scene) << "written:\n" << text << "\nloads back as:\n" << scene_to_toml(back);
+}
+
+/// Every optional key set to a value other than its default (the random fill).
+const char* const kEveryKey = R"(name = "every_key"
+description = "every optional key, \"quoted\" and non-default"
+gravity = [0.5, -9.0, 0.25]
+search = "verlet:m3"
+
+[drum]
+diameter = 0.9
+depth = 0.15
+rpm = 7.0
+tilt_deg = 17.3
+ends = "periodic"
+
+[[particles]]
+name = "small"
+radius = 0.005
+volume_fraction = 0.3
+
+[[particles]]
+name = "large"
+radius = 0.0123456789
+volume_fraction = 0.7
+
+[material]
+density = 2600.0
+youngs_modulus = 1.1e7
+poisson_ratio = 0.25
+restitution = 0.6
+friction = 0.4
+rolling_friction = 0.01
+
+[wall]
+youngs_modulus = 2e7
+poisson_ratio = 0.2
+restitution = 0.8
+friction = 0.1
+rolling_friction = 0.02
+
+[contact]
+normal = "linear"
+linear_stiffness = 1e5
+
+[liquid]
+surface_tension = 0.072
+contact_angle_deg = 20.0
+bridge_volume = 1e-9
+
+[fill]
+kind = "random"
+count = 1234
+volume_fraction = 0.3
+seed = 42
+settle_time = 0.25
+
+[time]
+dt_factor = 0.15
+duration = 1.5
+
+[performance]
+verlet_skin = 0.7
+sort_every = 50
+
+[output]
+directory = "elsewhere/x"
+diagnostics_every = 50
+)";
+
+/// The paper's packing, with an explicit dt and revolutions.
+const char* const kPaperPacking = R"(name = "packing"
+description = "paper packing"
+[drum]
+diameter = 2.0
+depth = 0.2
+omega = 1.0
+[[particles]]
+radius = 0.005
+volume_fraction = 0.2
+[[particles]]
+radius = 0.01
+volume_fraction = 0.3
+[[particles]]
+radius = 0.015
+volume_fraction = 0.5
+[material]
+density = 2500.0
+youngs_modulus = 5e6
+poisson_ratio = 0.3
+restitution = 0.5
+friction = 0.5
+[fill]
+kind = "paper_packing"
+box = [0.3, 0.2, 0.1]
+[time]
+dt = 2e-5
+revolutions = 0.5
+)";
+
+/// A file fill; the CSV lies beside the scene ("packing.csv").
+const char* const kFileFill = R"(name = "from_file"
+[drum]
+diameter = 0.5
+depth = 0.1
+omega = 1.0
+[[particles]]
+radius = 0.01
+[material]
+density = 2500.0
+youngs_modulus = 5e6
+poisson_ratio = 0.3
+restitution = 0.5
+friction = 0.5
+[fill]
+kind = "file"
+file = "packing.csv"
+settle_time = 0.1
+[time]
+duration = 0.2
+)";
+
+const char* const kCsv = "x,y,z,r\n0,-0.1,0.05,0.01\n";
+
+TEST(SceneWriter, EveryShippedSceneRoundTrips) {
+  int scenes = 0;
+  for (const auto& entry : fs::directory_iterator(DRUMLAB_SCENES_DIR)) {
+    if (entry.path().extension() != ".toml") continue;
+    SCOPED_TRACE(entry.path().string());
+    expect_round_trip(load_scene(entry.path()));
+    ++scenes;
+  }
+  EXPECT_GE(scenes, 10);
+}
+
+TEST(SceneWriter, EveryOptionalKeyRoundTrips) {
+  const SceneConfig scene = parse_scene(kEveryKey, "every_key.toml");
+  ASSERT_TRUE(scene.liquid.enabled);
+  ASSERT_NE(scene.wall, scene.material);
+  expect_round_trip(scene);
+  expect_round_trip(parse_scene(kPaperPacking, "packing.toml"));
+  TempDir dir("scene-writer-keys");
+  dir.write("packing.csv", kCsv);
+  expect_round_trip(parse_scene(kFileFill, (dir.path() / "from_file.toml").string()));
+}
+
+TEST(SceneWriter, NumbersAreShortAndExact) {
+  const SceneConfig scene = parse_scene(kEveryKey, "every_key.toml");
+  const std::string text = scene_to_toml(scene);
+  EXPECT_NE(text.find("radius = 0.0123456789\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("tilt_deg = 17.3\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("density = 2600.0\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("bridge_volume = 1e-09\n"), std::string::npos) << text;
+  // Defaults of [wall] are the material's: only the differing keys are written.
+  SceneConfig same_wall = scene;
+  same_wall.wall = same_wall.material;
+  EXPECT_EQ(scene_to_toml(same_wall).find("[wall]"), std::string::npos);
+}
+
+TEST(SceneWriter, TiltInDegreesIsTheShortestExactDecimal) {
+  for (int tenth = 0; tenth < 900; ++tenth) {
+    const double degrees = tenth / 10.0;
+    const double radians = tilt_from_degrees(degrees);
+    EXPECT_EQ(tilt_from_degrees(tilt_in_degrees(radians)), radians) << degrees;
+    EXPECT_EQ(tilt_in_degrees(radians), degrees) << degrees;
+  }
+}
+
+TEST(SceneWriter, FilePathIsRelativeToTheSavedScene) {
+  TempDir dir("scene-writer-path");
+  fs::create_directories(dir.path() / "data");
+  fs::create_directories(dir.path() / "scenes");
+  dir.write("data/packing.csv", kCsv);
+  std::string text = kFileFill;
+  text.replace(text.find("\"packing.csv\""), 13, "\"../data/packing.csv\"");
+  const SceneConfig scene = parse_scene(text, (dir.path() / "scenes" / "a.toml").string());
+  EXPECT_EQ(scene.fill.file, dir.path() / "data" / "packing.csv");
+
+  // Saved elsewhere: the path is written relative to the new folder and loads the same file.
+  fs::create_directories(dir.path() / "saved" / "deeper");
+  const fs::path saved = dir.path() / "saved" / "deeper" / "b.toml";
+  save_scene(scene, saved);
+  std::ifstream in(saved);
+  const std::string written((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(written.find("file = \"../../data/packing.csv\""), std::string::npos) << written;
+  SceneConfig back = load_scene(saved);
+  EXPECT_EQ(back.source, saved.string());
+  back.source = scene.source;
+  EXPECT_TRUE(back == scene) << written;
+
+  // The whole tree moved: the relative path still finds the CSV.
+  const fs::path moved = dir.path().string() + "-moved";
+  fs::remove_all(moved);
+  fs::rename(dir.path(), moved);
+  const SceneConfig from_moved = load_scene(moved / "saved" / "deeper" / "b.toml");
+  EXPECT_EQ(from_moved.fill.file, moved / "data" / "packing.csv");
+  fs::rename(moved, dir.path());
+}
+
+TEST(SceneWriter, UnwritablePathIsOneLineAndLeavesNoFile) {
+  const SceneConfig scene = parse_scene(kEveryKey, "every_key.toml");
+  TempDir dir("scene-writer-bad");
+  const fs::path missing_folder = dir.path() / "no_such_folder" / "s.toml";
+  const fs::path is_a_folder = dir.path() / "a_folder";
+  fs::create_directories(is_a_folder);
+  for (const fs::path& file : {missing_folder, is_a_folder}) {
+    SCOPED_TRACE(file.string());
+    std::string message;
+    try {
+      save_scene(scene, file);
+    } catch (const InputError& e) {
+      message = e.what();
+    }
+    EXPECT_NE(message.find(file.string()), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+  EXPECT_FALSE(fs::exists(missing_folder));
+  EXPECT_TRUE(fs::is_directory(is_a_folder));
+  // Nothing else left behind (no temporary).
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 1);
+  EXPECT_TRUE(fs::is_empty(is_a_folder));
+}
+
+TEST(SceneWriter, SeedBeyondTomlIntegersIsRefusedNamingTheKey) {
+  SceneConfig scene = parse_scene(kEveryKey, "every_key.toml");
+  scene.fill.seed = ~std::uint64_t{0};
+  TempDir dir("scene-writer-seed");
+  const fs::path file = dir.path() / "s.toml";
+  try {
+    save_scene(scene, file);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("fill.seed"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(file));
+}
+
+// ---- every field is written ----------------------------------------------------------------
+
+/// The number of fields of each config struct, checked by a structured binding: adding a field
+/// makes this fail to compile. Then give the field a setter in `field_setters()`, write it in
+/// engine/scene/scene_writer.cpp and raise its count here.
+constexpr int kSceneFields = 15, kDrumFields = 5, kClassFields = 3, kMaterialFields = 6,
+              kContactFields = 2, kLiquidFields = 4, kFillFields = 7, kTimeFields = 4,
+              kPerformanceFields = 2, kOutputFields = 2;
+
+[[maybe_unused]] void field_counts(const SceneConfig& s) {
+  [[maybe_unused]] const auto& [name, source, description, gravity, drum, classes, material, wall,
+                                contact, liquid, fill, time, search, performance, output] = s;
+  [[maybe_unused]] const auto& [diameter, depth, omega, tilt, ends] = s.drum;
+  [[maybe_unused]] const auto& [class_name, radius, class_fraction] = s.classes.front();
+  [[maybe_unused]] const auto& [density, youngs, poisson, restitution, friction, rolling] =
+      s.material;
+  [[maybe_unused]] const auto& [normal, stiffness] = s.contact;
+  [[maybe_unused]] const auto& [enabled, tension, angle, volume] = s.liquid;
+  [[maybe_unused]] const auto& [kind, count, fraction, seed, settle, box, file] = s.fill;
+  [[maybe_unused]] const auto& [dt, dt_factor, duration, revolutions] = s.time;
+  [[maybe_unused]] const auto& [skin, sort_every] = s.performance;
+  [[maybe_unused]] const auto& [directory, diagnostics] = s.output;
+}
+
+enum class Base { every_key, paper_packing, file_fill };
+
+struct FieldSetter {
+  std::string field;  ///< "struct.field" (the struct's scene table, or "scene" for the top level)
+  Base base;
+  std::function<void(SceneConfig&)> set;
+};
+
+std::vector<FieldSetter> field_setters(const fs::path& other_csv) {
+  using B = Base;
+  return {
+      {"scene.name", B::every_key, [](SceneConfig& s) { s.name = "renamed"; }},
+      {"scene.description", B::every_key,
+       [](SceneConfig& s) { s.description = "tab\t, newline\n, quote \", backslash \\, µm"; }},
+      {"scene.gravity", B::every_key, [](SceneConfig& s) { s.gravity.z() = 0.125; }},
+      {"scene.search_method", B::every_key, [](SceneConfig& s) { s.search_method = "mlgrid"; }},
+      {"drum.diameter", B::every_key, [](SceneConfig& s) { s.drum.diameter = 0.95; }},
+      {"drum.depth", B::every_key, [](SceneConfig& s) { s.drum.depth = 0.2; }},
+      {"drum.omega", B::every_key, [](SceneConfig& s) { s.drum.omega = 0.1 + 0.2; }},
+      {"drum.tilt", B::every_key, [](SceneConfig& s) { s.drum.tilt = tilt_from_degrees(45.0); }},
+      {"drum.ends", B::every_key, [](SceneConfig& s) { s.drum.ends = DrumEnds::caps; }},
+      {"classes.name", B::every_key, [](SceneConfig& s) { s.classes[0].name = "tiny"; }},
+      {"classes.radius", B::every_key, [](SceneConfig& s) { s.classes[0].radius = 0.004; }},
+      {"classes.volume_fraction", B::every_key,
+       [](SceneConfig& s) {
+         s.classes[0].volume_fraction = 0.25;
+         s.classes[1].volume_fraction = 0.75;
+       }},
+      // The loader gives the wall the material's density (the wall has no density key).
+      {"material.density", B::every_key,
+       [](SceneConfig& s) { s.material.density = s.wall.density = 2700.0; }},
+      {"material.youngs_modulus", B::every_key,
+       [](SceneConfig& s) { s.material.youngs_modulus = 3e6; }},
+      {"material.poisson_ratio", B::every_key,
+       [](SceneConfig& s) { s.material.poisson_ratio = 0.35; }},
+      {"material.restitution", B::every_key, [](SceneConfig& s) { s.material.restitution = 0.9; }},
+      {"material.friction", B::every_key, [](SceneConfig& s) { s.material.friction = 0.0; }},
+      {"material.rolling_friction", B::every_key,
+       [](SceneConfig& s) { s.material.rolling_friction = 0.05; }},
+      // The wall's density is not a key (the wall has none): five wall fields.
+      {"wall.youngs_modulus", B::every_key, [](SceneConfig& s) { s.wall.youngs_modulus = 4e7; }},
+      {"wall.poisson_ratio", B::every_key, [](SceneConfig& s) { s.wall.poisson_ratio = 0.1; }},
+      {"wall.restitution", B::every_key, [](SceneConfig& s) { s.wall.restitution = 0.7; }},
+      {"wall.friction", B::every_key, [](SceneConfig& s) { s.wall.friction = 0.3; }},
+      {"wall.rolling_friction", B::every_key,
+       [](SceneConfig& s) { s.wall.rolling_friction = 0.0; }},
+      {"contact.normal", B::every_key,
+       [](SceneConfig& s) {
+         s.contact.normal = NormalLaw::hertz;
+         s.contact.linear_stiffness = 0.0;
+       }},
+      {"contact.linear_stiffness", B::every_key,
+       [](SceneConfig& s) { s.contact.linear_stiffness = 2.5e5; }},
+      {"liquid.enabled", B::every_key, [](SceneConfig& s) { s.liquid = LiquidConfig{}; }},
+      {"liquid.surface_tension", B::every_key,
+       [](SceneConfig& s) { s.liquid.surface_tension = 0.05; }},
+      {"liquid.contact_angle_deg", B::every_key,
+       [](SceneConfig& s) { s.liquid.contact_angle_deg = 0.0; }},
+      {"liquid.bridge_volume", B::every_key, [](SceneConfig& s) { s.liquid.bridge_volume = 3e-9; }},
+      {"fill.kind", B::file_fill,
+       [](SceneConfig& s) {
+         s.fill.kind = FillKind::random;
+         s.fill.count = 10;
+         s.fill.file.clear();
+       }},
+      {"fill.count", B::every_key, [](SceneConfig& s) { s.fill.count = 99; }},
+      {"fill.volume_fraction", B::every_key, [](SceneConfig& s) { s.fill.volume_fraction = 0.5; }},
+      {"fill.seed", B::every_key, [](SceneConfig& s) { s.fill.seed = 0; }},
+      {"fill.settle_time", B::file_fill, [](SceneConfig& s) { s.fill.settle_time = 0.0; }},
+      {"fill.box", B::paper_packing, [](SceneConfig& s) { s.fill.box.y() = 0.4; }},
+      {"fill.file", B::file_fill, [other_csv](SceneConfig& s) { s.fill.file = other_csv; }},
+      {"time.dt", B::paper_packing, [](SceneConfig& s) { s.time.dt.reset(); }},
+      {"time.dt_factor", B::every_key, [](SceneConfig& s) { s.time.dt_factor = 0.5; }},
+      {"time.duration", B::every_key, [](SceneConfig& s) { s.time.duration = 2.0 / 3.0; }},
+      {"time.revolutions", B::paper_packing, [](SceneConfig& s) { s.time.revolutions = 1e-3; }},
+      {"performance.verlet_skin", B::every_key,
+       [](SceneConfig& s) { s.performance.verlet_skin = 0.3; }},
+      {"performance.sort_every", B::every_key,
+       [](SceneConfig& s) { s.performance.sort_every = 0; }},
+      {"output.directory", B::every_key, [](SceneConfig& s) { s.output.directory = "o u t"; }},
+      {"output.diagnostics_every", B::every_key,
+       [](SceneConfig& s) { s.output.diagnostics_every = 1; }},
+  };
+}
+
+TEST(SceneWriter, EveryFieldChangesTheTextAndRoundTrips) {
+  TempDir dir("scene-writer-fields");
+  dir.write("packing.csv", kCsv);
+  const fs::path other_csv = dir.write("other.csv", kCsv);
+  const SceneConfig bases[] = {parse_scene(kEveryKey, "every_key.toml"),
+                               parse_scene(kPaperPacking, "packing.toml"),
+                               parse_scene(kFileFill, (dir.path() / "from_file.toml").string())};
+  const auto setters = field_setters(other_csv);
+  for (const FieldSetter& setter : setters) {
+    SCOPED_TRACE(setter.field);
+    const SceneConfig& base = bases[static_cast<int>(setter.base)];
+    SceneConfig changed = base;
+    setter.set(changed);
+    ASSERT_FALSE(changed == base) << "test bug: the setter changes nothing";
+    EXPECT_NE(scene_to_toml(changed), scene_to_toml(base));
+    expect_round_trip(changed);
+  }
+  // One setter per field (`source` is where the scene came from, not a key; the wall's density is
+  // unused); the counts are those of field_counts above.
+  auto count = [&](std::string_view prefix) {
+    return std::count_if(setters.begin(), setters.end(),
+                         [&](const FieldSetter& s) { return s.field.starts_with(prefix); });
+  };
+  EXPECT_EQ(count("scene."), kSceneFields - 11);  // name, description, gravity, search
+  EXPECT_EQ(count("drum."), kDrumFields);
+  EXPECT_EQ(count("classes."), kClassFields);
+  EXPECT_EQ(count("material."), kMaterialFields);
+  EXPECT_EQ(count("wall."), kMaterialFields - 1);
+  EXPECT_EQ(count("contact."), kContactFields);
+  EXPECT_EQ(count("liquid."), kLiquidFields);
+  EXPECT_EQ(count("fill."), kFillFields);
+  EXPECT_EQ(count("time."), kTimeFields);
+  EXPECT_EQ(count("performance."), kPerformanceFields);
+  EXPECT_EQ(count("output."), kOutputFields);
+}
+
+TEST(SceneWriter, AddingAClassIsWritten) {
+  const SceneConfig base = parse_scene(kEveryKey, "every_key.toml");
+  SceneConfig changed = base;
+  changed.classes[1].volume_fraction = 0.5;
+  changed.classes.push_back({"third", 0.02, 0.2});
+  expect_round_trip(changed);
+}
+
+}  // namespace
+}  // namespace drumlab
