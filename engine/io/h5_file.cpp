@@ -127,10 +127,33 @@ Handle create_memory_file(const std::string& label) {
   return f;
 }
 
+namespace {
+
+/// File access without HDF5's file lock: a reader that opens a streamed series between frames
+/// (ParaView, h5ls) must not make the writer's next open fail.
+Handle unlocked_access(const std::filesystem::path& path) {
+  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+  if (fapl.get() < 0 || H5Pset_file_locking(fapl.get(), false, true) < 0) {
+    throw InputError(fmt::format("{}: cannot set up HDF5 file access", path.string()));
+  }
+  return fapl;
+}
+
+}  // namespace
+
 Handle create_disk_file(const std::filesystem::path& path) {
   quiet();
-  Handle f(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  const Handle fapl = unlocked_access(path);
+  Handle f(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose);
   if (f.get() < 0) throw InputError(fmt::format("{}: cannot create an HDF5 file", path.string()));
+  return f;
+}
+
+Handle open_file_rw(const std::filesystem::path& path) {
+  quiet();
+  const Handle fapl = unlocked_access(path);
+  Handle f(H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.get()), H5Fclose);
+  if (f.get() < 0) throw InputError(fmt::format("{}: cannot open for writing", path.string()));
   return f;
 }
 
@@ -188,6 +211,13 @@ Handle create_group(hid_t loc, const std::string& name) {
   Handle g(H5Gcreate2(loc, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
   if (g.get() < 0) fail(loc, name, "cannot create group");
   return g;
+}
+
+Handle open_dataset(hid_t loc, const std::string& name) {
+  if (!exists(loc, name)) fail(loc, name, "missing dataset");
+  Handle set(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (set.get() < 0) fail(loc, name, "cannot open dataset");
+  return set;
 }
 
 Handle open_group(hid_t loc, const std::string& name) {

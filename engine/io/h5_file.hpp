@@ -43,9 +43,12 @@ Handle create_memory_file(const std::string& label);
 /// Writes the image of a memory file to `path` (temporary name, then rename) and closes it.
 /// Throws InputError naming the path if it cannot be written; nothing is left under that name.
 void save_memory_file(Handle& file, const std::filesystem::path& path);
-/// Creates (truncates) an HDF5 file on disk for a series streamed frame by frame (sec2 driver).
+/// Creates (truncates) an HDF5 file on disk for a series streamed frame by frame (sec2 driver,
+/// without HDF5's file lock, as open_file_rw: a reader between frames must not stop the writer).
 /// Throws InputError naming the path.
 Handle create_disk_file(const std::filesystem::path& path);
+/// Opens an existing file for appending (sec2 driver). Throws InputError naming the path.
+Handle open_file_rw(const std::filesystem::path& path);
 /// Writes everything HDF5 holds for `file` to disk (H5Fflush); throws InputError naming the
 /// file if it cannot (disk full).
 void flush(hid_t file);
@@ -58,6 +61,7 @@ Handle open_file(const std::filesystem::path& path);
 void check_writable(const std::filesystem::path& path);
 
 Handle create_group(hid_t loc, const std::string& name);
+Handle open_dataset(hid_t loc, const std::string& name);
 Handle open_group(hid_t loc, const std::string& name);
 bool exists(hid_t loc, const std::string& name);
 /// Number of values in a dataset (product of its dimensions); throws InputError if missing.

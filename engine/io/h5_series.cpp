@@ -1,5 +1,6 @@
 #include "engine/io/h5_series.hpp"
 
+#include <chrono>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_map>
@@ -11,10 +12,65 @@
 
 namespace drumlab {
 
+namespace {
+
+void data_item(std::ostringstream& x, const std::string& h5_name, const std::string& path,
+               std::size_t n, int components, const char* number_type, int precision) {
+  const std::string dims =
+      components > 1 ? fmt::format("{} {}", n, components) : fmt::format("{}", n);
+  x << fmt::format(
+      "          <DataItem Dimensions=\"{}\" NumberType=\"{}\" Precision=\"{}\" "
+      "Format=\"HDF\">{}:{}</DataItem>\n",
+      dims, number_type, precision, h5_name, path);
+}
+
+void attribute(std::ostringstream& x, const std::string& h5_name, const std::string& group,
+               const char* name, const char* dataset, std::size_t n, bool vector,
+               const char* number_type, int precision) {
+  x << fmt::format("        <Attribute Name=\"{}\" AttributeType=\"{}\" Center=\"Node\">\n", name,
+                   vector ? "Vector" : "Scalar");
+  data_item(x, h5_name, "/" + group + "/" + dataset, n, vector ? 3 : 1, number_type, precision);
+  x << "        </Attribute>\n";
+}
+
+constexpr const char* kXdmfHead =
+    "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
+    "<Xdmf Version=\"3.0\" xmlns:xi=\"http://www.w3.org/2001/XInclude\">\n  <Domain>\n"
+    "    <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+constexpr const char* kXdmfTail = "    </Grid>\n  </Domain>\n</Xdmf>\n";
+
+/// The Uniform grid of frame k.
+std::string xdmf_frame_grid(const std::string& h5_name, std::size_t k, double time, std::size_t n,
+                            bool with_bonds) {
+  std::ostringstream x;
+  const std::string g = h5_frame_group(k);
+  x << fmt::format("      <Grid Name=\"{}\" GridType=\"Uniform\">\n", g);
+  x << fmt::format("        <Time Value=\"{:.17g}\"/>\n", time);
+  x << fmt::format(
+      "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"{}\" "
+      "NodesPerElement=\"1\"/>\n",
+      n);
+  x << "        <Geometry GeometryType=\"XYZ\">\n";
+  data_item(x, h5_name, "/" + g + "/position", n, 3, "Float", 8);
+  x << "        </Geometry>\n";
+  attribute(x, h5_name, g, "velocity", "velocity", n, true, "Float", 8);
+  attribute(x, h5_name, g, "angular_velocity", "omega", n, true, "Float", 8);
+  attribute(x, h5_name, g, "radius", "radius", n, false, "Float", 8);
+  attribute(x, h5_name, g, "id", "id", n, false, "UInt", 4);
+  attribute(x, h5_name, g, "size_class", "size_class", n, false, "UChar", 1);
+  if (with_bonds) {
+    attribute(x, h5_name, g, "agglomerate_id", "agglomerate_id", n, false, "UInt", 4);
+    attribute(x, h5_name, g, "liquid_volume", "liquid_volume", n, false, "Float", 8);
+  }
+  x << "      </Grid>\n";
+  return x.str();
+}
+
+}  // namespace
+
 struct H5Series::Impl {
-  h5::Handle file;
-  h5::Handle time;
-  h5::Handle step;
+  h5::Handle file;  ///< open only while a frame is written
+  bool created = false;
 };
 
 std::string h5_frame_group(std::size_t k) {
@@ -26,13 +82,7 @@ H5Series::H5Series(std::filesystem::path file)
   h5::check_writable(file_);  // fail before the run, not at its first frame
 }
 
-H5Series::~H5Series() {
-  if (impl_->file.get() >= 0) {
-    impl_->time.reset();
-    impl_->step.reset();
-    impl_->file.reset();
-  }
-}
+H5Series::~H5Series() = default;
 
 std::filesystem::path H5Series::xdmf_file() const {
   std::filesystem::path x = file_;
@@ -41,8 +91,6 @@ std::filesystem::path H5Series::xdmf_file() const {
 }
 
 void H5Series::discard() noexcept {
-  impl_->time.reset();
-  impl_->step.reset();
   impl_->file.reset();
   std::error_code ignored;
   std::filesystem::remove(file_, ignored);
@@ -50,9 +98,27 @@ void H5Series::discard() noexcept {
   finished_ = true;  // nothing more is written
 }
 
+void H5Series::open_for_writing() {
+  if (impl_->created) {
+    impl_->file = h5::open_file_rw(file_);
+    return;
+  }
+  impl_->file = h5::create_disk_file(file_);
+  h5::create_growing_doubles(impl_->file.get(), "time");
+  h5::create_growing_u64(impl_->file.get(), "step");
+  impl_->created = true;
+}
+
+void H5Series::close_after_writing() {
+  h5::flush(impl_->file.get());
+  if (!impl_->file.reset()) {
+    throw InputError(fmt::format("{}: write failed (disk full?)", file_.string()));
+  }
+}
+
 void H5Series::write_sidecar() const {
-  const std::string text = xdmf_for_series(file_.filename().string(), times_, counts_, with_bonds_);
-  write_file_atomically(xdmf_file(), [&](std::ostream& out) { out << text; });
+  write_file_atomically(xdmf_file(),
+                        [&](std::ostream& out) { out << kXdmfHead << xdmf_grids_ << kXdmfTail; });
 }
 
 namespace {
@@ -92,11 +158,7 @@ void H5Series::write_frame(const Particles& p, double time, std::uint64_t step,
                            const SeriesBondFrame* bonds) {
   if (finished_) throw std::logic_error("H5Series: write after finish");
   try {
-    if (impl_->file.get() < 0) {
-      impl_->file = h5::create_disk_file(file_);
-      impl_->time = h5::create_growing_doubles(impl_->file.get(), "time");
-      impl_->step = h5::create_growing_u64(impl_->file.get(), "step");
-    }
+    open_for_writing();
     const hid_t f = impl_->file.get();
     {
       h5::Handle g = h5::create_group(f, h5_frame_group(times_.size()));
@@ -111,13 +173,20 @@ void H5Series::write_frame(const Particles& p, double time, std::uint64_t step,
       if (bonds) write_bond_frame(g.get(), p, *bonds);
     }
     // The frame counts once its time is listed; then it goes to disk.
-    h5::append(impl_->time.get(), time);
-    h5::append(impl_->step.get(), step);
-    h5::flush(f);
+    h5::append(h5::open_dataset(f, "time").get(), time);
+    h5::append(h5::open_dataset(f, "step").get(), step);
+    close_after_writing();
+    xdmf_grids_ +=
+        xdmf_frame_grid(file_.filename().string(), times_.size(), time, p.size(), bonds != nullptr);
     times_.push_back(time);
-    counts_.push_back(p.size());
-    with_bonds_.push_back(bonds != nullptr);
-    write_sidecar();
+    // The sidecar lists every frame of a short series; past kSidecarEveryFrame frames it is
+    // rewritten at most every kSidecarInterval of wall time (its size grows with the frames, so
+    // rewriting it after each of thousands of fast frames would cost more than the run).
+    const auto now = std::chrono::steady_clock::now();
+    if (times_.size() <= kSidecarEveryFrame || now - last_sidecar_ >= kSidecarInterval) {
+      write_sidecar();
+      last_sidecar_ = now;
+    }
   } catch (...) {
     discard();
     throw;
@@ -127,18 +196,9 @@ void H5Series::write_frame(const Particles& p, double time, std::uint64_t step,
 void H5Series::finish() {
   if (finished_) return;
   try {
-    if (impl_->file.get() < 0) {  // no frame: an empty, complete series
-      impl_->file = h5::create_disk_file(file_);
-      impl_->time = h5::create_growing_doubles(impl_->file.get(), "time");
-      impl_->step = h5::create_growing_u64(impl_->file.get(), "step");
-    }
+    open_for_writing();  // without a frame: an empty, complete series
     h5::write_attribute(impl_->file.get(), "complete", std::uint64_t{1});
-    impl_->time.reset();
-    impl_->step.reset();
-    h5::flush(impl_->file.get());
-    if (!impl_->file.reset()) {
-      throw InputError(fmt::format("{}: write failed (disk full?)", file_.string()));
-    }
+    close_after_writing();
     write_sidecar();
   } catch (...) {
     discard();
@@ -147,61 +207,14 @@ void H5Series::finish() {
   finished_ = true;
 }
 
-namespace {
-
-void data_item(std::ostringstream& x, const std::string& h5_name, const std::string& path,
-               std::size_t n, int components, const char* number_type, int precision) {
-  const std::string dims =
-      components > 1 ? fmt::format("{} {}", n, components) : fmt::format("{}", n);
-  x << fmt::format(
-      "          <DataItem Dimensions=\"{}\" NumberType=\"{}\" Precision=\"{}\" "
-      "Format=\"HDF\">{}:{}</DataItem>\n",
-      dims, number_type, precision, h5_name, path);
-}
-
-void attribute(std::ostringstream& x, const std::string& h5_name, const std::string& group,
-               const char* name, const char* dataset, std::size_t n, bool vector,
-               const char* number_type, int precision) {
-  x << fmt::format("        <Attribute Name=\"{}\" AttributeType=\"{}\" Center=\"Node\">\n", name,
-                   vector ? "Vector" : "Scalar");
-  data_item(x, h5_name, "/" + group + "/" + dataset, n, vector ? 3 : 1, number_type, precision);
-  x << "        </Attribute>\n";
-}
-
-}  // namespace
-
 std::string xdmf_for_series(const std::string& h5_name, const std::vector<double>& times,
                             const std::vector<std::size_t>& counts,
                             const std::vector<bool>& with_bonds) {
-  std::ostringstream x;
-  x << "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
-       "<Xdmf Version=\"3.0\" xmlns:xi=\"http://www.w3.org/2001/XInclude\">\n  <Domain>\n"
-       "    <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  std::string x = kXdmfHead;
   for (std::size_t k = 0; k < times.size(); ++k) {
-    const std::string g = h5_frame_group(k);
-    const std::size_t n = counts[k];
-    x << fmt::format("      <Grid Name=\"{}\" GridType=\"Uniform\">\n", g);
-    x << fmt::format("        <Time Value=\"{:.17g}\"/>\n", times[k]);
-    x << fmt::format(
-        "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"{}\" "
-        "NodesPerElement=\"1\"/>\n",
-        n);
-    x << "        <Geometry GeometryType=\"XYZ\">\n";
-    data_item(x, h5_name, "/" + g + "/position", n, 3, "Float", 8);
-    x << "        </Geometry>\n";
-    attribute(x, h5_name, g, "velocity", "velocity", n, true, "Float", 8);
-    attribute(x, h5_name, g, "angular_velocity", "omega", n, true, "Float", 8);
-    attribute(x, h5_name, g, "radius", "radius", n, false, "Float", 8);
-    attribute(x, h5_name, g, "id", "id", n, false, "UInt", 4);
-    attribute(x, h5_name, g, "size_class", "size_class", n, false, "UChar", 1);
-    if (k < with_bonds.size() && with_bonds[k]) {
-      attribute(x, h5_name, g, "agglomerate_id", "agglomerate_id", n, false, "UInt", 4);
-      attribute(x, h5_name, g, "liquid_volume", "liquid_volume", n, false, "Float", 8);
-    }
-    x << "      </Grid>\n";
+    x += xdmf_frame_grid(h5_name, k, times[k], counts[k], k < with_bonds.size() && with_bonds[k]);
   }
-  x << "    </Grid>\n  </Domain>\n</Xdmf>\n";
-  return x.str();
+  return x + kXdmfTail;
 }
 
 SeriesInfo read_series_info(const std::filesystem::path& file) {

@@ -10,10 +10,14 @@
 // 0 without a film array), agglomerate_id (N, u32) and the bond graph
 // /frame_NNNNNN/bonds/{id_a, id_b (u32, stable ids), volume, force, age}, with frame attributes
 // `period_z` and `drum_omega` (what the agglomerate analysis needs to rerun afterwards).
-// After each frame the file is flushed (H5Fflush) and the sidecar FILE.xdmf is rewritten
-// atomically, listing the frames written so far: a run killed with SIGKILL leaves a file whose
-// /time lists its complete frames, and a sidecar that opens them; such a file has no `complete`
-// attribute. A failed write (disk full) removes both files.
+// Each frame opens the file, appends, flushes (H5Fflush) and closes it (so HDF5's metadata cache
+// never grows with the run, and a reader can open the file between frames), then the sidecar
+// FILE.xdmf is rewritten atomically, listing the frames written so far (after every frame of the
+// first kSidecarEveryFrame, then at most twice a second: its size grows with the frames). A run
+// killed with SIGKILL leaves a file whose /time lists its complete frames, and a sidecar that
+// opens them (all, or all but the last half second's of a long fast series); such a file has no
+// `complete` attribute. A failed write (disk full) removes both files.
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -36,10 +40,15 @@ struct SeriesBondFrame {
 
 class H5Series {
  public:
+  /// The sidecar is rewritten after each of the first kSidecarEveryFrame frames, then at most
+  /// once per kSidecarInterval (wall time), and at finish().
+  static constexpr std::size_t kSidecarEveryFrame = 200;
+  static constexpr std::chrono::milliseconds kSidecarInterval{500};
+
   /// Checks that `file` can be written (throws InputError if not); the file is created at the
   /// first frame.
   explicit H5Series(std::filesystem::path file);
-  /// Closes the file; an unfinished series keeps its complete frames (no `complete` attribute).
+  /// An unfinished series keeps its complete frames (no `complete` attribute).
   ~H5Series();
   H5Series(const H5Series&) = delete;
   H5Series& operator=(const H5Series&) = delete;
@@ -57,13 +66,15 @@ class H5Series {
 
  private:
   struct Impl;
+  void open_for_writing();
+  void close_after_writing();
   void write_sidecar() const;
   void discard() noexcept;
   std::filesystem::path file_;
   std::unique_ptr<Impl> impl_;
   std::vector<double> times_;
-  std::vector<std::size_t> counts_;
-  std::vector<bool> with_bonds_;
+  std::string xdmf_grids_;  ///< the sidecar's grids of the frames so far (~2 kB a frame)
+  std::chrono::steady_clock::time_point last_sidecar_{};
   bool finished_ = false;
 };
 
