@@ -150,6 +150,7 @@ void decompose(const DecomposeOptions& opt) {
   const auto fill_start = std::chrono::steady_clock::now();
   RunSession session(scene, so);
   const Simulation& sim = session.simulation();
+  const std::uint64_t start_step = sim.steps();
   const SceneConfig& run = session.scene();
   const std::size_t n = sim.particles().size();
   fmt::print("scene             {} ({}), {} particles, search {}\n", run.name, opt.scene, n,
@@ -175,7 +176,7 @@ void decompose(const DecomposeOptions& opt) {
   const double prepare_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - fill_start).count();
   const std::string state =
-      !opt.restart.empty()    ? fmt::format("checkpoint {} (step {})", opt.restart, sim.steps())
+      !opt.restart.empty()    ? fmt::format("checkpoint {} (step {})", opt.restart, start_step)
       : plan.settle_steps > 0 ? fmt::format("fill + settle {} steps", plan.settle_steps)
                               : std::string("fill only (no settling)");
   fmt::print("state             {} ({:.1f} s incl. the rate run)\n", state, prepare_seconds);
@@ -239,10 +240,9 @@ void decompose(const DecomposeOptions& opt) {
     if (opt.per_rank || (ranks.size() == 1 && r <= 16)) print_per_rank(d, c);
   }
   fmt::print(
-      "\nimbal: max/mean owned; work: max/mean of the work weight 1 + pairs tested per "
-      "particle (whatever --weight balances); gh/own: mean ghosts per owned particle; nbrs: most "
-      "ranks one rank "
-      "receives from; MB/step: most bytes one rank receives per step; comm: slowest rank's "
+      "\nimbal: max/mean owned; work: max/mean of the work 1 + pairs tested per particle "
+      "(whatever --weight balances); gh/own: mean ghosts per owned particle; nbrs: most ranks one "
+      "rank receives from; MB/step: most bytes one rank receives per step; comm: slowest rank's "
       "exchange (nbrs x latency + bytes / bandwidth); comp: slowest rank's share of the work at "
       "the compute rate; c/c: comm / comp; speedup: one core's step time / (comp + comm), "
       "exchange not overlapped; cuts: cut planes normal to each axis.\n");
