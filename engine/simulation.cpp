@@ -164,6 +164,10 @@ void Simulation::contact_forces(std::vector<ContactForce>& out) const {
   impl_->model.pair_forces(particles_, impl_->contacts, period, dt_, out);
 }
 
+void Simulation::bonds(std::vector<Bond>& out) const {
+  impl_->model.bonds(particles_, impl_->contacts, impl_->drum.period(), out);
+}
+
 void Simulation::coordination_numbers(std::vector<std::uint32_t>& out) const {
   out.assign(particles_.size(), 0);
   const Particles& p = particles_;

@@ -6,6 +6,7 @@
 #include <memory>
 #include <string_view>
 
+#include "engine/contact/bond.hpp"
 #include "engine/particles.hpp"
 #include "engine/scene/scene_config.hpp"
 #include "engine/search/contact_search.hpp"
@@ -93,6 +94,9 @@ class Simulation {
   /// Force on i of every overlapping particle-particle contact at the current state (i < j),
   /// evaluated read-only with the stored tangential history. Replaces `out`.
   void contact_forces(std::vector<ContactForce>& out) const;
+  /// The cohesive links (liquid bridges, adhesive contacts) at the current state, by increasing
+  /// (i, j) in storage slots; replaces `out` (empty for a dry scene). See engine/contact/bond.hpp.
+  void bonds(std::vector<Bond>& out) const;
   /// Particle-particle contacts (overlap > 0) of each particle; replaces `out` (size N).
   void coordination_numbers(std::vector<std::uint32_t>& out) const;
 

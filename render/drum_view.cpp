@@ -8,6 +8,7 @@
 #include <utility>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
@@ -34,6 +35,7 @@
 #include <vtkTransformPolyDataFilter.h>
 #include <vtkVariant.h>
 
+#include "engine/analysis/agglomerates.hpp"
 #include "render/grid_overlay.hpp"
 
 namespace drumlab::render {
@@ -66,11 +68,15 @@ struct ColorArray {
   std::string title;
   /// Distinct values with their names, drawn as swatches (size classes); empty: a continuous map.
   std::vector<std::pair<double, std::string>> categories;
+  bool first_grey = false;  ///< category 0 is grey, the palette starts at category 1
 };
+
+/// Grey of a particle alone in its agglomerate.
+constexpr double kGrey[3] = {0.55, 0.57, 0.6};
 
 /// Size classes: the distinct radii (mm), named after the scene's classes where one has that
 /// radius; none if there are more radii than colours (a continuous map then).
-std::vector<std::pair<double, std::string>> size_categories(const Simulation& sim,
+std::vector<std::pair<double, std::string>> size_categories(const FrameSnapshot& s,
                                                             const std::vector<double>& mm) {
   std::vector<double> distinct;
   for (const double v : mm) {
@@ -82,7 +88,7 @@ std::vector<std::pair<double, std::string>> size_categories(const Simulation& si
   std::vector<std::pair<double, std::string>> out;
   for (const double v : distinct) {
     std::string name = fmt::format("r = {:.3g} mm", v);
-    for (const ParticleClass& c : sim.scene().classes) {
+    for (const ParticleClass& c : s.classes) {
       if (1000.0 * c.radius == v) name = fmt::format("{} ({:.3g} mm)", c.name, v);
     }
     out.emplace_back(v, std::move(name));
@@ -107,29 +113,31 @@ void use_viridis(vtkLookupTable* lut) {
 }
 
 /// One colour per category, looked up by value (the legend draws them as named swatches).
-void use_categories(vtkLookupTable* lut, const std::vector<std::pair<double, std::string>>& cats) {
+void use_categories(vtkLookupTable* lut, const std::vector<std::pair<double, std::string>>& cats,
+                    bool first_grey) {
   lut->ResetAnnotations();
   lut->SetNumberOfTableValues(static_cast<vtkIdType>(cats.size()));
   for (std::size_t k = 0; k < cats.size(); ++k) {
-    const double* c = kCategories[k];
+    const double* c = first_grey ? (k == 0 ? kGrey : kCategories[k - 1]) : kCategories[k];
     lut->SetTableValue(static_cast<vtkIdType>(k), c[0], c[1], c[2], 1.0);
     lut->SetAnnotation(vtkVariant(cats[k].first), cats[k].second);
   }
   lut->IndexedLookupOn();
 }
 
-ColorArray color_values(const Simulation& sim, ColorBy by) {
-  const Particles& p = sim.particles();
-  const double drum_r = 0.5 * sim.scene().drum.diameter;
-  const double v_ref = std::max(0.1, std::abs(sim.scene().drum.omega) * drum_r);
+ColorArray color_values(const FrameSnapshot& s, ColorBy by) {
+  const bool empty = s.radius.empty();
+  const double r_min = empty ? 0.0 : *std::min_element(s.radius.begin(), s.radius.end());
+  const double r_max = empty ? 0.0 : *std::max_element(s.radius.begin(), s.radius.end());
+  const double v_ref = std::max(0.1, std::abs(s.scene_omega) * s.drum_radius);
   ColorArray c;
-  c.values = particle_color_values(sim, by);
+  c.values = s.color_values;
   switch (by) {
     case ColorBy::size:
-      c.lo = p.empty() ? 0.0 : 1000.0 * p.min_radius();
-      c.hi = p.empty() ? 1.0 : 1000.0 * p.max_radius();
+      c.lo = empty ? 0.0 : 1000.0 * r_min;
+      c.hi = empty ? 1.0 : 1000.0 * r_max;
       c.title = "size class";
-      c.categories = size_categories(sim, c.values);
+      c.categories = size_categories(s, c.values);
       if (c.categories.empty()) c.title = "radius (mm)";
       break;
     case ColorBy::speed:
@@ -137,16 +145,25 @@ ColorArray color_values(const Simulation& sim, ColorBy by) {
       c.title = "speed (m/s)";
       break;
     case ColorBy::omega:
-      c.hi = p.empty() ? 1.0 : v_ref / p.min_radius();
+      c.hi = empty ? 1.0 : v_ref / r_min;
       c.title = "|omega| (rad/s)";
       break;
     case ColorBy::id:
-      c.hi = std::max(1.0, static_cast<double>(p.size()) - 1.0);
+      c.hi = std::max(1.0, static_cast<double>(s.size()) - 1.0);
       c.title = "particle id";
       break;
     case ColorBy::coordination:
       c.hi = 12.0;
       c.title = "contacts";
+      break;
+    case ColorBy::agglomerate:
+      c.hi = static_cast<double>(kMaxCategories);
+      c.title = "agglomerate";
+      c.first_grey = true;
+      c.categories.emplace_back(0.0, "alone");
+      for (std::size_t k = 1; k <= kMaxCategories; ++k) {
+        c.categories.emplace_back(static_cast<double>(k), fmt::format("id mod 7 = {}", k - 1));
+      }
       break;
   }
   if (!(c.hi > c.lo)) c.hi = c.lo + 1.0;
@@ -189,17 +206,16 @@ vtkSmartPointer<vtkActor> actor_for(vtkPolyData* poly) {
 }
 
 /// The overlay: a narrow column of short lines, to fit beside the drum.
-std::string overlay_text(const Simulation& sim, const std::string& extra, bool compact) {
-  const ContactSearch& s = sim.search();
-  const SearchCounters& c = s.counters();
-  const double n = std::max<double>(1.0, static_cast<double>(sim.particles().size()));
+std::string overlay_text(const FrameSnapshot& sim, const std::string& extra, bool compact) {
+  const SearchCounters& c = sim.counters;
+  const double n = std::max<double>(1.0, static_cast<double>(sim.size()));
   if (compact) {  // small frames: two lines in the bottom-left corner
     return fmt::format("t = {:.3f} s  rev {:.3f}\n{}: {:.1f} cells, {:.1f} tests / particle",
-                       sim.time(), sim.drum_angle() / (2.0 * std::numbers::pi), s.name(),
+                       sim.time, sim.drum_angle / (2.0 * std::numbers::pi), sim.search_name,
                        static_cast<double>(c.cells_visited) / n,
                        static_cast<double>(c.pairs_tested) / n);
   }
-  std::string what(s.description());
+  std::string what(sim.search_description);
   if (const auto colon = what.find(": "); colon != std::string::npos) what.erase(0, colon + 2);
   for (std::size_t k = what.find(", "); k != std::string::npos; k = what.find(", ", k)) {
     what.replace(k, 2, "\n  ");
@@ -208,8 +224,8 @@ std::string overlay_text(const Simulation& sim, const std::string& extra, bool c
       "t = {:.3f} s\nrevolutions {:.3f}\nstep {}\nN = {}\n\nsearch {}\n  {}\n\nlast step:\n"
       "cells visited {}\n  {:.1f} / particle\npairs tested {}\n  {:.1f} / particle\n"
       "pairs found {}",
-      sim.time(), sim.drum_angle() / (2.0 * std::numbers::pi), sim.steps(), sim.particles().size(),
-      s.name(), what, c.cells_visited, static_cast<double>(c.cells_visited) / n, c.pairs_tested,
+      sim.time, sim.drum_angle / (2.0 * std::numbers::pi), sim.steps, sim.size(), sim.search_name,
+      what, c.cells_visited, static_cast<double>(c.cells_visited) / n, c.pairs_tested,
       static_cast<double>(c.pairs_tested) / n, c.pairs_found);
   if (!extra.empty()) text += "\n\n" + extra;
   return text;
@@ -227,8 +243,20 @@ std::string grid_text(const GridOverlay& grid, bool focus) {
 
 }  // namespace
 
-std::vector<double> particle_color_values(const Simulation& sim, ColorBy by) {
+std::vector<double> particle_color_values(const Simulation& sim, ColorBy by, double granule_age) {
   const Particles& p = sim.particles();
+  if (by == ColorBy::agglomerate) {
+    const std::vector<std::uint32_t> label = agglomerate_labels(sim, granule_age);
+    std::vector<std::uint32_t> sorted(label);
+    std::sort(sorted.begin(), sorted.end());
+    std::vector<double> values(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const auto range = std::equal_range(sorted.begin(), sorted.end(), label[i]);
+      const bool alone = range.second - range.first == 1;
+      values[i] = alone ? 0.0 : 1.0 + static_cast<double>(label[i] % kMaxCategories);
+    }
+    return values;
+  }
   if (by == ColorBy::coordination) {  // the engine's count, as the VTU's coordination array
     std::vector<std::uint32_t> count;
     sim.coordination_numbers(count);
@@ -250,20 +278,61 @@ std::vector<double> particle_color_values(const Simulation& sim, ColorBy by) {
         values[i] = static_cast<double>(p.id[i]);
         break;
       case ColorBy::coordination:
+      case ColorBy::agglomerate:
         break;
     }
   }
   return values;
 }
 
+namespace {
+
+constexpr ColorByName kColorByNames[] = {{ColorBy::size, "size"},
+                                         {ColorBy::speed, "speed"},
+                                         {ColorBy::omega, "omega"},
+                                         {ColorBy::id, "id"},
+                                         {ColorBy::coordination, "coordination"},
+                                         {ColorBy::agglomerate, "agglomerate"}};
+
+}  // namespace
+
+std::span<const ColorByName> color_by_names() {
+  return kColorByNames;
+}
+
+std::string_view color_by_name(ColorBy by) {
+  for (const ColorByName& c : kColorByNames) {
+    if (c.value == by) return c.name;
+  }
+  throw std::logic_error("color_by_name: a ColorBy value without a name");
+}
+
 ColorBy parse_color_by(std::string_view s) {
-  if (s == "size") return ColorBy::size;
-  if (s == "speed") return ColorBy::speed;
-  if (s == "omega") return ColorBy::omega;
-  if (s == "id") return ColorBy::id;
-  if (s == "coordination") return ColorBy::coordination;
-  throw InputError(
-      fmt::format("unknown colour mode '{}' (size, speed, omega, id, coordination)", s));
+  std::vector<std::string_view> names;
+  for (const ColorByName& c : kColorByNames) {
+    if (c.name == s) return c.value;
+    names.push_back(c.name);
+  }
+  throw InputError(fmt::format("unknown colour mode '{}' ({})", s, fmt::join(names, ", ")));
+}
+
+FrameSnapshot view_snapshot(const Simulation& sim, const ViewOptions& options,
+                            SnapshotRequest request) {
+  // Storage indices change between frames (re-sorting); ids do not.
+  if (options.focus_id) {
+    index_of_id(sim.particles(), *options.focus_id);  // throws for an unknown id
+    request.focus_id = options.focus_id;
+  }
+  FrameSnapshot s = take_snapshot(sim, request);
+  s.color_values = particle_color_values(sim, options.color_by, options.granule_age);
+  s.color_by = color_by_name(options.color_by);
+  return s;
+}
+
+FrameSnapshot view_snapshot(const Simulation& sim, const ViewOptions& options) {
+  SnapshotRequest request;
+  request.diagnostics = false;
+  return view_snapshot(sim, options, std::move(request));
 }
 
 CameraMode parse_camera(std::string_view s) {
@@ -304,10 +373,11 @@ struct DrumView::Impl {
   Impl(const ViewOptions& o, RenderTarget& t) : options(o), target(t) {}
   void build_scene();
   void build_annotations();  // legend and text overlay, in the top layer
-  void build_drum(const Simulation& sim);
-  void update_particles(const Simulation& sim);
-  void update_overlay(const Simulation& sim);
-  void place_camera(const Simulation& sim);
+  void build_drum(const FrameSnapshot& s);
+  void update_particles(const FrameSnapshot& s);
+  void update_overlay(const FrameSnapshot& s);
+  void place_camera();
+  void show_parts();  // the walls, legend and text toggles
   bool compact_overlay() const { return options.height < kFullOverlayHeight; }
 
   ViewOptions options;
@@ -322,10 +392,12 @@ struct DrumView::Impl {
   vtkNew<vtkScalarBarActor> legend;
   vtkNew<vtkTextActor> text;
   vtkSmartPointer<vtkActor> front_cap, back_cap, back_lines;  // the caps' lines turn with the drum
+  vtkSmartPointer<vtkActor> mantle;
   std::unique_ptr<GridOverlay> grid;
   bool drum_built = false;
   bool camera_placed = false;
-  std::optional<Index> focus_index;
+  bool focus_drawn = false;
+  double drum_radius = 0.0, drum_depth = 0.0;  // of the drum built
 };
 
 void DrumView::Impl::build_scene() {
@@ -391,9 +463,11 @@ void DrumView::Impl::build_annotations() {
   if (options.overlay) top->AddActor2D(legend);
 }
 
-void DrumView::Impl::build_drum(const Simulation& sim) {
-  const double radius = 0.5 * sim.scene().drum.diameter;
-  const double depth = sim.scene().drum.depth;
+void DrumView::Impl::build_drum(const FrameSnapshot& s) {
+  const double radius = s.drum_radius;
+  const double depth = s.drum_depth;
+  drum_radius = radius;
+  drum_depth = depth;
   vtkNew<vtkCylinderSource> cylinder;  // along y: turn it onto z
   cylinder->SetRadius(radius);
   cylinder->SetHeight(depth);
@@ -406,7 +480,7 @@ void DrumView::Impl::build_drum(const Simulation& sim) {
   mantle_tf->SetInputConnection(cylinder->GetOutputPort());
   mantle_tf->SetTransform(to_z);
   mantle_tf->Update();
-  auto mantle = actor_for(mantle_tf->GetOutput());
+  mantle = actor_for(mantle_tf->GetOutput());
   mantle->GetProperty()->SetColor(0.7, 0.75, 0.85);
   mantle->GetProperty()->SetOpacity(0.12);
   renderer->AddActor(mantle);
@@ -434,9 +508,11 @@ void DrumView::Impl::build_drum(const Simulation& sim) {
   drum_built = true;
 }
 
-void DrumView::Impl::update_particles(const Simulation& sim) {
-  const Particles& p = sim.particles();
-  const ColorArray colors = color_values(sim, options.color_by);
+void DrumView::Impl::update_particles(const FrameSnapshot& p) {
+  if (p.color_values.size() != p.size()) {
+    throw std::logic_error("DrumView: a snapshot without colour values (use view_snapshot)");
+  }
+  const ColorArray colors = color_values(p, parse_color_by(p.color_by));
   const auto n = static_cast<vtkIdType>(p.size());
   vtkPoints* pts = particles->GetPoints();
   pts->SetNumberOfPoints(n);
@@ -469,15 +545,15 @@ void DrumView::Impl::update_particles(const Simulation& sim) {
   if (colors.categories.empty()) {
     use_viridis(lut);
   } else {
-    use_categories(lut, colors.categories);
+    use_categories(lut, colors.categories, colors.first_grey);
   }
   lut->SetTableRange(colors.lo, colors.hi);
   sphere_mapper->SetScalarRange(colors.lo, colors.hi);
   legend->SetTitle(colors.title.c_str());
 }
 
-void DrumView::Impl::update_overlay(const Simulation& sim) {
-  const double turn_deg = sim.drum_angle() * 180.0 / std::numbers::pi;
+void DrumView::Impl::update_overlay(const FrameSnapshot& sim) {
+  const double turn_deg = sim.drum_angle * 180.0 / std::numbers::pi;
   front_cap->SetOrientation(0.0, 0.0, turn_deg);
   back_lines->SetOrientation(0.0, 0.0, turn_deg);
   if (!options.title.empty()) {
@@ -485,13 +561,20 @@ void DrumView::Impl::update_overlay(const Simulation& sim) {
     return;
   }
   text->SetInput(
-      overlay_text(sim, grid ? grid_text(*grid, focus_index.has_value()) : "", compact_overlay())
-          .c_str());
+      overlay_text(sim, grid ? grid_text(*grid, focus_drawn) : "", compact_overlay()).c_str());
 }
 
-void DrumView::Impl::place_camera(const Simulation& sim) {
-  const double radius = 0.5 * sim.scene().drum.diameter;
-  const double depth = sim.scene().drum.depth;
+void DrumView::Impl::show_parts() {
+  for (vtkActor* a : {mantle.Get(), front_cap.Get(), back_cap.Get(), back_lines.Get()}) {
+    if (a != nullptr) a->SetVisibility(options.walls);
+  }
+  legend->SetVisibility(options.legend);
+  text->SetVisibility(options.text);
+}
+
+void DrumView::Impl::place_camera() {
+  const double radius = drum_radius;
+  const double depth = drum_depth;
   vtkCamera* cam = renderer->GetActiveCamera();
   const double far = 4.0 * (radius + depth);
   cam->SetFocalPoint(0.0, 0.0, 0.5 * depth);
@@ -539,19 +622,28 @@ DrumView::~DrumView() {
 }
 
 Image DrumView::render(const Simulation& sim) {
+  return render(view_snapshot(sim, impl_->options));
+}
+
+Image DrumView::render(const FrameSnapshot& snapshot) {
+  draw(snapshot);
+  return impl_->target.read_image();
+}
+
+void DrumView::draw(const FrameSnapshot& snapshot) {
   Impl& m = *impl_;
   m.target.make_current();
-  if (!m.drum_built) m.build_drum(sim);
-  if (m.grid) {
-    // Storage indices may change between frames (re-sorting); ids do not.
-    if (m.options.focus_id) m.focus_index = index_of_id(sim.particles(), *m.options.focus_id);
-    m.grid->update(sim, m.options.grid, m.focus_index);
+  if (!m.drum_built) m.build_drum(snapshot);
+  m.focus_drawn = snapshot.focus_visit.has_value();
+  if (!m.grid && (m.options.grid || m.focus_drawn)) {
+    m.grid = std::make_unique<GridOverlay>(m.renderer, m.top);
   }
-  m.update_particles(sim);
-  m.update_overlay(sim);
-  if (!m.camera_placed) m.place_camera(sim);
+  if (m.grid) m.grid->update(snapshot, m.options.grid);
+  m.update_particles(snapshot);
+  m.update_overlay(snapshot);
+  m.show_parts();
+  if (!m.camera_placed) m.place_camera();
   m.window->Render();
-  return m.target.read_image();
 }
 
 std::array<double, 2> DrumView::project(const Vec3& x) {
@@ -567,6 +659,47 @@ SearchVisit DrumView::focus_visit() const {
     throw std::logic_error("DrumView::focus_visit: no focus particle drawn yet");
   }
   return *impl_->grid->visit();
+}
+
+void DrumView::set_options(const ViewOptions& options) {
+  Impl& m = *impl_;
+  if (options.width != m.options.width || options.height != m.options.height) {
+    throw std::logic_error("DrumView::set_options: the size is the target's (make a new view)");
+  }
+  if (options.title.empty() != m.options.title.empty() || options.overlay != m.options.overlay) {
+    throw std::logic_error("DrumView::set_options: title and overlay are set at construction");
+  }
+  const bool camera_changed =
+      options.camera != m.options.camera || options.zoom_to_focus != m.options.zoom_to_focus;
+  const bool shade_changed = options.neutral_particles != m.options.neutral_particles;
+  m.options = options;
+  if (camera_changed) m.camera_placed = false;
+  if (shade_changed && !options.neutral_particles) {
+    m.sphere_mapper->ScalarVisibilityOn();
+  }
+}
+
+const ViewOptions& DrumView::options() const {
+  return impl_->options;
+}
+
+void DrumView::reset_camera() {
+  impl_->camera_placed = false;
+}
+
+void DrumView::orbit(double azimuth_deg, double elevation_deg) {
+  vtkCamera* cam = impl_->renderer->GetActiveCamera();
+  cam->Azimuth(azimuth_deg);
+  cam->Elevation(elevation_deg);
+  cam->OrthogonalizeViewUp();
+  const double r = impl_->drum_radius, d = impl_->drum_depth;
+  impl_->renderer->ResetCameraClippingRange(-r, r, -r, r, -0.1 * d, 1.1 * d);
+}
+
+void DrumView::zoom(double factor) {
+  impl_->renderer->GetActiveCamera()->Zoom(factor);
+  const double r = impl_->drum_radius, d = impl_->drum_depth;
+  impl_->renderer->ResetCameraClippingRange(-r, r, -r, r, -0.1 * d, 1.1 * d);
 }
 
 void DrumView::set_title(std::string title) {

@@ -6,39 +6,65 @@
 // own context). No VTK type appears in this interface.
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "engine/search/cell_grid.hpp"
+#include "engine/session/frame_snapshot.hpp"
 #include "engine/simulation.hpp"
 #include "render/image.hpp"
 #include "render/render_target.hpp"
 
 namespace drumlab::render {
 
-enum class ColorBy { size, speed, omega, id, coordination };
+enum class ColorBy { size, speed, omega, id, coordination, agglomerate };
 enum class CameraMode { axis, iso };
 
-/// Parses "size", "speed", "omega", "id", "coordination"; throws InputError otherwise.
+/// Every colour mode with its name on the command line and in the GUI, in menu order (the one
+/// table: a new ColorBy value is one more row in drum_view.cpp).
+struct ColorByName {
+  ColorBy value;
+  std::string_view name;
+};
+std::span<const ColorByName> color_by_names();
+std::string_view color_by_name(ColorBy by);
+/// Parses a name of color_by_names() ("size", "speed", ...); throws InputError otherwise.
 ColorBy parse_color_by(std::string_view s);
 /// The value each particle (in storage order) is coloured by: radius (mm), speed (m/s), |omega|
 /// (rad/s), stable id, or coordination (Simulation::coordination_numbers, periodic ends included,
-/// the same count as the VTU's coordination array).
-std::vector<double> particle_color_values(const Simulation& sim, ColorBy by);
+/// the same count as the VTU's coordination array), or agglomerate: 0 for a particle alone in
+/// its agglomerate (grey), else 1 + (agglomerate id mod 7), the colour of the categorical palette
+/// (agglomerate_labels with granule_age, the VTU's agglomerate_id; an agglomerate keeps its
+/// colour while it keeps its id).
+std::vector<double> particle_color_values(const Simulation& sim, ColorBy by,
+                                          double granule_age = -1.0);
 /// Parses "axis" or "iso"; throws InputError otherwise.
 CameraMode parse_camera(std::string_view s);
+
+struct ViewOptions;
+/// The snapshot a view with `options` draws: take_snapshot(sim, request) with the options' focus
+/// particle, plus the colour values of options.color_by. Throws InputError for an unknown focus
+/// id. Without a request: no diagnostics, no compared methods.
+FrameSnapshot view_snapshot(const Simulation& sim, const ViewOptions& options,
+                            SnapshotRequest request);
+FrameSnapshot view_snapshot(const Simulation& sim, const ViewOptions& options);
 
 struct ViewOptions {
   int width = 1280;
   int height = 720;
   ColorBy color_by = ColorBy::size;
+  double granule_age = -1.0;  ///< criterion of ColorBy::agglomerate (granule_options), s
   CameraMode camera = CameraMode::axis;
   bool grid = false;               ///< colour the active grid's cells by occupancy
   std::optional<Index> focus_id;   ///< stable id of the particle whose search is shown
   bool zoom_to_focus = false;      ///< frame the focus particle's stencil instead of the drum
   bool neutral_particles = false;  ///< grey particles, so the focus picture's colours stand out
   bool overlay = true;             ///< text overlay and legend
+  bool walls = true;               ///< the mantle and the end caps
+  bool legend = true;              ///< with overlay: the legend
+  bool text = true;                ///< with overlay: the text
   std::string title;               ///< replaces the overlay text when not empty
 };
 
@@ -57,8 +83,24 @@ class DrumView {
   DrumView(const DrumView&) = delete;
   DrumView& operator=(const DrumView&) = delete;
 
-  /// Updates the scene from `sim` and renders one frame (making the target's context current).
+  /// Updates the scene from `sim` and renders one frame (making the target's context current):
+  /// render(view_snapshot(sim, options())).
   Image render(const Simulation& sim);
+  /// Renders one frame of a snapshot (view_snapshot: it carries its colour values; its focus
+  /// visit, if any, is drawn) and reads it back.
+  Image render(const FrameSnapshot& snapshot);
+  /// As render(snapshot), without reading the frame back (a window shows it itself).
+  void draw(const FrameSnapshot& snapshot);
+  /// Changes what the next frames show (colour-by, grid, focus, camera preset, zoom to focus,
+  /// neutral particles). The size, the title and the overlay stay those given at construction.
+  void set_options(const ViewOptions& options);
+  const ViewOptions& options() const;
+  /// Places the camera by the preset again at the next frame (and frames the focus if
+  /// zoom_to_focus).
+  void reset_camera();
+  /// Turns the camera about the focal point (degrees) / moves it closer (factor > 1).
+  void orbit(double azimuth_deg, double elevation_deg);
+  void zoom(double factor);
   /// Pixel (column, row from the top) where a drum-frame point appears in the last frame.
   std::array<double, 2> project(const Vec3& x);
   /// The focus particle's search as drawn in the last frame (ContactSearch::visit). Throws

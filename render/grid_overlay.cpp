@@ -20,7 +20,6 @@
 #include <vtkUnsignedCharArray.h>
 
 #include "engine/search/search_methods.hpp"
-#include "engine/search/verlet_list.hpp"
 
 namespace drumlab::render {
 
@@ -71,8 +70,8 @@ vtkSmartPointer<vtkActor> direct_color_actor(vtkPolyData* poly) {
 constexpr double kMarkerScale = 0.6;
 
 /// Front plane of the drum, where the grid is drawn (slightly in front of every particle).
-double front_z(const Simulation& sim) {
-  return sim.scene().drum.depth * 1.02 + 1e-4;
+double front_z(const FrameSnapshot& s) {
+  return s.drum_depth * 1.02 + 1e-4;
 }
 
 void append_sphere(vtkPoints* pts, vtkFloatArray* radius, vtkUnsignedCharArray* colors,
@@ -122,36 +121,10 @@ GridOverlay::~GridOverlay() {
   }
 }
 
-const CellGridSearch* drawn_cell_grid(const ContactSearch& search) {
-  if (const auto* grid = dynamic_cast<const CellGridSearch*>(&search)) return grid;
-  if (const auto* list = dynamic_cast<const VerletListSearch*>(&search)) {
-    return dynamic_cast<const CellGridSearch*>(&list->builder());
-  }
-  return nullptr;
-}
-
-namespace {
-
-/// The cell of x in g, clamped (the binning of CellGridSearch::sort_into_cells).
-CellCoord cell_in(const GridGeometry& g, const Vec3& x) {
-  const Vec3 u = (x - g.origin) / g.cell_xy;
-  CellCoord c{std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor(u.x())), 0, g.nx - 1),
-              std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor(u.y())), 0, g.ny - 1),
-              0};
-  if (g.nz > 1) {
-    const double uz = (x.z() - g.origin.z()) / g.cell_z;
-    c.z = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor(uz)), 0, g.nz - 1);
-  }
-  return c;
-}
-
-}  // namespace
-
-void GridOverlay::update(const Simulation& sim, bool occupancy, std::optional<Index> focus) {
-  const CellGridSearch* grid = drawn_cell_grid(sim.search());
-  if (occupancy && grid == nullptr) {
+void GridOverlay::update(const FrameSnapshot& s, bool occupancy) {
+  if (occupancy && !s.grid) {
     throw InputError(fmt::format("search '{}' has no cell grid to draw (methods with one: {})",
-                                 sim.search().name(), fmt::join(cell_grid_method_names(), ", ")));
+                                 s.search_name, fmt::join(cell_grid_method_names(), ", ")));
   }
   for (vtkActor* a : {occupancy_.Get(), lines_.Get(), cells_.Get(), candidates_.Get(), own_.Get(),
                       links_.Get()}) {
@@ -164,13 +137,13 @@ void GridOverlay::update(const Simulation& sim, bool occupancy, std::optional<In
   grid_summary_.clear();
   focus_box_.reset();
   visit_.reset();
-  if (grid != nullptr && grid->geometry().nx == 0) return;  // no search yet
-  std::optional<SearchVisit> v;
-  if (focus) v = sim.search().visit(*focus, sim.search_input());
+  if (s.grid && s.grid->nx == 0) return;  // no search yet
+  const std::optional<Index> focus = s.focus_visit ? s.focus_index : std::nullopt;
+  const std::optional<SearchVisit>& v = s.focus_visit;
   // The grid whose lines are drawn: the cell grid, else the focus particle's own level.
   std::optional<GridGeometry> drawn;
-  if (grid != nullptr) {
-    drawn = grid->geometry();
+  if (s.grid) {
+    drawn = *s.grid;
   } else if (v && !v->grids.empty()) {
     drawn = v->grids.front().geometry;
   }
@@ -179,19 +152,19 @@ void GridOverlay::update(const Simulation& sim, bool occupancy, std::optional<In
     if (focus) {
       layer = (v && !v->grids.empty() && v->grids.front().has_own)
                   ? v->grids.front().own.z
-                  : cell_in(*drawn, sim.particles().position[*focus]).z;
+                  : cell_containing(*drawn, s.position[*focus]).z;
     }
-    draw_grid(sim, *drawn, layer, occupancy);
+    draw_grid(s, *drawn, layer, occupancy);
   }
-  if (v) draw_focus(sim, *v, *focus);
+  if (focus) draw_focus(s, *v, *focus);
 }
 
-void GridOverlay::draw_grid(const Simulation& sim, const GridGeometry& g, std::int64_t layer,
+void GridOverlay::draw_grid(const FrameSnapshot& s, const GridGeometry& g, std::int64_t layer,
                             bool occupancy) {
   std::map<std::pair<std::int64_t, std::int64_t>, int> count;
   int most = 1;
-  for (const Vec3& x : sim.particles().position) {
-    const CellCoord c = cell_in(g, x);
+  for (const Vec3& x : s.position) {
+    const CellCoord c = cell_containing(g, x);
     if (c.z != layer) continue;
     most = std::max(most, ++count[{c.x, c.y}]);
   }
@@ -200,7 +173,7 @@ void GridOverlay::draw_grid(const Simulation& sim, const GridGeometry& g, std::i
         "grid {} x {} x {}, cell {:.1f} mm\n  occupancy 1 (pale) .. {} (blue){}", g.nx, g.ny, g.nz,
         1000.0 * g.cell_xy, most, g.nz > 1 ? fmt::format("\n  layer {} shown", layer) : "");
   }
-  const double z = front_z(sim);
+  const double z = front_z(s);
   QuadBuilder quads;
   for (const auto& [cell, n] : count) {
     if (!occupancy) break;
@@ -238,9 +211,8 @@ void GridOverlay::draw_grid(const Simulation& sim, const GridGeometry& g, std::i
   renderer_->AddActor(lines_);
 }
 
-void GridOverlay::draw_focus(const Simulation& sim, const SearchVisit& v, Index focus) {
-  const Particles& p = sim.particles();
-  const double z = front_z(sim) + 1e-4;
+void GridOverlay::draw_focus(const FrameSnapshot& p, const SearchVisit& v, Index focus) {
+  const double z = front_z(p) + 1e-4;
   auto same_as = [](const CellCoord& c) { return [c](const CellCoord& d) { return c == d; }; };
   QuadBuilder quads;
   Box box{Vec3::Constant(1e300), Vec3::Constant(-1e300)};
@@ -255,7 +227,7 @@ void GridOverlay::draw_focus(const Simulation& sim, const SearchVisit& v, Index 
   // Smaller levels first (finer cells, below), then the grid with the particle's own cell.
   for (const VisitedCells& cells : v.grids) {
     if (cells.has_own) continue;
-    const std::int64_t layer = cell_in(cells.geometry, p.position[focus]).z;
+    const std::int64_t layer = cell_containing(cells.geometry, p.position[focus]).z;
     for (const CellCoord& c : cells.forward) {
       if (c.z == layer) add_cell(cells.geometry, c, kSmallerLevelColor, 0.35);
     }
@@ -289,7 +261,7 @@ void GridOverlay::draw_focus(const Simulation& sim, const SearchVisit& v, Index 
     own_ = own_cell_outline(own->geometry, own->own, z);
     top_->AddActor(own_);
   }
-  draw_highlights(sim, v, focus, z);
+  draw_highlights(p, v, focus, z);
   if (!boxed && v.kind == SearchVisit::Kind::list) {  // no cells: frame the listed partners
     for (Index j : v.candidates) {
       box.lo = box.lo.cwiseMin(p.position[j] - Vec3::Constant(p.radius[j]));
@@ -332,9 +304,8 @@ void GridOverlay::draw_focus(const Simulation& sim, const SearchVisit& v, Index 
   visit_ = v;
 }
 
-void GridOverlay::draw_highlights(const Simulation& sim, const SearchVisit& v, Index focus,
+void GridOverlay::draw_highlights(const FrameSnapshot& p, const SearchVisit& v, Index focus,
                                   double z) {
-  const Particles& p = sim.particles();
   vtkNew<vtkPolyData> spheres;
   vtkNew<vtkPoints> pts;
   vtkNew<vtkFloatArray> radius;

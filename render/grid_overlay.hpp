@@ -12,7 +12,7 @@
 #include <vtkSmartPointer.h>
 
 #include "engine/search/cell_grid.hpp"
-#include "engine/simulation.hpp"
+#include "engine/session/frame_snapshot.hpp"
 
 class vtkActor;
 class vtkRenderer;
@@ -29,10 +29,6 @@ inline constexpr double kCandidateColor[3] = {1.0, 0.6, 0.1};
 inline constexpr double kContactColor[3] = {1.0, 0.2, 0.9};
 inline constexpr double kSmallerLevelColor[3] = {0.55, 0.45, 1.0};  ///< mlgrid: smaller levels
 
-/// The cell grid `render --grid` draws for `search`: a cell grid's own, a Verlet list's builder if
-/// that is a cell grid; nullptr for the others (brute force, a multi-level grid).
-const CellGridSearch* drawn_cell_grid(const ContactSearch& search);
-
 class GridOverlay {
  public:
   /// Cells are drawn by `renderer` (over the bed); the focus particle, its candidates and contacts
@@ -42,9 +38,10 @@ class GridOverlay {
   GridOverlay(const GridOverlay&) = delete;
   GridOverlay& operator=(const GridOverlay&) = delete;
 
-  /// Redraws from the simulation's search of the last step. Throws InputError if `occupancy` is
-  /// asked for and the active search has no cell grid to draw (drawn_cell_grid).
-  void update(const Simulation& sim, bool occupancy, std::optional<Index> focus_index);
+  /// Redraws from the snapshot's search of the last step and its focus particle's visit (if it
+  /// has one). Throws InputError if `occupancy` is asked for and the snapshot has no cell grid
+  /// (FrameSnapshot::grid).
+  void update(const FrameSnapshot& snapshot, bool occupancy);
   /// "focus id 12 (r = 15 mm): cells visited 41, pairs tested 63, contacts 4" (empty without one).
   const std::string& focus_summary() const { return summary_; }
   /// "grid 60 x 60 x 10, cell 15.0 mm\n  occupancy 1 (pale) .. 7 (blue)" (empty without --grid).
@@ -56,10 +53,10 @@ class GridOverlay {
 
  private:
   /// Grid lines of `layer`, and its cells coloured by occupancy if `occupancy`.
-  void draw_grid(const Simulation& sim, const GridGeometry& g, std::int64_t layer, bool occupancy);
-  void draw_focus(const Simulation& sim, const SearchVisit& v, Index focus);
+  void draw_grid(const FrameSnapshot& s, const GridGeometry& g, std::int64_t layer, bool occupancy);
+  void draw_focus(const FrameSnapshot& s, const SearchVisit& v, Index focus);
   /// The focus particle, its candidates and contacts as markers, and lines to the contacts.
-  void draw_highlights(const Simulation& sim, const SearchVisit& v, Index focus, double z);
+  void draw_highlights(const FrameSnapshot& s, const SearchVisit& v, Index focus, double z);
 
   vtkRenderer* renderer_;
   vtkRenderer* top_;

@@ -357,7 +357,7 @@ void wall_loop(const ContactLaw<Normal>& law, Particles& p, std::span<const Inde
 // runs none of it.
 template <class Part>
 void beyond_contact_loop(const Part& part, std::size_t offset, Particles& p, ContactList& contacts,
-                         double period) {
+                         double period, double dt) {
   const auto row = contacts.row_start();
   const auto col = contacts.col();
   const auto state = contacts.state();
@@ -374,7 +374,8 @@ void beyond_contact_loop(const Part& part, std::size_t offset, Particles& p, Con
       if (dist == 0.0) continue;
       const double r_j = p.radius[j];
       const double gap = dist - (r_i + r_j);
-      const double f = part.update(gap, Part::pair_radius(r_i, r_j), &state[k * stride + offset]);
+      const double f =
+          part.update(gap, Part::pair_radius(r_i, r_j), dt, &state[k * stride + offset]);
       if (f == 0.0) continue;
       const Vec3 pull = (f / dist) * d;  // along i - j: attraction pulls i toward j
       p.force[i] -= pull;
@@ -466,7 +467,7 @@ std::size_t ContactModel::add_pair_forces(Particles& p, ContactList& contacts,
              touching = pair_loop<N, Tangential, Rolling>(law, p, contacts, buffers, period, dt,
                                                           history_dt);
            });
-  if (pair_bridge_) beyond_contact_loop(*pair_bridge_, 0, p, contacts, period);
+  if (pair_bridge_) beyond_contact_loop(*pair_bridge_, 0, p, contacts, period, history_dt);
   return touching;
 }
 
@@ -493,6 +494,29 @@ void ContactModel::pair_forces(const Particles& p, const ContactList& contacts, 
         }
       },
       pair_.normal);
+}
+
+void ContactModel::bonds(const Particles& p, const ContactList& contacts, double period,
+                         std::vector<Bond>& out) const {
+  out.clear();
+  if (!pair_bridge_) return;
+  const LiquidBridge& bridge = *pair_bridge_;
+  const auto row = contacts.row_start();
+  const auto col = contacts.col();
+  const auto state = contacts.state();
+  const std::size_t stride = contacts.state_size();
+  for (std::size_t i = 0; i < contacts.rows(); ++i) {
+    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
+      const double* s = &state[k * stride];
+      if (!LiquidBridge::bond(s)) continue;
+      const Index j = col[k];
+      const double gap = separation(p, i, j, period).norm() - (p.radius[i] + p.radius[j]);
+      const double r_eff = LiquidBridge::pair_radius(p.radius[i], p.radius[j]);
+      out.push_back({static_cast<Index>(i), j, LiquidBridge::bond_volume(s),
+                     bridge.force(gap, r_eff, LiquidBridge::bond_volume(s)),
+                     LiquidBridge::bond_age(s)});
+    }
+  }
 }
 
 double ContactModel::pair_elastic_energy(double delta, double r_eff) const {

@@ -12,6 +12,7 @@
 #include <variant>
 #include <vector>
 
+#include "engine/contact/bond.hpp"
 #include "engine/contact/contact_history.hpp"
 #include "engine/contact/hertz_mindlin.hpp"
 #include "engine/contact/linear_spring_dashpot.hpp"
@@ -113,6 +114,11 @@ class ContactModel {
   /// force); contacts only touching within the search tolerance are left out.
   void pair_forces(const Particles& p, const ContactList& contacts, double period, double dt,
                    std::vector<ContactForce>& out) const;
+
+  /// The cohesive links (live bridges, adhesive contacts) among `contacts` at the current state,
+  /// by increasing (i, j); read-only. Replaces `out` (empty for a dry law).
+  void bonds(const Particles& p, const ContactList& contacts, double period,
+             std::vector<Bond>& out) const;
 
   /// Elastic energy of a particle-particle / particle-wall normal overlap delta (J).
   double pair_elastic_energy(double delta, double r_eff) const;

@@ -15,8 +15,11 @@
 // The beyond-contact part contract (what ContactModel reads from any such part):
 //   kStateSize              scalars it keeps per contact (ContactList::state());
 //   range()                 the largest surface gap at which it can act (m): the search margin;
-//   update(gap, R, state)   advances the contact's state at gap `gap` and returns the attractive
-//                           normal force (N), 0 when the interaction has ended.
+//   update(gap, R, dt, state)  advances the contact's state at gap `gap` by dt (s, the time since
+//                           the previous evaluation) and returns the attractive normal force
+//                           (N), 0 when the interaction has ended;
+//   bond(state)             whether the state holds a live link (engine/contact/bond.hpp), and
+//   bond_volume / bond_age  what a Bond reports of it.
 #include <cmath>
 #include <cstddef>
 #include <numbers>
@@ -24,8 +27,9 @@
 namespace drumlab {
 
 struct LiquidBridge {
-  /// state[0]: the bridge's liquid volume (m^3); 0: no bridge.
-  static constexpr std::size_t kStateSize = 1;
+  /// state[0]: the bridge's liquid volume (m^3), 0: no bridge; state[1]: its age, the time (s)
+  /// since it formed (0 without a bridge).
+  static constexpr std::size_t kStateSize = 2;
 
   double surface_tension = 0.0;  ///< gamma, N/m
   double contact_angle = 0.0;    ///< theta, rad
@@ -50,15 +54,26 @@ struct LiquidBridge {
     return f0 / (1.0 + (1.05 + 2.5 * s) * s);
   }
 
-  /// Forms the bridge on contact, ruptures it beyond s_rup; returns its force (0 without one).
-  double update(double gap, double r_eff, double* state) const {
+  /// Forms the bridge on contact, ruptures it beyond s_rup, ages a live one by dt; returns its
+  /// force (0 without one).
+  double update(double gap, double r_eff, double dt, double* state) const {
+    const bool lived = state[0] > 0.0;
     if (gap <= 0.0) {
       state[0] = volume;
     } else if (gap > rupture_distance()) {
       state[0] = 0.0;
     }
-    return state[0] > 0.0 ? force(gap, r_eff, state[0]) : 0.0;
+    if (state[0] == 0.0) {
+      state[1] = 0.0;
+      return 0.0;
+    }
+    state[1] = lived ? state[1] + dt : 0.0;
+    return force(gap, r_eff, state[0]);
   }
+
+  static bool bond(const double* state) { return state[0] > 0.0; }
+  static double bond_volume(const double* state) { return state[0]; }
+  static double bond_age(const double* state) { return state[1]; }
 };
 
 }  // namespace drumlab

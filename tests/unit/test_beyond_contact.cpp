@@ -156,23 +156,26 @@ TEST(LiquidBridge, FormsOnContactOnlyAndRupturesBeyondSrup) {
   const LiquidBridge bridge(0.072, 0.0, 1e-12);
   const double s_rup = bridge.rupture_distance();
   const double r = 1e-3;
-  double state = 0.0;
+  double state[LiquidBridge::kStateSize] = {0.0, 0.0};
   // Never touched: no bridge at any gap within the range.
   for (const double s : {0.9 * s_rup, 0.5 * s_rup, 1e-9}) {
-    EXPECT_EQ(bridge.update(s, r, &state), 0.0);
-    EXPECT_EQ(state, 0.0);
+    EXPECT_EQ(bridge.update(s, r, 1e-6, state), 0.0);
+    EXPECT_EQ(state[0], 0.0);
   }
   // Contact forms it; it survives separation up to s_rup.
-  EXPECT_GT(bridge.update(-1e-7, r, &state), 0.0);
-  EXPECT_EQ(state, 1e-12);
-  EXPECT_GT(bridge.update(0.5 * s_rup, r, &state), 0.0);
-  EXPECT_GT(bridge.update(s_rup * (1.0 - 1e-9), r, &state), 0.0);
-  EXPECT_GT(bridge.update(s_rup, r, &state), 0.0);
+  EXPECT_GT(bridge.update(-1e-7, r, 1e-6, state), 0.0);
+  EXPECT_EQ(state[0], 1e-12);
+  EXPECT_EQ(state[1], 0.0);  // just formed
+  EXPECT_GT(bridge.update(0.5 * s_rup, r, 1e-6, state), 0.0);
+  EXPECT_GT(bridge.update(s_rup * (1.0 - 1e-9), r, 1e-6, state), 0.0);
+  EXPECT_GT(bridge.update(s_rup, r, 1e-6, state), 0.0);
+  EXPECT_NEAR(state[1], 3e-6, 1e-20);  // aged by three evaluations
   // Beyond it: gone, and it stays gone when the gap closes again until contact.
-  EXPECT_EQ(bridge.update(s_rup * (1.0 + 1e-9), r, &state), 0.0);
-  EXPECT_EQ(state, 0.0);
-  EXPECT_EQ(bridge.update(0.5 * s_rup, r, &state), 0.0);
-  EXPECT_GT(bridge.update(0.0, r, &state), 0.0);
+  EXPECT_EQ(bridge.update(s_rup * (1.0 + 1e-9), r, 1e-6, state), 0.0);
+  EXPECT_EQ(state[0], 0.0);
+  EXPECT_EQ(state[1], 0.0);
+  EXPECT_EQ(bridge.update(0.5 * s_rup, r, 1e-6, state), 0.0);
+  EXPECT_GT(bridge.update(0.0, r, 1e-6, state), 0.0);
 }
 
 // ---------------------------------------------------------------- in a simulation
@@ -235,7 +238,7 @@ TEST(BeyondContact, EveryMethodListsThePairsUpToTheRange) {
         const double gap = (s.particles.position[i] - s.particles.position[j]).norm() -
                            s.particles.radius[i] - s.particles.radius[j];
         if (gap <= range + kTouchTolerance) listed.push_back({static_cast<Index>(i), j});
-        if (s.contact_state[k] > 0.0) {
+        if (s.contact_state[k * s.contact_state_size] > 0.0) {
           ++bridges;
           bridges_apart += gap > 0.0;
           EXPECT_LE(gap, range) << "a bridge beyond the rupture distance";
@@ -274,7 +277,8 @@ TEST(BeyondContact, BridgeSurvivesSeparationWithinTheRangeAndIsDroppedBeyond) {
     Simulation sim(scene, std::move(p));
     const double s_rup = ContactModel(scene).max_pair_range();
     bool seen_apart = false, seen_dropped = false;
-    double speed_before = 0.0;
+    double speed_before = 0.0, last_age = -1.0;
+    std::vector<Bond> bonds;
     for (int k = 0; k < 4000 && !seen_dropped; ++k) {
       const Particles& q = sim.particles();
       const double speed = (q.velocity[1] - q.velocity[0]).x();
@@ -289,6 +293,16 @@ TEST(BeyondContact, BridgeSurvivesSeparationWithinTheRangeAndIsDroppedBeyond) {
         EXPECT_GT(bridge, 0.0) << "bridge lost at gap " << gap;
         const double pull = LiquidBridge(0.072, 0.0, 1e-9).force(gap, r, 1e-9);
         EXPECT_GT(pull, 0.0);
+        // The bond graph reports the bridge: its volume, its force (R = 2 r r / 2r = r), an age
+        // that grows by one time step per step.
+        sim.bonds(bonds);
+        ASSERT_EQ(bonds.size(), 1u);
+        EXPECT_EQ(bonds[0].volume, 1e-9);
+        EXPECT_NEAR(bonds[0].force, pull, 1e-12 * pull);
+        if (last_age >= 0.0) {
+          EXPECT_NEAR(bonds[0].age, last_age + sim.dt(), 1e-9 * sim.dt());
+        }
+        last_age = bonds[0].age;
         // Attraction: the spheres' separation speed falls while the bridge holds.
         if (seen_apart) {
           EXPECT_LT((now.velocity[1] - now.velocity[0]).x(), speed);
@@ -297,6 +311,8 @@ TEST(BeyondContact, BridgeSurvivesSeparationWithinTheRangeAndIsDroppedBeyond) {
       }
       if (gap > s_rup) {
         EXPECT_EQ(bridge, 0.0) << "bridge beyond the rupture distance";
+        sim.bonds(bonds);
+        EXPECT_TRUE(bonds.empty());
         seen_dropped = true;
         speed_before = (now.velocity[1] - now.velocity[0]).x();
       }
@@ -321,13 +337,13 @@ TEST(BeyondContact, WetRestartWithReorderingIsBitIdentical) {
   const auto straight = settled_simulation(scene, 2 * kN);
   const auto first = settled_simulation(scene, kN);
   const SimulationState half = first->state();
-  ASSERT_EQ(half.contact_state_size, 1u);
+  ASSERT_EQ(half.contact_state_size, LiquidBridge::kStateSize);
   ASSERT_GT(std::count_if(half.contact_state.begin(), half.contact_state.end(),
                           [](double v) { return v > 0.0; }),
             3);
   write_checkpoint(dir.path() / "half.h5", half, scene.name);
   const Checkpoint c = read_checkpoint(dir.path() / "half.h5");
-  EXPECT_EQ(c.state.contact_state_size, 1u);
+  EXPECT_EQ(c.state.contact_state_size, LiquidBridge::kStateSize);
   EXPECT_TRUE(same_bits(c.state.contact_state, half.contact_state));
   Simulation continued(scene, c.state);
   continued.advance(kN);

@@ -1,0 +1,356 @@
+#include "app/gui/gui_app.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <thread>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <imgui.h>
+// clang-format off
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <GLFW/glfw3.h>
+// clang-format on
+
+#include "engine/io/checkpoint.hpp"
+#include "engine/search/search_methods.hpp"
+#include "engine/threads.hpp"
+
+namespace drumlab::gui {
+
+void History::add(double v, std::size_t keep) {
+  values.push_back(static_cast<float>(v));
+  while (values.size() > keep) values.pop_front();
+}
+
+namespace {
+
+std::vector<std::string> all_methods() {
+  std::vector<std::string> names = search_method_names();
+  for (const std::string& b : verlet_builder_names()) {
+    const std::string v = verlet_method_name(b);
+    if (std::find(names.begin(), names.end(), v) == names.end()) names.push_back(v);
+  }
+  names.emplace_back("auto");
+  return names;
+}
+
+SessionOptions session_options(const GuiOptions& o) {
+  SessionOptions s;
+  s.scene_file = o.scene;
+  s.method = o.method;
+  s.settle_time = o.settle_time;
+  return s;
+}
+
+double now_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+SceneConfig gui_scene(const std::string& file) {
+  SceneConfig scene = load_dynamic_scene(file);
+  scene.output.diagnostics_every = std::min<std::uint64_t>(scene.output.diagnostics_every, 50);
+  return scene;
+}
+
+GuiApp::GuiApp(const GuiOptions& options) : options_(options), methods_(all_methods()) {
+  view_options_.width = options.width;
+  view_options_.height = options.height;
+  view_options_.color_by = render::parse_color_by(options.color_by);
+  view_options_.camera = render::parse_camera(options.camera);
+  view_options_.focus_id = options.focus_id;
+  view_options_.text = false;  // the panels show the figures the picture's text would
+  if (!options.method.empty()) check_method(options.method, "--method");
+  set_thread_count(options.threads);
+  teach_methods_ = cell_grid_method_names();
+  teach_ = options.teach;
+  view_options_.zoom_to_focus = options.zoom_to_focus;
+  if (!options.teach_method.empty()) {
+    const auto t = std::find(teach_methods_.begin(), teach_methods_.end(), options.teach_method);
+    if (t == teach_methods_.end()) {
+      throw InputError(fmt::format("--teach-method: '{}' is not one of {}", options.teach_method,
+                                   fmt::join(teach_methods_, ", ")));
+    }
+    teach_method_ = static_cast<int>(t - teach_methods_.begin());
+  }
+  if (options.teach_cells >= 0) teach_step_ = options.teach_cells;
+
+  SnapshotWish wish;
+  wish.view = view_options_;
+  if (teach_) wish.compare_methods = teach_methods_;
+  const std::uint64_t limit = options.frames > 0 ? options.frames * options.steps_per_frame : 0;
+  SceneConfig scene = gui_scene(options.scene);
+  if (options.focus == "auto") {  // resolved on the filled scene, before the thread starts
+    RunSession probe(scene, session_options(options));
+    view_options_.focus_id = render::auto_focus_id(probe.simulation().particles());
+    wish.view.focus_id = view_options_.focus_id;
+  }
+  sim_ =
+      std::make_unique<SimThread>(scene, session_options(options), wish, options.switch_at, limit);
+  sim_->set_chunk(options.steps_per_frame);
+  edited_ = sim_->scene();
+  const auto it = std::find(methods_.begin(), methods_.end(), edited_.search_method);
+  method_index_ = it == methods_.end() ? 0 : static_cast<int>(it - methods_.begin());
+
+  if (glfwInit() != GLFW_TRUE) {
+    throw std::runtime_error("no display for the window (set DISPLAY, or run under xvfb-run)");
+  }
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 2);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);  // the view is made for one size
+  window_ = glfwCreateWindow(options.width, options.height, "drumlab-gui", nullptr, nullptr);
+  if (window_ == nullptr) {
+    glfwTerminate();
+    throw std::runtime_error("could not open an OpenGL 3.2 core window");
+  }
+  glfwMakeContextCurrent(window_);
+  glfwSwapInterval(options.frames > 0 || options.bench ? 0 : 1);
+  int fb_w = 0, fb_h = 0;
+  glfwGetFramebufferSize(window_, &fb_w, &fb_h);
+  view_options_.width = fb_w;
+  view_options_.height = fb_h;
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // the layout is the program's, not a file's
+  ImGui::StyleColorsDark();
+  ImGui_ImplGlfw_InitForOpenGL(window_, true);
+  ImGui_ImplOpenGL3_Init("#version 150");
+
+  GLFWwindow* w = window_;
+  target_ =
+      std::make_unique<render::CurrentGlContext>(fb_w, fb_h, [w] { glfwMakeContextCurrent(w); });
+  view_ = std::make_unique<render::DrumView>(view_options_, *target_);
+  if (options.frames > 0 || options.bench) sim_->set_running(options.frames > 0);
+  last_frame_time_ = fps_since_ = now_seconds();
+}
+
+GuiApp::~GuiApp() {
+  sim_.reset();  // stop the simulation first
+  view_.reset();
+  if (window_ != nullptr) {
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+    glfwDestroyWindow(window_);
+    glfwTerminate();
+  }
+}
+
+void GuiApp::push_view_options() {
+  view_->set_options(view_options_);
+  push_wish();
+}
+
+void GuiApp::push_wish() {
+  SnapshotWish wish;
+  wish.view = view_options_;
+  if (teach_ && view_options_.focus_id) wish.compare_methods = teach_methods_;
+  sim_->set_wish(std::move(wish));
+}
+
+void GuiApp::update_history(const FrameSnapshot& s) {
+  if (s.steps == last_history_step_) return;
+  last_history_step_ = s.steps;
+  const double n = std::max<double>(1.0, static_cast<double>(s.size()));
+  cells_per_particle_.add(static_cast<double>(s.counters.cells_visited) / n);
+  tests_per_particle_.add(static_cast<double>(s.counters.pairs_tested) / n);
+  contacts_per_particle_.add(static_cast<double>(s.counters.pairs_found) / n);
+  if (s.diagnostics) kinetic_.add(s.diagnostics->kinetic_energy);
+  if (s.steps > last_timer_steps_) {
+    const double steps = static_cast<double>(s.steps - last_timer_steps_);
+    recent_split_.search = s.timers.search - last_timers_.search;
+    recent_split_.forces = s.timers.forces - last_timers_.forces;
+    recent_split_.walls = s.timers.walls - last_timers_.walls;
+    recent_split_.integration = s.timers.integration - last_timers_.integration;
+    if (last_timer_steps_ > 0) step_ms_.add(1000.0 * recent_split_.total() / steps);
+  }
+  last_timers_ = s.timers;
+  last_timer_steps_ = s.steps;
+}
+
+FrameSnapshot GuiApp::display_snapshot(const FrameSnapshot& s) {
+  if (!teach_ || !s.focus_index || s.compare_visits.empty()) return s;
+  teach_method_ = std::clamp(teach_method_, 0, static_cast<int>(s.compare_visits.size()) - 1);
+  const MethodVisit& mv = s.compare_visits[static_cast<std::size_t>(teach_method_)];
+  if (!walk_ || walk_generation_ != shown_generation_ || walk_method_ != teach_method_) {
+    walk_.emplace(mv.visit, s.position);
+    walk_generation_ = shown_generation_;
+    walk_method_ = teach_method_;
+  }
+  FrameSnapshot d = s;
+  teach_step_ = std::min(teach_step_, static_cast<int>(walk_->steps()));
+  d.focus_visit = walk_->prefix(static_cast<std::size_t>(teach_step_));
+  if (!mv.visit.grids.empty()) d.grid = mv.visit.grids.front().geometry;
+  d.search_name = mv.method + " (teaching)";
+  return d;
+}
+
+void GuiApp::pick(double x, double y) {
+  if (!shown_) return;
+  const FrameSnapshot& s = *shown_;
+  double best = 1e300;
+  std::optional<Index> hit;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const auto c = view_->project(s.position[i]);
+    const auto e = view_->project(s.position[i] + Vec3(s.radius[i], 0.0, 0.0));
+    const double r = std::max(3.0, std::hypot(e[0] - c[0], e[1] - c[1]));
+    const double d = std::hypot(c[0] - x, c[1] - y);
+    // Nearest centre within its own disc; of overlapping discs the one nearer the camera.
+    const double score = d / r - 1e-3 * s.position[i].z() / std::max(1e-9, s.drum_depth);
+    if (d <= r && score < best) {
+      best = score;
+      hit = s.id[i];
+    }
+  }
+  if (!hit) return;
+  view_options_.focus_id = hit;
+  teach_step_ = 1 << 30;
+  push_view_options();
+}
+
+void GuiApp::handle_mouse() {
+  ImGuiIO& io = ImGui::GetIO();
+  if (io.WantCaptureMouse) return;
+  double x = 0.0, y = 0.0;
+  glfwGetCursorPos(window_, &x, &y);
+  if (ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+    dragging_ = false;
+    press_x_ = last_x_ = x;
+    press_y_ = last_y_ = y;
+  }
+  if (ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+    if (std::hypot(x - press_x_, y - press_y_) > 4.0) dragging_ = true;
+    if (dragging_) view_->orbit(-0.4 * (x - last_x_), 0.4 * (y - last_y_));
+    last_x_ = x;
+    last_y_ = y;
+  }
+  if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && !dragging_) pick(x, y);
+  if (io.MouseWheel != 0.0f) view_->zoom(std::pow(1.1, io.MouseWheel));
+}
+
+void GuiApp::frame(const std::string& grab) {
+  glfwPollEvents();
+  const std::uint64_t gen = sim_->generation();
+  if (gen != shown_generation_ || !shown_) {
+    shown_ = sim_->latest();
+    shown_generation_ = gen;
+    if (shown_) update_history(*shown_);
+  }
+  const double t = now_seconds();
+  ++frames_counted_;
+  if (t - fps_since_ >= 0.5) {  // frames per second over the last half second or more
+    fps_ = static_cast<double>(frames_counted_) / (t - fps_since_);
+    fps_since_ = t;
+    frames_counted_ = 0;
+  }
+  last_frame_time_ = t;
+
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  const FrameSnapshot* s = shown_.get();
+  panel_run();
+  panel_scene();
+  panel_search(s);
+  panel_view(s);
+  panel_export(s);
+  panel_teach(s);
+  handle_mouse();
+  ImGui::Render();
+
+  glViewport(0, 0, target_->width(), target_->height());
+  glClearColor(0.11f, 0.12f, 0.15f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  if (s != nullptr) {
+    if (view_options_.zoom_to_focus) view_->reset_camera();  // follow the focus particle
+    try {
+      view_->draw(display_snapshot(*s));
+    } catch (const InputError& e) {  // e.g. occupancy asked of a method without a grid
+      view_options_.grid = false;
+      view_->set_options(view_options_);
+      export_message_ = e.what();
+    }
+    if (grab_view_) {  // the view alone, before the panels are drawn over it
+      grab_view_ = false;
+      try {
+        render::write_png(target_->read_image(), png_path_);
+        export_message_ = fmt::format("wrote {}", png_path_);
+      } catch (const std::exception& e) {
+        export_message_ = e.what();
+      }
+    }
+    if (movie_frames_ && shown_generation_ != movie_last_generation_) {
+      movie_last_generation_ = shown_generation_;
+      movie_frames_->write(target_->read_image(), movie_frames_->frames_written());
+    }
+  }
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  if (!grab.empty()) render::write_png(target_->read_image(), grab);
+  glfwSwapBuffers(window_);
+}
+
+void GuiApp::run() {
+  if (options_.frames == 0) {
+    while (glfwWindowShouldClose(window_) == 0) frame();
+    return;
+  }
+  // Headless: at least `frames` UI frames, and until the simulation has made its steps.
+  for (std::uint64_t k = 0; k < options_.frames || !sim_->finished(); ++k) {
+    frame();
+    if (sim_->state_text().starts_with("stopped")) {
+      throw std::runtime_error(sim_->state_text());
+    }
+  }
+  shown_ = sim_->latest();
+  shown_generation_ = sim_->generation();
+  if (shown_) update_history(*shown_);
+  frame(options_.screenshot);  // the last snapshot, panels included
+  if (!options_.checkpoint.empty()) {
+    const std::string file = options_.checkpoint;
+    sim_->with_simulation(
+        [&](const Simulation& sim) { write_checkpoint(file, sim.state(), sim.scene().name); });
+  }
+}
+
+BenchFigures GuiApp::bench(std::uint64_t frames) {
+  BenchFigures b;
+  // Settle first (drawing as it goes), then pause: both measurements on the settled bed.
+  sim_->set_running(true);
+  while (!sim_->settled()) {
+    if (sim_->state_text().starts_with("stopped")) throw std::runtime_error(sim_->state_text());
+    frame();
+  }
+  sim_->set_running(false);
+  while (sim_->running()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  frame();
+  // Paused, the camera orbiting: the drawing alone.
+  double t0 = now_seconds();
+  for (std::uint64_t k = 0; k < frames; ++k) {
+    view_->orbit(360.0 / static_cast<double>(frames), 0.0);
+    frame();
+  }
+  b.paused_fps = static_cast<double>(frames) / (now_seconds() - t0);
+  view_->reset_camera();
+  // Running: the same drawing while the simulation thread steps.
+  const auto [steps0, seconds0] = sim_->stepping_totals();
+  sim_->set_running(true);
+  t0 = now_seconds();
+  for (std::uint64_t k = 0; k < frames; ++k) frame();
+  b.running_fps = static_cast<double>(frames) / (now_seconds() - t0);
+  sim_->set_running(false);
+  while (sim_->running()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  const auto [steps1, seconds1] = sim_->stepping_totals();
+  b.gui_particle_steps = seconds1 > seconds0 ? (steps1 - steps0) / (seconds1 - seconds0) : 0.0;
+  b.gui_steps = steps1 - steps0;
+  return b;
+}
+
+}  // namespace drumlab::gui

@@ -1,0 +1,323 @@
+#include "app/gui/sim_thread.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <exception>
+#include <utility>
+
+#include <fmt/format.h>
+
+namespace drumlab::gui {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+SimThread::SimThread(SceneConfig scene, SessionOptions options, SnapshotWish wish,
+                     std::optional<ScheduledSwitch> scheduled, std::uint64_t step_limit)
+    : options_(std::move(options)),
+      session_(std::make_unique<RunSession>(std::move(scene), options_)),
+      scheduled_(std::move(scheduled)),
+      step_limit_(step_limit),
+      wish_(std::move(wish)) {
+  if (wish_.view.focus_id) {  // an unknown id is bad input: one line, before any window opens
+    render::index_of_id(session_->simulation().particles(), *wish_.view.focus_id);
+  }
+  thread_ = std::thread([this] { loop(); });
+}
+
+SimThread::~SimThread() {
+  {
+    std::lock_guard lock(mutex_);
+    quit_ = true;
+  }
+  cv_.notify_all();
+  thread_.join();
+}
+
+std::shared_ptr<const FrameSnapshot> SimThread::latest() const {
+  std::lock_guard lock(mutex_);
+  return latest_;
+}
+
+std::uint64_t SimThread::generation() const {
+  std::lock_guard lock(mutex_);
+  return generation_;
+}
+
+void SimThread::set_running(bool running) {
+  {
+    std::lock_guard lock(mutex_);
+    running_ = running;
+  }
+  cv_.notify_all();
+}
+
+bool SimThread::running() const {
+  std::lock_guard lock(mutex_);
+  return running_;
+}
+
+void SimThread::single_step() {
+  {
+    std::lock_guard lock(mutex_);
+    if (!running_) step_once_ = true;
+  }
+  cv_.notify_all();
+}
+
+void SimThread::set_chunk(std::uint64_t steps) {
+  std::lock_guard lock(mutex_);
+  chunk_ = std::max<std::uint64_t>(1, steps);
+}
+
+void SimThread::switch_method(const std::string& name) {
+  {
+    std::lock_guard lock(mutex_);
+    pending_method_ = name;
+  }
+  cv_.notify_all();
+}
+
+void SimThread::restart(SceneConfig scene) {
+  {
+    std::lock_guard lock(mutex_);
+    pending_restart_ = std::move(scene);
+  }
+  cv_.notify_all();
+}
+
+void SimThread::set_wish(SnapshotWish wish) {
+  {
+    std::lock_guard lock(mutex_);
+    wish_ = std::move(wish);
+    snapshot_due_ = true;
+  }
+  cv_.notify_all();
+}
+
+void SimThread::with_simulation(const std::function<void(const Simulation&)>& job) {
+  std::unique_lock lock(mutex_);
+  std::exception_ptr failure;
+  bool done = false;
+  pending_job_ = [&](const Simulation& sim) {
+    try {
+      job(sim);
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    done = true;
+  };
+  cv_.notify_all();
+  cv_.wait(lock, [&] { return done || quit_; });
+  if (failure) std::rethrow_exception(failure);
+}
+
+SceneConfig SimThread::scene() const {
+  std::lock_guard lock(mutex_);
+  return session_->scene();
+}
+
+std::string SimThread::state_text() const {
+  std::lock_guard lock(mutex_);
+  if (!error_.empty()) return error_;
+  if (settling_) {
+    return fmt::format("settling (drum at rest) {} / {} steps{}", settle_done_, settle_total_,
+                       running_ ? "" : ", paused");
+  }
+  if (finished_) return "done";
+  return running_ ? "running" : "paused";
+}
+
+bool SimThread::finished() const {
+  std::lock_guard lock(mutex_);
+  return finished_;
+}
+
+double SimThread::particle_steps_per_second() const {
+  std::lock_guard lock(mutex_);
+  return step_seconds_ > 0.0 ? particle_steps_ / step_seconds_ : 0.0;
+}
+
+std::pair<double, double> SimThread::stepping_totals() const {
+  std::lock_guard lock(mutex_);
+  return {particle_steps_, step_seconds_};
+}
+
+bool SimThread::settled() const {
+  std::lock_guard lock(mutex_);
+  return settled_;
+}
+
+void SimThread::wait_finished() const {
+  std::unique_lock lock(mutex_);
+  cv_.wait(lock, [&] { return finished_ || quit_; });
+}
+
+void SimThread::publish() {
+  SnapshotWish wish;
+  {
+    std::lock_guard lock(mutex_);
+    wish = wish_;
+  }
+  SnapshotRequest request;
+  request.compare_methods = wish.compare_methods;
+  auto snap = std::make_shared<FrameSnapshot>(
+      render::view_snapshot(session_->simulation(), wish.view, request));
+  std::lock_guard lock(mutex_);
+  latest_ = std::move(snap);
+  ++generation_;
+}
+
+void SimThread::apply_commands(std::unique_lock<std::mutex>& lock) {
+  if (pending_job_) {
+    auto job = std::move(pending_job_);
+    pending_job_ = nullptr;
+    job(session_->simulation());  // under the lock: the UI thread waits for it anyway
+    cv_.notify_all();
+  }
+  if (pending_method_ && !settling_) {
+    const std::string name = std::move(*pending_method_);
+    pending_method_.reset();
+    lock.unlock();
+    std::string error;
+    try {
+      session_->set_search_method(name);
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+    lock.lock();
+    error_ = error;
+    snapshot_due_ = true;
+  }
+}
+
+bool SimThread::settle_progress() {
+  {
+    std::unique_lock lock(mutex_);
+    settle_done_ = session_->simulation().steps();
+  }
+  publish();
+  std::unique_lock lock(mutex_);
+  for (;;) {  // paused inside the settling: wait here, serving exports and new wishes
+    cv_.wait(lock, [&] {
+      return quit_ || pending_restart_ || pending_job_ || snapshot_due_ || running_ || step_once_;
+    });
+    apply_commands(lock);
+    if (quit_ || pending_restart_) return false;
+    if (running_ || step_once_) {
+      step_once_ = false;
+      return true;
+    }
+    if (snapshot_due_) {
+      snapshot_due_ = false;
+      lock.unlock();
+      publish();
+      lock.lock();
+    }
+  }
+}
+
+void SimThread::loop() {
+  bool settled = false;
+  std::uint64_t turn_start = 0;
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    cv_.wait(lock, [&] {
+      return quit_ || pending_restart_ || pending_job_ || pending_method_ || snapshot_due_ ||
+             (!finished_ && (running_ || step_once_));
+    });
+    if (quit_) break;
+    if (pending_restart_) {
+      SceneConfig scene = std::move(*pending_restart_);
+      pending_restart_.reset();
+      lock.unlock();
+      std::string error;
+      try {
+        auto fresh = std::make_unique<RunSession>(std::move(scene), options_);
+        session_ = std::move(fresh);  // only this thread touches the session
+        settled = false;
+        settled_ = false;
+      } catch (const std::exception& e) {
+        error = fmt::format("restart refused: {}", e.what());
+      }
+      lock.lock();
+      error_ = error;
+      running_ = false;
+      finished_ = false;
+      snapshot_due_ = true;
+      continue;
+    }
+    apply_commands(lock);
+    if (snapshot_due_) {
+      snapshot_due_ = false;
+      lock.unlock();
+      publish();
+      lock.lock();
+      continue;
+    }
+    if (finished_ || !(running_ || step_once_)) continue;
+    try {
+      if (!settled) {
+        settling_ = true;
+        settle_done_ = 0;
+        settle_total_ = session_->settle_steps();
+        const auto n = static_cast<double>(session_->simulation().particles().size());
+        lock.unlock();
+        const auto t0 = std::chrono::steady_clock::now();
+        session_->settle([this](std::uint64_t, std::uint64_t) { return settle_progress(); });
+        const double dt = seconds_since(t0);
+        lock.lock();
+        settling_ = false;
+        if (pending_restart_ || quit_) continue;
+        step_seconds_ += dt;
+        particle_steps_ += n * static_cast<double>(settle_total_);
+        settled = true;
+        settled_ = true;
+        turn_start = session_->simulation().steps();
+        lock.unlock();
+        publish();
+        lock.lock();
+        continue;
+      }
+      const std::uint64_t done = session_->simulation().steps() - turn_start;
+      std::uint64_t n = chunk_;
+      if (scheduled_ && done < scheduled_->step) n = std::min(n, scheduled_->step - done);
+      if (step_limit_ > 0) n = std::min(n, step_limit_ - std::min(step_limit_, done));
+      step_once_ = false;
+      const auto count = static_cast<double>(session_->simulation().particles().size());
+      lock.unlock();
+      const auto t0 = std::chrono::steady_clock::now();
+      if (n > 0) session_->advance(n);
+      const double dt = seconds_since(t0);
+      const std::uint64_t now = session_->simulation().steps() - turn_start;
+      if (scheduled_ && now == scheduled_->step) {
+        session_->set_search_method(scheduled_->method);
+        scheduled_.reset();
+      }
+      publish();
+      lock.lock();
+      step_seconds_ += dt;
+      particle_steps_ += count * static_cast<double>(n);
+      if (step_limit_ > 0 && now >= step_limit_) {
+        finished_ = true;
+        running_ = false;
+        cv_.notify_all();
+      }
+    } catch (const std::exception& e) {
+      if (!lock.owns_lock()) lock.lock();
+      settling_ = false;
+      error_ = fmt::format("stopped: {}", e.what());
+      finished_ = true;
+      running_ = false;
+      cv_.notify_all();
+    }
+  }
+  cv_.notify_all();
+}
+
+}  // namespace drumlab::gui

@@ -1,0 +1,114 @@
+#pragma once
+// The workbench's simulation thread: it owns the RunSession, steps it in chunks (settling first,
+// as the CLI does), and after every chunk takes a FrameSnapshot (render::view_snapshot) that it
+// hands to the UI thread under a mutex. The UI never reads the Simulation; it sends commands
+// (run, pause, single step, switch method, restart from an edited scene, change what the snapshot
+// holds), which the thread applies between steps.
+#include <condition_variable>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "engine/session/frame_snapshot.hpp"
+#include "engine/session/run_session.hpp"
+#include "render/drum_view.hpp"
+
+namespace drumlab::gui {
+
+/// What the snapshot must carry (the view's colour-by and focus, the teaching mode's methods).
+struct SnapshotWish {
+  render::ViewOptions view;
+  std::vector<std::string> compare_methods;
+};
+
+/// A method switch at an exact step (sim.steps() == step): --switch-at K:METHOD.
+struct ScheduledSwitch {
+  std::uint64_t step = 0;
+  std::string method;
+};
+
+class SimThread {
+ public:
+  /// Builds the session on the calling thread (fill, auto), so bad input throws here
+  /// (InputError), then starts the thread paused. `step_limit` > 0: stop for good once the
+  /// simulation has made that many steps (headless runs).
+  SimThread(SceneConfig scene, SessionOptions options, SnapshotWish wish,
+            std::optional<ScheduledSwitch> scheduled = {}, std::uint64_t step_limit = 0);
+  ~SimThread();
+  SimThread(const SimThread&) = delete;
+  SimThread& operator=(const SimThread&) = delete;
+
+  /// The newest snapshot (nullptr before the first) and a counter that grows with every new one.
+  std::shared_ptr<const FrameSnapshot> latest() const;
+  std::uint64_t generation() const;
+
+  void set_running(bool running);
+  bool running() const;
+  /// One chunk of steps (paused only).
+  void single_step();
+  /// Steps per chunk (a snapshot after each).
+  void set_chunk(std::uint64_t steps);
+  /// Switches the search method before the next step ("auto" chooses again).
+  void switch_method(const std::string& name);
+  /// Throws away the run and starts again from `scene` (filled and settled anew), paused.
+  void restart(SceneConfig scene);
+  /// What the next snapshots carry; a new snapshot is taken now if the thread is idle.
+  void set_wish(SnapshotWish wish);
+  /// Runs `job` on the simulation between steps (an export that needs the full state) and waits.
+  void with_simulation(const std::function<void(const Simulation&)>& job);
+
+  /// The scene as run (overrides applied, "auto" resolved) and the session's options.
+  SceneConfig scene() const;
+  /// "settling 120 / 1000 steps", "running", "paused", "done", or the error that stopped it.
+  std::string state_text() const;
+  /// True once step_limit is reached (or the run stopped on an error).
+  bool finished() const;
+  /// Particle-steps per second of the stepping alone (wall time inside advance/settle).
+  double particle_steps_per_second() const;
+  /// Particle-steps made and wall seconds spent stepping, since the start.
+  std::pair<double, double> stepping_totals() const;
+  /// True once the settling phase is over.
+  bool settled() const;
+  /// Waits until finished() (headless runs).
+  void wait_finished() const;
+
+ private:
+  void loop();
+  bool settle_progress();  // called by RunSession::settle between chunks
+  void publish();          // takes a snapshot (sim thread, lock not held)
+  void apply_commands(std::unique_lock<std::mutex>& lock);
+
+  SessionOptions options_;
+  std::unique_ptr<RunSession> session_;
+  std::optional<ScheduledSwitch> scheduled_;
+  std::uint64_t step_limit_ = 0;
+
+  mutable std::mutex mutex_;
+  mutable std::condition_variable cv_;
+  std::shared_ptr<const FrameSnapshot> latest_;
+  std::uint64_t generation_ = 0;
+  SnapshotWish wish_;
+  bool running_ = false;
+  bool step_once_ = false;
+  bool quit_ = false;
+  bool finished_ = false;
+  bool settling_ = false;
+  bool settled_ = false;
+  bool snapshot_due_ = true;
+  std::uint64_t settle_done_ = 0, settle_total_ = 0;
+  std::uint64_t chunk_ = 10;
+  std::optional<std::string> pending_method_;
+  std::optional<SceneConfig> pending_restart_;
+  std::function<void(const Simulation&)> pending_job_;
+  std::string error_;
+  double step_seconds_ = 0.0;
+  double particle_steps_ = 0.0;
+  std::thread thread_;
+};
+
+}  // namespace drumlab::gui

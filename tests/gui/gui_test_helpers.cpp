@@ -1,0 +1,92 @@
+#include "tests/gui/gui_test_helpers.hpp"
+
+#include <array>
+#include <cmath>
+
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPNGReader.h>
+
+#include "tests/small_drum_text.hpp"
+
+namespace drumlab::test {
+
+bool have_xvfb() {
+  return std::string(DRUMLAB_XVFB_RUN).size() > 0;
+}
+
+GuiRun run_gui(const std::string& args, bool window) {
+  std::string cmd;
+  if (window) cmd = std::string(DRUMLAB_XVFB_RUN) + " -a -s \"-screen 0 1280x800x24\" ";
+  cmd += std::string(DRUMLAB_GUI) + " " + args + " 2>&1";
+  GuiRun r;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (pipe == nullptr) return r;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), static_cast<int>(buf.size()), pipe) != nullptr) r.output += buf.data();
+  const int status = pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::filesystem::path fresh_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("drumlab-gui-test-" + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+std::filesystem::path write_small_drum(const std::filesystem::path& dir,
+                                       const std::string& search) {
+  SmallDrumText t;
+  t.header = "name = \"gui_small\"\n";
+  t.search = search;
+  const auto file = dir / "gui_small.toml";
+  std::ofstream(file) << t.text();
+  return file;
+}
+
+render::Image read_png(const std::filesystem::path& file) {
+  render::Image img;
+  if (!std::filesystem::exists(file)) return img;
+  vtkNew<vtkPNGReader> reader;
+  reader->SetFileName(file.string().c_str());
+  reader->Update();
+  vtkImageData* data = reader->GetOutput();
+  int dims[3] = {0, 0, 0};
+  data->GetDimensions(dims);
+  const int comps = data->GetNumberOfScalarComponents();
+  if (comps < 3) return img;
+  img.width = dims[0];
+  img.height = dims[1];
+  img.rgb.resize(3 * static_cast<std::size_t>(img.width) * img.height);
+  for (int y = 0; y < img.height; ++y) {
+    for (int x = 0; x < img.width; ++x) {
+      // VTK's rows run bottom to top.
+      const auto* px =
+          static_cast<unsigned char*>(data->GetScalarPointer(x, img.height - 1 - y, 0));
+      for (int c = 0; c < 3; ++c) {
+        img.rgb[3 * (static_cast<std::size_t>(y) * img.width + x) + c] = px[c];
+      }
+    }
+  }
+  return img;
+}
+
+std::size_t pixels_near(const render::Image& img, const double* rgb, int tolerance) {
+  std::size_t n = 0;
+  for (int y = 0; y < img.height; ++y) {
+    for (int x = 0; x < img.width; ++x) {
+      const auto px = img.pixel(x, y);
+      int d = 0;
+      for (int c = 0; c < 3; ++c) {
+        d = std::max(
+            d, std::abs(static_cast<int>(px[c]) - static_cast<int>(std::lround(255.0 * rgb[c]))));
+      }
+      n += d <= tolerance;
+    }
+  }
+  return n;
+}
+
+}  // namespace drumlab::test

@@ -1,0 +1,72 @@
+// drumlab-gui under xvfb-run: the saved window shows ImGui's widgets, the particles and the focus
+// particle's search. Skipped only where xvfb-run is missing.
+#include <gtest/gtest.h>
+
+#include <imgui.h>
+
+#include "render/grid_overlay.hpp"
+#include "tests/gui/gui_test_helpers.hpp"
+
+namespace drumlab::test {
+namespace {
+
+/// ImGui's dark style colour `col` (the style drumlab-gui uses), RGB in [0, 1].
+std::array<double, 3> imgui_dark(ImGuiCol col) {
+  ImGuiContext* ctx = ImGui::CreateContext();
+  ImGui::StyleColorsDark();
+  const ImVec4 c = ImGui::GetStyle().Colors[col];
+  ImGui::DestroyContext(ctx);
+  return {c.x, c.y, c.z};
+}
+
+TEST(GuiWindow, ScreenshotShowsWidgetsParticlesAndTheFocus) {
+  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run not found (Debian: apt-get install xvfb)";
+  const auto dir = fresh_dir("window");
+  const auto scene = write_small_drum(dir, "m5");
+  const auto png = dir / "window.png";
+  const GuiRun r = run_gui(scene.string() +
+                               " --settle-time 0.3 --frames 5 --focus auto "
+                               "--zoom-to-focus --size 900 --height 600 --screenshot " +
+                               png.string(),
+                           true);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const render::Image img = read_png(png);
+  ASSERT_EQ(img.width, 900) << r.output;
+  ASSERT_EQ(img.height, 600);
+  // Widgets: the check marks (walls, legend) and the slider grab (steps / frame), opaque.
+  const auto check = imgui_dark(ImGuiCol_CheckMark);
+  const auto grab = imgui_dark(ImGuiCol_SliderGrab);
+  EXPECT_GT(pixels_near(img, check.data(), 3), 20u) << "ImGui check marks";
+  EXPECT_GT(pixels_near(img, grab.data(), 3), 20u) << "ImGui slider grab";
+  // Particles: the two size classes' Okabe-Ito colours (shaded spheres: a wider tolerance).
+  const double small[3] = {0.902, 0.624, 0.000};
+  const double large[3] = {0.337, 0.706, 0.914};
+  EXPECT_GT(pixels_near(img, small, 40), 500u) << "small particles";
+  EXPECT_GT(pixels_near(img, large, 40), 500u) << "large particles";
+  // The focus particle's search: its own cell's outline and its contacts.
+  EXPECT_GT(pixels_near(img, render::kOwnCellColor, 30), 20u) << "own cell";
+  EXPECT_GT(pixels_near(img, render::kForwardCellColor, 60), 20u) << "visited half stencil";
+  EXPECT_GT(pixels_near(img, render::kContactColor, 30), 0u) << "contacts";
+}
+
+TEST(GuiWindow, TeachingModeShowsEveryCellGridMethod) {
+  if (!have_xvfb()) GTEST_SKIP() << "xvfb-run not found (Debian: apt-get install xvfb)";
+  const auto dir = fresh_dir("teach");
+  const auto scene = write_small_drum(dir, "m5");
+  const auto png = dir / "teach.png";
+  const GuiRun r = run_gui(scene.string() +
+                               " --settle-time 0.1 --frames 3 --focus 0 --teach "
+                               "--teach-method m2 --teach-cells 1 --size 900 --height 600 "
+                               "--screenshot " +
+                               png.string(),
+                           true);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const render::Image img = read_png(png);
+  ASSERT_EQ(img.width, 900) << r.output;
+  // One cell walked: the own cell is drawn, no visited stencil cell yet.
+  EXPECT_GT(pixels_near(img, render::kOwnCellColor, 30), 20u) << "own cell";
+  EXPECT_EQ(pixels_near(img, render::kForwardCellColor, 3), 0u) << "no forward cell yet";
+}
+
+}  // namespace
+}  // namespace drumlab::test
