@@ -38,7 +38,7 @@ struct DecomposeOptions {
   double bandwidth_gbs = 10.0;
   double latency_us = 2.0;
   double rate = 0.0;
-  std::uint64_t rate_steps = 3;
+  std::uint64_t rate_steps = 0;  ///< 0: as many as take a second
   bool per_rank = false;
   std::string restart;  ///< decompose a checkpoint's state instead of a fresh fill
 };
@@ -167,11 +167,18 @@ void decompose(const DecomposeOptions& opt) {
   double rate = opt.rate;
   std::string rate_source = "--rate";
   if (!(rate > 0.0)) {
-    const TurnResult turn = session.run_turn(opt.rate_steps, 0, {});
-    rate = static_cast<double>(n) * static_cast<double>(turn.stats.steps) /
-           std::max(turn.stats.wall_seconds, 1e-9);
-    rate_source =
-        fmt::format("measured: {} steps of {} on one core", turn.stats.steps, run.search_method);
+    // --rate-steps, or chunks of 1, 2, 4, ... steps until the run has taken a second.
+    std::uint64_t steps = 0;
+    double wall = 0.0;
+    for (std::uint64_t chunk = opt.rate_steps > 0 ? opt.rate_steps : 1;
+         steps == 0 || (opt.rate_steps == 0 && wall < 1.0 && steps < 100000); chunk *= 2) {
+      const TurnResult turn = session.run_turn(chunk, 0, {});
+      steps += turn.stats.steps;
+      wall += turn.stats.wall_seconds;
+    }
+    rate = static_cast<double>(n) * static_cast<double>(steps) / std::max(wall, 1e-9);
+    rate_source = fmt::format("measured: {} steps of {} on one core, {:.2f} s", steps,
+                              run.search_method, wall);
   }
   const double prepare_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - fill_start).count();
@@ -276,7 +283,8 @@ void add_decompose_command(CLI::App& app) {
   cmd->add_option("--rate", opt->rate,
                   "one-core particle-steps/s (default: measured on a short run of the scene)")
       ->check(CLI::PositiveNumber);
-  cmd->add_option("--rate-steps", opt->rate_steps, "steps of the rate measurement")
+  cmd->add_option("--rate-steps", opt->rate_steps,
+                  "steps of the rate measurement (default: doubling from 1 until it took 1 s)")
       ->check(CLI::Range(1, 100000));
   cmd->add_flag("--per-rank", opt->per_rank, "one line per rank for every rank count");
   cmd->add_option("--restart", opt->restart,
