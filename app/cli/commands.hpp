@@ -7,6 +7,7 @@ namespace drumlab::cli {
 void add_analyze_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_contacts_command(CLI::App& app);
+void add_decompose_command(CLI::App& app);
 void add_paper_table_command(CLI::App& app);
 void add_run_command(CLI::App& app);
 void add_info_command(CLI::App& app);
