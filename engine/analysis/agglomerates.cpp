@@ -214,7 +214,7 @@ AgglomerateFrame find_agglomerates(const AgglomerateInput& in, const Agglomerate
 }
 
 bool scene_has_bonds(const SceneConfig& scene) {
-  return scene.liquid.enabled;
+  return scene.liquid.enabled || scene.cohesion.enabled;
 }
 
 double default_granule_age(double omega) {
