@@ -211,6 +211,8 @@ void GuiApp::panel_view(const FrameSnapshot* s) {
   changed |= ImGui::Checkbox("legend", &view_options_.legend);
   ImGui::SameLine();
   changed |= ImGui::Checkbox("text", &view_options_.text);
+  changed |= ImGui::Checkbox("grey particles (the focus colours stand out)",
+                             &view_options_.neutral_particles);
   if (ImGui::Button("camera: axis")) {
     view_options_.camera = render::CameraMode::axis;
     view_->set_options(view_options_);
