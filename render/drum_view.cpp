@@ -35,6 +35,7 @@
 #include <vtkTransformPolyDataFilter.h>
 #include <vtkVariant.h>
 
+#include "engine/analysis/agglomerates.hpp"
 #include "render/grid_overlay.hpp"
 
 namespace drumlab::render {
@@ -67,7 +68,11 @@ struct ColorArray {
   std::string title;
   /// Distinct values with their names, drawn as swatches (size classes); empty: a continuous map.
   std::vector<std::pair<double, std::string>> categories;
+  bool first_grey = false;  ///< category 0 is grey, the palette starts at category 1
 };
+
+/// Grey of a particle alone in its agglomerate.
+constexpr double kGrey[3] = {0.55, 0.57, 0.6};
 
 /// Size classes: the distinct radii (mm), named after the scene's classes where one has that
 /// radius; none if there are more radii than colours (a continuous map then).
@@ -108,11 +113,12 @@ void use_viridis(vtkLookupTable* lut) {
 }
 
 /// One colour per category, looked up by value (the legend draws them as named swatches).
-void use_categories(vtkLookupTable* lut, const std::vector<std::pair<double, std::string>>& cats) {
+void use_categories(vtkLookupTable* lut, const std::vector<std::pair<double, std::string>>& cats,
+                    bool first_grey) {
   lut->ResetAnnotations();
   lut->SetNumberOfTableValues(static_cast<vtkIdType>(cats.size()));
   for (std::size_t k = 0; k < cats.size(); ++k) {
-    const double* c = kCategories[k];
+    const double* c = first_grey ? (k == 0 ? kGrey : kCategories[k - 1]) : kCategories[k];
     lut->SetTableValue(static_cast<vtkIdType>(k), c[0], c[1], c[2], 1.0);
     lut->SetAnnotation(vtkVariant(cats[k].first), cats[k].second);
   }
@@ -149,6 +155,15 @@ ColorArray color_values(const FrameSnapshot& s, ColorBy by) {
     case ColorBy::coordination:
       c.hi = 12.0;
       c.title = "contacts";
+      break;
+    case ColorBy::agglomerate:
+      c.hi = static_cast<double>(kMaxCategories);
+      c.title = "agglomerate";
+      c.first_grey = true;
+      c.categories.emplace_back(0.0, "alone");
+      for (std::size_t k = 1; k <= kMaxCategories; ++k) {
+        c.categories.emplace_back(static_cast<double>(k), fmt::format("id mod 7 = {}", k - 1));
+      }
       break;
   }
   if (!(c.hi > c.lo)) c.hi = c.lo + 1.0;
@@ -228,8 +243,20 @@ std::string grid_text(const GridOverlay& grid, bool focus) {
 
 }  // namespace
 
-std::vector<double> particle_color_values(const Simulation& sim, ColorBy by) {
+std::vector<double> particle_color_values(const Simulation& sim, ColorBy by, double granule_age) {
   const Particles& p = sim.particles();
+  if (by == ColorBy::agglomerate) {
+    const std::vector<std::uint32_t> label = agglomerate_labels(sim, granule_age);
+    std::vector<std::uint32_t> sorted(label);
+    std::sort(sorted.begin(), sorted.end());
+    std::vector<double> values(p.size());
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const auto range = std::equal_range(sorted.begin(), sorted.end(), label[i]);
+      const bool alone = range.second - range.first == 1;
+      values[i] = alone ? 0.0 : 1.0 + static_cast<double>(label[i] % kMaxCategories);
+    }
+    return values;
+  }
   if (by == ColorBy::coordination) {  // the engine's count, as the VTU's coordination array
     std::vector<std::uint32_t> count;
     sim.coordination_numbers(count);
@@ -251,6 +278,7 @@ std::vector<double> particle_color_values(const Simulation& sim, ColorBy by) {
         values[i] = static_cast<double>(p.id[i]);
         break;
       case ColorBy::coordination:
+      case ColorBy::agglomerate:
         break;
     }
   }
@@ -263,7 +291,8 @@ constexpr ColorByName kColorByNames[] = {{ColorBy::size, "size"},
                                          {ColorBy::speed, "speed"},
                                          {ColorBy::omega, "omega"},
                                          {ColorBy::id, "id"},
-                                         {ColorBy::coordination, "coordination"}};
+                                         {ColorBy::coordination, "coordination"},
+                                         {ColorBy::agglomerate, "agglomerate"}};
 
 }  // namespace
 
@@ -295,7 +324,7 @@ FrameSnapshot view_snapshot(const Simulation& sim, const ViewOptions& options,
     request.focus_id = options.focus_id;
   }
   FrameSnapshot s = take_snapshot(sim, request);
-  s.color_values = particle_color_values(sim, options.color_by);
+  s.color_values = particle_color_values(sim, options.color_by, options.granule_age);
   s.color_by = color_by_name(options.color_by);
   return s;
 }
@@ -516,7 +545,7 @@ void DrumView::Impl::update_particles(const FrameSnapshot& p) {
   if (colors.categories.empty()) {
     use_viridis(lut);
   } else {
-    use_categories(lut, colors.categories);
+    use_categories(lut, colors.categories, colors.first_grey);
   }
   lut->SetTableRange(colors.lo, colors.hi);
   sphere_mapper->SetScalarRange(colors.lo, colors.hi);

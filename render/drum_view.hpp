@@ -19,7 +19,7 @@
 
 namespace drumlab::render {
 
-enum class ColorBy { size, speed, omega, id, coordination };
+enum class ColorBy { size, speed, omega, id, coordination, agglomerate };
 enum class CameraMode { axis, iso };
 
 /// Every colour mode with its name on the command line and in the GUI, in menu order (the one
@@ -34,8 +34,12 @@ std::string_view color_by_name(ColorBy by);
 ColorBy parse_color_by(std::string_view s);
 /// The value each particle (in storage order) is coloured by: radius (mm), speed (m/s), |omega|
 /// (rad/s), stable id, or coordination (Simulation::coordination_numbers, periodic ends included,
-/// the same count as the VTU's coordination array).
-std::vector<double> particle_color_values(const Simulation& sim, ColorBy by);
+/// the same count as the VTU's coordination array), or agglomerate: 0 for a particle alone in
+/// its agglomerate (grey), else 1 + (agglomerate id mod 7), the colour of the categorical palette
+/// (agglomerate_labels with granule_age, the VTU's agglomerate_id; an agglomerate keeps its
+/// colour while it keeps its id).
+std::vector<double> particle_color_values(const Simulation& sim, ColorBy by,
+                                          double granule_age = -1.0);
 /// Parses "axis" or "iso"; throws InputError otherwise.
 CameraMode parse_camera(std::string_view s);
 
@@ -51,6 +55,7 @@ struct ViewOptions {
   int width = 1280;
   int height = 720;
   ColorBy color_by = ColorBy::size;
+  double granule_age = -1.0;  ///< criterion of ColorBy::agglomerate (granule_options), s
   CameraMode camera = CameraMode::axis;
   bool grid = false;               ///< colour the active grid's cells by occupancy
   std::optional<Index> focus_id;   ///< stable id of the particle whose search is shown

@@ -6,6 +6,7 @@
 #include <vtkUnsignedIntArray.h>
 #include <vtkUnstructuredGrid.h>
 
+#include "engine/analysis/agglomerates.hpp"
 #include "render/vtk_datasets.hpp"
 
 namespace drumlab::render {
@@ -26,7 +27,7 @@ void set_vec(vtkDoubleArray* a, std::size_t i, const Vec3& v) {
 
 }  // namespace
 
-vtkSmartPointer<vtkUnstructuredGrid> particles_dataset(const Simulation& sim) {
+vtkSmartPointer<vtkUnstructuredGrid> particles_dataset(const Simulation& sim, double granule_age) {
   const Particles& p = sim.particles();
   const std::size_t n = p.size();
   std::vector<std::uint32_t> coordination;
@@ -68,6 +69,18 @@ vtkSmartPointer<vtkUnstructuredGrid> particles_dataset(const Simulation& sim) {
         static_cast<vtkAbstractArray*>(speed), static_cast<vtkAbstractArray*>(omega),
         static_cast<vtkAbstractArray*>(force_array), static_cast<vtkAbstractArray*>(coord)}) {
     pd->AddArray(a);
+  }
+  if (scene_has_bonds(sim.scene())) {
+    const std::vector<std::uint32_t> label = agglomerate_labels(sim, granule_age);
+    const std::vector<double>* film = p.find_array(kLiquidFilmArray);
+    auto agglomerate = make_array<vtkUnsignedIntArray>("agglomerate_id", 1, n);
+    auto liquid = make_array<vtkDoubleArray>("liquid_volume", 1, n);
+    for (std::size_t i = 0; i < n; ++i) {
+      agglomerate->SetValue(static_cast<vtkIdType>(i), label[i]);
+      liquid->SetValue(static_cast<vtkIdType>(i), film ? (*film)[i] : 0.0);
+    }
+    pd->AddArray(agglomerate);
+    pd->AddArray(liquid);
   }
   pd->SetActiveScalars("radius");
   pd->SetActiveVectors("velocity");

@@ -17,8 +17,11 @@ inline constexpr const char* kParticleArrays[] = {
 /// One point (and one vertex cell) per particle, at its centre, with the arrays of
 /// kParticleArrays: id (UInt32), radius (m), size_class (UInt8), velocity (m/s), speed (m/s),
 /// angular_velocity (rad/s), force (N, the engine's contact force, pairs and walls, without
-/// gravity), coordination (UInt32, particle-particle contacts with overlap > 0).
-vtkSmartPointer<vtkUnstructuredGrid> particles_dataset(const Simulation& sim);
+/// gravity), coordination (UInt32, particle-particle contacts with overlap > 0). A scene with
+/// bonds (scene_has_bonds) adds agglomerate_id (UInt32, engine/analysis/agglomerates.hpp, with the
+/// criterion of granule_age: see granule_options) and liquid_volume (m^3, the film; 0 without one).
+vtkSmartPointer<vtkUnstructuredGrid> particles_dataset(const Simulation& sim,
+                                                       double granule_age = -1.0);
 
 /// The analytic drum wall as a surface: the cylinder (quads) and, unless the ends are periodic,
 /// the two end caps (polygons). Cell data: part (0 cylinder, 1 cap z = 0, 2 cap z = H) and
@@ -28,7 +31,9 @@ vtkSmartPointer<vtkPolyData> drum_dataset(const Simulation& sim, int segments = 
 
 /// The particle-particle contacts of the current state as lines from centre to centre (minimum
 /// image across periodic ends). Cell data: force_magnitude (N), force (N, on the first particle),
-/// id_a, id_b (stable ids).
+/// id_a, id_b (stable ids). A scene with bonds also has a line for every bond whose spheres do
+/// not touch (force 0) and the cell data bridge_volume (m^3) and bridge_force (N, attractive,
+/// >= 0), 0 on a line without a bond.
 vtkSmartPointer<vtkPolyData> contacts_dataset(const Simulation& sim);
 
 /// The contact-search grid of the last step with the particles per cell as cell data "particles"

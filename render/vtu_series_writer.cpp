@@ -39,7 +39,7 @@ void VtuSeriesWriter::add(const std::string& series, const std::string& file, do
 void VtuSeriesWriter::write_frame(const Simulation& sim) {
   const double t = sim.time();
   const std::string particles = frame_name("particles", frames_, "vtu");
-  write_vtk_xml(particles_dataset(sim), dir_ / particles);
+  write_vtk_xml(particles_dataset(sim, options_.granule_age), dir_ / particles);
   const std::string drum = frame_name("drum", frames_, "vtp");
   write_vtk_xml(drum_dataset(sim), dir_ / drum);
   std::string contacts, grid;

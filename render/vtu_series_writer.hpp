@@ -17,8 +17,9 @@
 namespace drumlab::render {
 
 struct VtuSeriesOptions {
-  bool contacts = false;  ///< contacts_NNNNNN.vtp + contacts.pvd
-  bool grid = false;      ///< grid_NNNNNN.vti + grid.pvd
+  bool contacts = false;      ///< contacts_NNNNNN.vtp + contacts.pvd
+  bool grid = false;          ///< grid_NNNNNN.vti + grid.pvd
+  double granule_age = -1.0;  ///< criterion of agglomerate_id (granule_options), s
 };
 
 class VtuSeriesWriter {

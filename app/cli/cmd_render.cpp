@@ -1,5 +1,6 @@
 // drumlab render SCENE --out DIR [--frames N] [--every K] [--movie FILE] [--size WxH]
-//   [--color-by size|speed|omega|id|coordination] [--grid] [--focus ID|auto] [--camera axis|iso]
+//   [--color-by size|speed|omega|id|coordination|agglomerate] [--grid] [--focus ID|auto] [--camera
+//   axis|iso]
 #include <chrono>
 #include <cstdio>
 #include <regex>
@@ -158,12 +159,14 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--every", opt->every, "steps between frames")->excludes(frames);
   cmd->add_option("--movie", args->movie, "movie file (.mp4 with ffmpeg, else .ogv)");
   cmd->add_option("--size", args->size, "frame size WxH (default 1280x720)");
-  cmd->add_option("--color-by", args->color_by, "size, speed, omega, id or coordination");
+  cmd->add_option("--color-by", args->color_by,
+                  "size, speed, omega, id, coordination or agglomerate");
   cmd->add_flag("--grid", args->grid, "colour the search grid's cells by occupancy");
   cmd->add_option("--focus", args->focus, "show one particle's search: its id, or auto");
   cmd->add_option("--camera", args->camera, "axis (along the drum axis) or iso");
   cmd->callback([opt, args] {
-    const RenderOutput out = make_output(*args);
+    RenderOutput out = make_output(*args);
+    out.view.granule_age = opt->granule_age;
     if (args->grid) {  // fail now, not after settling; --focus shows every method's search
       const std::string method =
           opt->method.empty() ? load_dynamic_scene(opt->scene).search_method : opt->method;

@@ -4,6 +4,7 @@
 
 namespace drumlab::cli {
 
+void add_analyze_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_contacts_command(CLI::App& app);
 void add_paper_table_command(CLI::App& app);

@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   drumlab::cli::add_run_command(app);
   drumlab::cli::add_info_command(app);
   drumlab::cli::add_contacts_command(app);
+  drumlab::cli::add_analyze_command(app);
   drumlab::cli::add_paper_table_command(app);
   drumlab::cli::add_bench_command(app);
   drumlab::cli::add_stress_command(app);

@@ -4,9 +4,12 @@
 
 #include <fmt/format.h>
 
+#include "engine/analysis/agglomerate_table.hpp"
+#include "engine/analysis/agglomerates.hpp"
 #include "engine/io/checkpoint.hpp"
 #include "engine/io/h5_series.hpp"
 #ifdef DRUMLAB_WITH_RENDER
+#include "render/agglomerate_chart.hpp"
 #include "render/vtu_series_writer.hpp"
 #endif
 
@@ -30,9 +33,18 @@ class VtuObserver final : public FrameObserver {
 
 class H5Observer final : public FrameObserver {
  public:
-  explicit H5Observer(const std::string& file) : series_(file) {}
+  H5Observer(const std::string& file, double granule_age)
+      : series_(file), granule_age_(granule_age) {}
   void on_frame(const Simulation& sim, std::uint64_t) override {
-    series_.write_frame(sim.particles(), sim.time(), sim.steps());
+    if (!scene_has_bonds(sim.scene())) {  // a dry scene's series as before
+      series_.write_frame(sim.particles(), sim.time(), sim.steps());
+      return;
+    }
+    const AgglomerateInput in = agglomerate_input(sim, bonds_);
+    const AgglomerateFrame frame =
+        find_agglomerates(in, granule_options(sim.scene().drum.omega, granule_age_));
+    const SeriesBondFrame b{bonds_, frame.label, in.period, sim.scene().drum.omega};
+    series_.write_frame(sim.particles(), sim.time(), sim.steps(), &b);
   }
   void on_finish(const Simulation&) override {
     series_.finish();
@@ -42,6 +54,42 @@ class H5Observer final : public FrameObserver {
 
  private:
   H5Series series_;
+  double granule_age_;
+  std::vector<Bond> bonds_;
+};
+
+/// --agglomerates FILE.csv: a row per frame, the chart FILE.png at the end.
+class AgglomerateObserver final : public FrameObserver {
+ public:
+  AgglomerateObserver(const std::string& file, double granule_age)
+      : table_(file), granule_age_(granule_age) {}
+  void on_frame(const Simulation& sim, std::uint64_t) override {
+    const AgglomerateInput in = agglomerate_input(sim, bonds_);
+    table_.add(find_agglomerates(in, granule_options(sim.scene().drum.omega, granule_age_)).stats);
+  }
+  void on_finish(const Simulation&) override {
+    table_.finish();
+    const auto& rows = table_.rows();
+    if (!rows.empty()) {
+      const AgglomerateStats& last = rows.back();
+      fmt::print(
+          "agglomerates      {} frames in {} ({}); last frame: {} of size >= 2, largest {}, "
+          "d50 {:.3g} mm; largest plain component {:.1f} % of the bed\n",
+          rows.size(), table_.file().string(), last.criterion, last.count, last.largest,
+          1000.0 * last.d50, 100.0 * last.largest_plain_share);
+    }
+#ifdef DRUMLAB_WITH_RENDER
+    if (!rows.empty()) {
+      render::write_agglomerate_chart(rows, table_.chart_file());
+      fmt::print("agglomerate chart {}\n", table_.chart_file().string());
+    }
+#endif
+  }
+
+ private:
+  AgglomerateTable table_;
+  double granule_age_;
+  std::vector<Bond> bonds_;
 };
 
 class CheckpointObserver final : public FrameObserver {
@@ -88,6 +136,7 @@ std::vector<std::unique_ptr<FrameObserver>> make_output_observers(const RunOptio
     render::VtuSeriesOptions v;
     v.contacts = opt.contacts_vtk;
     v.grid = opt.grid_vtk;
+    v.granule_age = opt.granule_age;
     out.push_back(std::make_unique<VtuObserver>(opt.vtu_dir, v));
 #else
     throw InputError("--vtu: this build has no VTK (configure with DRUMLAB_BUILD_RENDER=ON)");
@@ -102,12 +151,18 @@ std::vector<std::unique_ptr<FrameObserver>> make_output_observers(const RunOptio
   if (!opt.h5_file.empty() && !opt.checkpoint.empty() && same_file(opt.h5_file, opt.checkpoint)) {
     throw InputError(fmt::format("--h5 and --checkpoint both name {}", opt.h5_file));
   }
-  if (!opt.h5_file.empty()) out.push_back(std::make_unique<H5Observer>(opt.h5_file));
+  if (!opt.h5_file.empty()) {
+    out.push_back(std::make_unique<H5Observer>(opt.h5_file, opt.granule_age));
+  }
   if (!opt.checkpoint.empty()) {
     check_parent_directory(opt.checkpoint, "--checkpoint");
     out.push_back(std::make_unique<CheckpointObserver>(opt.checkpoint, opt.checkpoint_every));
   } else if (opt.checkpoint_every > 0) {
     throw InputError("--checkpoint-every needs --checkpoint FILE");
+  }
+  if (!opt.agglomerates.empty()) {  // last: it opens FILE.part at once
+    check_parent_directory(opt.agglomerates, "--agglomerates");
+    out.push_back(std::make_unique<AgglomerateObserver>(opt.agglomerates, opt.granule_age));
   }
   return out;
 }

@@ -2,7 +2,8 @@
 // The output writers of `run`/`demo`/`render` as scheduled FrameObservers, created only for the
 // output flags given (a run without them creates no writer and no VTK object):
 //   --vtu DIR [--contacts-vtk] [--grid-vtk]   VTU/PVD series (needs the render library)
-//   --h5 FILE                                 HDF5 time series + XDMF sidecar
+//   --h5 FILE                                 HDF5 time series + XDMF sidecar (streamed)
+//   --agglomerates FILE.csv [--granule-age T] agglomerate statistics per frame + FILE.png
 //   --checkpoint FILE [--checkpoint-every K]  checkpoint at the end (and every K steps)
 #include <memory>
 #include <vector>

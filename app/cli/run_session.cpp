@@ -39,6 +39,12 @@ void add_run_options(CLI::App* cmd, RunOptions& opt) {
   cmd->add_flag("--contacts-vtk", opt.contacts_vtk, "with --vtu: contacts as lines (.vtp)");
   cmd->add_flag("--grid-vtk", opt.grid_vtk, "with --vtu: search grid occupancy (.vti)");
   cmd->add_option("--h5", opt.h5_file, "write an HDF5 time series (+ XDMF sidecar) to FILE");
+  cmd->add_option("--agglomerates", opt.agglomerates,
+                  "write agglomerate statistics per frame to FILE.csv and their chart to FILE.png");
+  cmd->add_option("--granule-age", opt.granule_age,
+                  "granule criterion: bonds older than T s join (0: plain components; default: "
+                  "one drum revolution)")
+      ->check(CLI::NonNegativeNumber);
   cmd->add_option("--checkpoint", opt.checkpoint, "write a restart checkpoint (HDF5) at the end");
   cmd->add_option("--checkpoint-every", opt.checkpoint_every,
                   "also rewrite the checkpoint every K steps")

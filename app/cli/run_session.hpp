@@ -33,7 +33,9 @@ struct RunOptions {
   std::string h5_file;        ///< --h5 FILE
   std::string checkpoint;     ///< --checkpoint FILE (written at the end)
   std::uint64_t checkpoint_every = 0;
-  std::string restart;  ///< --restart FILE: skip fill and settling, continue from the file
+  std::string agglomerates;   ///< --agglomerates FILE.csv (+ FILE.png)
+  double granule_age = -1.0;  ///< --granule-age T (s); < 0: one drum revolution
+  std::string restart;        ///< --restart FILE: skip fill and settling, continue from the file
 };
 
 /// Adds the options of RunOptions (except the scene and the frame schedule --every/--frames, which

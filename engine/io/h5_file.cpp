@@ -12,9 +12,13 @@
 namespace drumlab::h5 {
 namespace {
 
-/// Switches off HDF5's automatic error printing once; our messages say what failed.
+/// Switches off HDF5's automatic error printing once; our messages say what failed. First of all
+/// (before HDF5 initializes) it asks HDF5 not to close its files at exit: Debian's HDF5 1.10
+/// segfaults in its exit handler (H5F__close_cb) on a file whose close failed after a failed
+/// disk write (disk full). Every file drumlab opens is closed by its Handle before exit.
 void quiet() {
   static const bool done = [] {
+    H5dont_atexit();
     H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
     return true;
   }();
@@ -123,6 +127,19 @@ Handle create_memory_file(const std::string& label) {
   return f;
 }
 
+Handle create_disk_file(const std::filesystem::path& path) {
+  quiet();
+  Handle f(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  if (f.get() < 0) throw InputError(fmt::format("{}: cannot create an HDF5 file", path.string()));
+  return f;
+}
+
+void flush(hid_t file) {
+  if (H5Fflush(file, H5F_SCOPE_LOCAL) < 0) {
+    throw InputError(fmt::format("{}: write failed (disk full?)", file_of(file)));
+  }
+}
+
 std::size_t memory_file_size(hid_t file) {
   const ssize_t n = H5Fget_file_image(file, nullptr, 0);
   return n < 0 ? 0 : static_cast<std::size_t>(n);
@@ -216,6 +233,53 @@ void write_vec3(hid_t loc, const std::string& name, std::span<const Vec3> data) 
   static_assert(sizeof(Vec3) == 3 * sizeof(double));
   const double* raw = data.empty() ? nullptr : data.front().data();
   write(loc, name, std::span<const double>(raw, 3 * data.size()), {data.size(), 3});
+}
+
+namespace {
+
+Handle create_growing(hid_t loc, const std::string& name, hid_t file_type) {
+  const hsize_t zero = 0, unlimited = H5S_UNLIMITED, chunk = 256;
+  Handle space(H5Screate_simple(1, &zero, &unlimited), H5Sclose);
+  Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+  if (space.get() < 0 || dcpl.get() < 0 || H5Pset_chunk(dcpl.get(), 1, &chunk) < 0) {
+    fail(loc, name, "cannot set up growing dataset");
+  }
+  Handle set(
+      H5Dcreate2(loc, name.c_str(), file_type, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
+      H5Dclose);
+  if (set.get() < 0) fail(loc, name, "cannot create dataset");
+  return set;
+}
+
+void append_raw(hid_t set, hid_t mem_type, const void* value) {
+  Handle space(H5Dget_space(set), H5Sclose);
+  hsize_t n = 0;
+  if (space.get() < 0 || H5Sget_simple_extent_dims(space.get(), &n, nullptr) != 1) {
+    fail(set, "growing dataset", "cannot read the size of");
+  }
+  const hsize_t grown = n + 1, one = 1;
+  if (H5Dset_extent(set, &grown) < 0) fail(set, "growing dataset", "cannot extend");
+  Handle file_space(H5Dget_space(set), H5Sclose);
+  Handle mem_space(H5Screate_simple(1, &one, nullptr), H5Sclose);
+  if (H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, &n, nullptr, &one, nullptr) < 0 ||
+      H5Dwrite(set, mem_type, mem_space.get(), file_space.get(), H5P_DEFAULT, value) < 0) {
+    fail(set, "growing dataset", "cannot write (disk full?)");
+  }
+}
+
+}  // namespace
+
+Handle create_growing_doubles(hid_t loc, const std::string& name) {
+  return create_growing(loc, name, H5T_IEEE_F64LE);
+}
+Handle create_growing_u64(hid_t loc, const std::string& name) {
+  return create_growing(loc, name, H5T_STD_U64LE);
+}
+void append(hid_t set, double value) {
+  append_raw(set, H5T_NATIVE_DOUBLE, &value);
+}
+void append(hid_t set, std::uint64_t value) {
+  append_raw(set, H5T_NATIVE_UINT64, &value);
 }
 
 std::vector<double> read_doubles(hid_t loc, const std::string& name, std::size_t expected) {

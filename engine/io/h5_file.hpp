@@ -35,12 +35,20 @@ class Handle {
 };
 
 /// Creates an HDF5 file in memory (core driver, no backing store); `label` names it in messages.
-/// HDF5 itself never writes to disk: Debian's HDF5 1.10 crashes at exit after a failed disk write
-/// (disk full), so files are built in memory and saved with save_memory_file.
+/// Checkpoints are built in memory and saved with save_memory_file (temporary name, rename).
+/// Debian's HDF5 1.10 crashes at exit after a failed disk write (disk full) when it closes the
+/// failed file again; HDF5 is therefore initialized with H5dont_atexit (files are closed by
+/// their Handles), which the streamed series (create_disk_file) relies on.
 Handle create_memory_file(const std::string& label);
 /// Writes the image of a memory file to `path` (temporary name, then rename) and closes it.
 /// Throws InputError naming the path if it cannot be written; nothing is left under that name.
 void save_memory_file(Handle& file, const std::filesystem::path& path);
+/// Creates (truncates) an HDF5 file on disk for a series streamed frame by frame (sec2 driver).
+/// Throws InputError naming the path.
+Handle create_disk_file(const std::filesystem::path& path);
+/// Writes everything HDF5 holds for `file` to disk (H5Fflush); throws InputError naming the
+/// file if it cannot (disk full).
+void flush(hid_t file);
 /// Bytes the memory file's image takes now.
 std::size_t memory_file_size(hid_t file);
 /// Opens a file read-only. Throws InputError naming the path.
@@ -62,6 +70,13 @@ void write(hid_t loc, const std::string& name, std::span<const std::uint64_t> da
 void write(hid_t loc, const std::string& name, std::span<const std::uint32_t> data);
 void write(hid_t loc, const std::string& name, std::span<const std::uint8_t> data);
 void write_vec3(hid_t loc, const std::string& name, std::span<const Vec3> data);
+
+/// A 1D chunked dataset of unlimited length (double or u64 elements) that grows by one value at
+/// a time (append).
+Handle create_growing_doubles(hid_t loc, const std::string& name);
+Handle create_growing_u64(hid_t loc, const std::string& name);
+void append(hid_t set, double value);
+void append(hid_t set, std::uint64_t value);
 
 /// Reads a whole dataset; throws InputError if it is missing, of another element class or its
 /// total size differs from `expected` (unless expected is kAnySize).

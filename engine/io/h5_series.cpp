@@ -1,6 +1,8 @@
 #include "engine/io/h5_series.hpp"
 
 #include <sstream>
+#include <stdexcept>
+#include <unordered_map>
 
 #include <fmt/format.h>
 
@@ -11,6 +13,8 @@ namespace drumlab {
 
 struct H5Series::Impl {
   h5::Handle file;
+  h5::Handle time;
+  h5::Handle step;
 };
 
 std::string h5_frame_group(std::size_t k) {
@@ -19,11 +23,16 @@ std::string h5_frame_group(std::size_t k) {
 
 H5Series::H5Series(std::filesystem::path file)
     : file_(std::move(file)), impl_(std::make_unique<Impl>()) {
-  h5::check_writable(file_);  // fail before the run, not at its end
-  impl_->file = h5::create_memory_file(file_.string());
+  h5::check_writable(file_);  // fail before the run, not at its first frame
 }
 
-H5Series::~H5Series() = default;
+H5Series::~H5Series() {
+  if (impl_->file.get() >= 0) {
+    impl_->time.reset();
+    impl_->step.reset();
+    impl_->file.reset();
+  }
+}
 
 std::filesystem::path H5Series::xdmf_file() const {
   std::filesystem::path x = file_;
@@ -31,36 +40,110 @@ std::filesystem::path H5Series::xdmf_file() const {
   return x;
 }
 
-void H5Series::write_frame(const Particles& p, double time, std::uint64_t step) {
+void H5Series::discard() noexcept {
+  impl_->time.reset();
+  impl_->step.reset();
+  impl_->file.reset();
+  std::error_code ignored;
+  std::filesystem::remove(file_, ignored);
+  std::filesystem::remove(xdmf_file(), ignored);
+  finished_ = true;  // nothing more is written
+}
+
+void H5Series::write_sidecar() const {
+  const std::string text = xdmf_for_series(file_.filename().string(), times_, counts_, with_bonds_);
+  write_file_atomically(xdmf_file(), [&](std::ostream& out) { out << text; });
+}
+
+namespace {
+
+void write_bond_frame(hid_t g, const Particles& p, const SeriesBondFrame& b) {
+  h5::write_attribute(g, "period_z", b.period);
+  h5::write_attribute(g, "drum_omega", b.drum_omega);
+  h5::write(g, "mass", p.mass, {p.size()});
+  const std::vector<double>* film = p.find_array(kLiquidFilmArray);
+  const std::vector<double> no_film(film ? 0 : p.size(), 0.0);
+  h5::write(g, "liquid_volume", film ? *film : no_film, {p.size()});
+  if (b.agglomerate_id.size() != p.size()) {
+    throw std::invalid_argument("H5Series: agglomerate_id does not match the particles");
+  }
+  h5::write(g, "agglomerate_id", b.agglomerate_id);
+  const std::size_t n = b.bonds.size();
+  std::vector<std::uint32_t> id_a(n), id_b(n);
+  std::vector<double> volume(n), force(n), age(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    id_a[k] = p.id[b.bonds[k].i];
+    id_b[k] = p.id[b.bonds[k].j];
+    volume[k] = b.bonds[k].volume;
+    force[k] = b.bonds[k].force;
+    age[k] = b.bonds[k].age;
+  }
+  h5::Handle bonds = h5::create_group(g, "bonds");
+  h5::write(bonds.get(), "id_a", std::span<const std::uint32_t>(id_a));
+  h5::write(bonds.get(), "id_b", std::span<const std::uint32_t>(id_b));
+  h5::write(bonds.get(), "volume", volume, {n});
+  h5::write(bonds.get(), "force", force, {n});
+  h5::write(bonds.get(), "age", age, {n});
+}
+
+}  // namespace
+
+void H5Series::write_frame(const Particles& p, double time, std::uint64_t step,
+                           const SeriesBondFrame* bonds) {
   if (finished_) throw std::logic_error("H5Series: write after finish");
-  const hid_t f = impl_->file.get();
-  h5::Handle g = h5::create_group(f, h5_frame_group(times_.size()));
-  h5::write_attribute(g.get(), "time", time);
-  h5::write_attribute(g.get(), "step", step);
-  h5::write_vec3(g.get(), "position", p.position);
-  h5::write_vec3(g.get(), "velocity", p.velocity);
-  h5::write_vec3(g.get(), "omega", p.omega);
-  h5::write(g.get(), "radius", p.radius, {p.size()});
-  h5::write(g.get(), "id", std::span<const std::uint32_t>(p.id));
-  h5::write(g.get(), "size_class", std::span<const std::uint8_t>(p.size_class));
-  times_.push_back(time);
-  steps_.push_back(step);
-  counts_.push_back(p.size());
-  if (h5::memory_file_size(f) > kMaxBytes) {
-    throw InputError(fmt::format(
-        "{}: the HDF5 series passed {} GiB in memory; write fewer frames (a larger --every)",
-        file_.string(), kMaxBytes >> 30));
+  try {
+    if (impl_->file.get() < 0) {
+      impl_->file = h5::create_disk_file(file_);
+      impl_->time = h5::create_growing_doubles(impl_->file.get(), "time");
+      impl_->step = h5::create_growing_u64(impl_->file.get(), "step");
+    }
+    const hid_t f = impl_->file.get();
+    {
+      h5::Handle g = h5::create_group(f, h5_frame_group(times_.size()));
+      h5::write_attribute(g.get(), "time", time);
+      h5::write_attribute(g.get(), "step", step);
+      h5::write_vec3(g.get(), "position", p.position);
+      h5::write_vec3(g.get(), "velocity", p.velocity);
+      h5::write_vec3(g.get(), "omega", p.omega);
+      h5::write(g.get(), "radius", p.radius, {p.size()});
+      h5::write(g.get(), "id", std::span<const std::uint32_t>(p.id));
+      h5::write(g.get(), "size_class", std::span<const std::uint8_t>(p.size_class));
+      if (bonds) write_bond_frame(g.get(), p, *bonds);
+    }
+    // The frame counts once its time is listed; then it goes to disk.
+    h5::append(impl_->time.get(), time);
+    h5::append(impl_->step.get(), step);
+    h5::flush(f);
+    times_.push_back(time);
+    counts_.push_back(p.size());
+    with_bonds_.push_back(bonds != nullptr);
+    write_sidecar();
+  } catch (...) {
+    discard();
+    throw;
   }
 }
 
 void H5Series::finish() {
   if (finished_) return;
-  const hid_t f = impl_->file.get();
-  h5::write(f, "time", times_, {times_.size()});
-  h5::write(f, "step", std::span<const std::uint64_t>(steps_));
-  h5::save_memory_file(impl_->file, file_);
-  const std::string text = xdmf_for_series(file_.filename().string(), times_, counts_);
-  write_file_atomically(xdmf_file(), [&](std::ostream& out) { out << text; });
+  try {
+    if (impl_->file.get() < 0) {  // no frame: an empty, complete series
+      impl_->file = h5::create_disk_file(file_);
+      impl_->time = h5::create_growing_doubles(impl_->file.get(), "time");
+      impl_->step = h5::create_growing_u64(impl_->file.get(), "step");
+    }
+    h5::write_attribute(impl_->file.get(), "complete", std::uint64_t{1});
+    impl_->time.reset();
+    impl_->step.reset();
+    h5::flush(impl_->file.get());
+    if (!impl_->file.reset()) {
+      throw InputError(fmt::format("{}: write failed (disk full?)", file_.string()));
+    }
+    write_sidecar();
+  } catch (...) {
+    discard();
+    throw;
+  }
   finished_ = true;
 }
 
@@ -88,7 +171,8 @@ void attribute(std::ostringstream& x, const std::string& h5_name, const std::str
 }  // namespace
 
 std::string xdmf_for_series(const std::string& h5_name, const std::vector<double>& times,
-                            const std::vector<std::size_t>& counts) {
+                            const std::vector<std::size_t>& counts,
+                            const std::vector<bool>& with_bonds) {
   std::ostringstream x;
   x << "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
        "<Xdmf Version=\"3.0\" xmlns:xi=\"http://www.w3.org/2001/XInclude\">\n  <Domain>\n"
@@ -110,10 +194,72 @@ std::string xdmf_for_series(const std::string& h5_name, const std::vector<double
     attribute(x, h5_name, g, "radius", "radius", n, false, "Float", 8);
     attribute(x, h5_name, g, "id", "id", n, false, "UInt", 4);
     attribute(x, h5_name, g, "size_class", "size_class", n, false, "UChar", 1);
+    if (k < with_bonds.size() && with_bonds[k]) {
+      attribute(x, h5_name, g, "agglomerate_id", "agglomerate_id", n, false, "UInt", 4);
+      attribute(x, h5_name, g, "liquid_volume", "liquid_volume", n, false, "Float", 8);
+    }
     x << "      </Grid>\n";
   }
   x << "    </Grid>\n  </Domain>\n</Xdmf>\n";
   return x.str();
+}
+
+SeriesInfo read_series_info(const std::filesystem::path& file) {
+  h5::Handle f = h5::open_file(file);
+  SeriesInfo info;
+  if (!h5::exists(f.get(), "time")) {
+    throw InputError(fmt::format("{}: not a drumlab HDF5 series (no /time)", file.string()));
+  }
+  info.frames = h5::element_count(f.get(), "time");
+  info.complete = H5Aexists(f.get(), "complete") > 0;
+  if (info.frames > 0) {
+    h5::Handle g = h5::open_group(f.get(), h5_frame_group(0));
+    info.has_bonds = h5::exists(g.get(), "bonds");
+  }
+  return info;
+}
+
+SeriesFrame read_series_frame(const std::filesystem::path& file, std::size_t k) {
+  h5::Handle f = h5::open_file(file);
+  const std::string name = h5_frame_group(k);
+  h5::Handle g = h5::open_group(f.get(), name);
+  SeriesFrame s;
+  s.time = h5::read_double_attribute(g.get(), "time");
+  s.step = h5::read_u64_attribute(g.get(), "step");
+  s.id = h5::read_u32(g.get(), "id", h5::kAnySize);
+  const std::size_t n = s.id.size();
+  s.position = h5::read_vec3(g.get(), "position", n);
+  s.radius = h5::read_doubles(g.get(), "radius", n);
+  if (!h5::exists(g.get(), "bonds")) {
+    throw InputError(fmt::format("{}: {} has no bond graph (the series of a scene without bonds)",
+                                 file.string(), name));
+  }
+  s.mass = h5::read_doubles(g.get(), "mass", n);
+  s.film = h5::read_doubles(g.get(), "liquid_volume", n);
+  s.period = h5::read_double_attribute(g.get(), "period_z");
+  s.drum_omega = h5::read_double_attribute(g.get(), "drum_omega");
+  h5::Handle b = h5::open_group(g.get(), "bonds");
+  const std::vector<std::uint32_t> id_a = h5::read_u32(b.get(), "id_a", h5::kAnySize);
+  const std::size_t m = id_a.size();
+  const std::vector<std::uint32_t> id_b = h5::read_u32(b.get(), "id_b", m);
+  const std::vector<double> volume = h5::read_doubles(b.get(), "volume", m);
+  const std::vector<double> force = h5::read_doubles(b.get(), "force", m);
+  const std::vector<double> age = h5::read_doubles(b.get(), "age", m);
+  std::unordered_map<std::uint32_t, Index> slot;
+  slot.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) slot.emplace(s.id[i], static_cast<Index>(i));
+  s.bonds.resize(m);
+  for (std::size_t k2 = 0; k2 < m; ++k2) {
+    const auto a = slot.find(id_a[k2]);
+    const auto c = slot.find(id_b[k2]);
+    if (a == slot.end() || c == slot.end()) {
+      throw InputError(fmt::format("{}: {}/bonds names particle id {} that the frame lacks",
+                                   file.string(), name, a == slot.end() ? id_a[k2] : id_b[k2]));
+    }
+    s.bonds[k2] = {std::min(a->second, c->second), std::max(a->second, c->second), volume[k2],
+                   force[k2], age[k2]};
+  }
+  return s;
 }
 
 }  // namespace drumlab

@@ -1,34 +1,54 @@
 #pragma once
 // A compact HDF5 time series of the particles with an XDMF 3 sidecar that ParaView opens
-// (Xdmf3ReaderT): one group per frame, /frame_NNNNNN/{position, velocity, omega (N x 3), radius
-// (N), id (N, u32), size_class (N, u8)} with a scalar attribute `time`, plus /time (frames) and
-// /step (frames) at the end. The file is assembled in memory (at most kMaxBytes) and written by
-// finish() under FILE.tmp-PID, then renamed into place, followed by the sidecar FILE.xdmf (written
-// the same way), so a failed run leaves no truncated file under either final name. (Memory rather
-// than incremental disk writes: Debian's HDF5 1.10 crashes at exit after a failed disk write.)
+// (Xdmf3ReaderT), streamed to disk frame by frame so memory stays bounded and a killed run keeps
+// its frames. Layout:
+//   /frame_NNNNNN/{position, velocity, omega (N x 3), radius (N), id (N, u32), size_class (N, u8)}
+//                 with scalar attributes `time` and `step`;
+//   /time, /step  one value per complete frame (growing 1D datasets);
+//   root attribute `complete` = 1, written by finish() only.
+// A scene with bonds (scene_has_bonds) adds to every frame mass (N), liquid_volume (N, the film;
+// 0 without a film array), agglomerate_id (N, u32) and the bond graph
+// /frame_NNNNNN/bonds/{id_a, id_b (u32, stable ids), volume, force, age}, with frame attributes
+// `period_z` and `drum_omega` (what the agglomerate analysis needs to rerun afterwards).
+// After each frame the file is flushed (H5Fflush) and the sidecar FILE.xdmf is rewritten
+// atomically, listing the frames written so far: a run killed with SIGKILL leaves a file whose
+// /time lists its complete frames, and a sidecar that opens them; such a file has no `complete`
+// attribute. A failed write (disk full) removes both files.
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "engine/contact/bond.hpp"
 #include "engine/particles.hpp"
 
 namespace drumlab {
 
+/// The bond graph and agglomerate labels of a frame (scenes with bonds only).
+struct SeriesBondFrame {
+  std::span<const Bond> bonds;                    ///< storage slots
+  std::span<const std::uint32_t> agglomerate_id;  ///< per particle, storage order
+  double period = 0.0;                            ///< z period of periodic ends, 0: none
+  double drum_omega = 0.0;                        ///< rad/s
+};
+
 class H5Series {
  public:
-  static constexpr std::size_t kMaxBytes = std::size_t{8} << 30;
-
-  /// Checks that `file` can be written (throws InputError if not) and starts the series.
+  /// Checks that `file` can be written (throws InputError if not); the file is created at the
+  /// first frame.
   explicit H5Series(std::filesystem::path file);
+  /// Closes the file; an unfinished series keeps its complete frames (no `complete` attribute).
   ~H5Series();
   H5Series(const H5Series&) = delete;
   H5Series& operator=(const H5Series&) = delete;
 
-  /// Appends one frame. Throws InputError if the series would exceed kMaxBytes.
-  void write_frame(const Particles& p, double time, std::uint64_t step);
-  /// Closes the file, writes the XDMF sidecar and renames both into place.
+  /// Appends one frame, flushes it to disk and rewrites the sidecar. Throws InputError if it
+  /// cannot be written (then the file and the sidecar are removed).
+  void write_frame(const Particles& p, double time, std::uint64_t step,
+                   const SeriesBondFrame* bonds = nullptr);
+  /// Marks the series complete and closes the file.
   void finish();
 
   const std::filesystem::path& file() const { return file_; }
@@ -37,11 +57,13 @@ class H5Series {
 
  private:
   struct Impl;
+  void write_sidecar() const;
+  void discard() noexcept;
   std::filesystem::path file_;
   std::unique_ptr<Impl> impl_;
   std::vector<double> times_;
-  std::vector<std::uint64_t> steps_;
   std::vector<std::size_t> counts_;
+  std::vector<bool> with_bonds_;
   bool finished_ = false;
 };
 
@@ -49,8 +71,36 @@ class H5Series {
 std::string h5_frame_group(std::size_t k);
 
 /// The XDMF 3 text describing the series: a temporal collection of Polyvertex grids whose XYZ
-/// geometry and attributes are HyperSlab-free references "h5_name:/frame_k/dataset".
+/// geometry and attributes are HyperSlab-free references "h5_name:/frame_k/dataset"; frames
+/// with bonds (with_bonds[k], may be empty: none) also list agglomerate_id and liquid_volume.
 std::string xdmf_for_series(const std::string& h5_name, const std::vector<double>& times,
-                            const std::vector<std::size_t>& counts);
+                            const std::vector<std::size_t>& counts,
+                            const std::vector<bool>& with_bonds = {});
+
+/// One frame of a series as the agglomerate analysis reads it back (bonds in storage slots).
+struct SeriesFrame {
+  double time = 0.0;
+  std::uint64_t step = 0;
+  std::vector<Vec3> position;
+  std::vector<double> radius;
+  std::vector<double> mass;
+  std::vector<std::uint32_t> id;
+  std::vector<double> film;
+  std::vector<Bond> bonds;
+  double period = 0.0;
+  double drum_omega = 0.0;
+};
+
+/// Reads a series: the number of complete frames (the length of /time) and whether it was
+/// finished. Throws InputError naming the file if it is not a series.
+struct SeriesInfo {
+  std::size_t frames = 0;
+  bool complete = false;
+  bool has_bonds = false;  ///< frames carry the bond graph
+};
+SeriesInfo read_series_info(const std::filesystem::path& file);
+/// Frame k of the series with its bond graph. Throws InputError naming the file and frame if the
+/// frame or its bond graph is missing or inconsistent.
+SeriesFrame read_series_frame(const std::filesystem::path& file, std::size_t k);
 
 }  // namespace drumlab

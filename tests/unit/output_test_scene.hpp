@@ -24,6 +24,12 @@ inline std::string output_scene_text() {
   return t.text();
 }
 
+/// The same drum wet: pendular bridges ([liquid]) of 1e-9 m^3 (rupture gap 1 mm), so bonds form.
+inline std::string wet_output_scene_text() {
+  return output_scene_text() +
+         "[liquid]\nsurface_tension = 0.072\ncontact_angle_deg = 0\nbridge_volume = 1e-9\n";
+}
+
 inline SceneConfig output_scene() {
   return parse_scene(output_scene_text(), "output-test");
 }

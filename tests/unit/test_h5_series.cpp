@@ -1,7 +1,8 @@
 // The HDF5 time series: frames read back equal the particles written, the /time and /step
 // datasets list the frames, and the XDMF sidecar is XDMF 3 with one Polyvertex grid per frame
 // whose every DataItem names a dataset that exists in the file with the stated dimensions.
-// Unfinished or failed series leave no file under the final names.
+// The series streams: each frame is on disk (listed in /time, in the sidecar) once written; an
+// unfinished series keeps its frames without the `complete` mark; a failed write leaves no file.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -39,12 +40,18 @@ TEST(H5Series, FramesRoundTripAndXdmfReferencesExistingDatasets) {
       times.push_back(sim->time());
       sim->advance(25);
     }
-    EXPECT_FALSE(std::filesystem::exists(file)) << "final name appears only at finish()";
+    // Streamed: the frames so far are on disk before finish(), not yet marked complete.
+    const SeriesInfo before = read_series_info(file);
+    EXPECT_EQ(before.frames, 3u);
+    EXPECT_FALSE(before.complete);
+    EXPECT_FALSE(before.has_bonds);
+    EXPECT_NE(read_text(dir.path() / "series.xdmf").find(h5_frame_group(2)), std::string::npos);
     series.finish();
   }
   ASSERT_TRUE(std::filesystem::exists(file));
   ASSERT_TRUE(std::filesystem::exists(dir.path() / "series.xdmf"));
 
+  EXPECT_TRUE(read_series_info(file).complete);
   h5::Handle f = h5::open_file(file);
   EXPECT_EQ(h5::read_doubles(f.get(), "time", 3), times);
   EXPECT_EQ(h5::read_u64(f.get(), "step", 3), (std::vector<std::uint64_t>{20, 45, 70}));
@@ -87,14 +94,16 @@ TEST(H5Series, FramesRoundTripAndXdmfReferencesExistingDatasets) {
   EXPECT_EQ(items, 18u);  // geometry + 5 attributes, 3 frames
 }
 
-TEST(H5Series, UnfinishedOrUnwritableSeriesLeavesNoFile) {
+TEST(H5Series, UnfinishedSeriesKeepsItsFramesUnwritableOneLeavesNoFile) {
   TempDir dir("h5-series-bad");
   const auto sim = settled_simulation(output_scene(), 5);
   {
     H5Series series(dir.path() / "abandoned.h5");
     series.write_frame(sim->particles(), sim->time(), sim->steps());
   }  // destroyed without finish(): e.g. the run became unstable
-  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 0);
+  const SeriesInfo info = read_series_info(dir.path() / "abandoned.h5");
+  EXPECT_EQ(info.frames, 1u);
+  EXPECT_FALSE(info.complete) << "an unfinished series must not look complete";
   EXPECT_THROW(H5Series(dir.path() / "missing" / "s.h5"), InputError);
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "missing"));
 }

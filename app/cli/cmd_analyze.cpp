@@ -1,0 +1,76 @@
+// drumlab analyze SERIES.h5 --agglomerates FILE.csv [--granule-age T]
+// The agglomerate table of `run --agglomerates` computed afterwards from an HDF5 series (which
+// stores the bond graph of every frame of a scene with bonds), with its chart FILE.png.
+#include <fmt/format.h>
+
+#include "app/cli/commands.hpp"
+#include "engine/analysis/agglomerate_table.hpp"
+#include "engine/io/h5_series.hpp"
+#ifdef DRUMLAB_WITH_RENDER
+#include "render/agglomerate_chart.hpp"
+#endif
+
+namespace drumlab::cli {
+namespace {
+
+struct AnalyzeOptions {
+  std::string series;
+  std::string agglomerates;
+  double granule_age = -1.0;
+};
+
+void analyze(const AnalyzeOptions& o) {
+  const SeriesInfo info = read_series_info(o.series);
+  if (info.frames == 0) throw InputError(fmt::format("{}: the series has no frames", o.series));
+  if (!info.has_bonds) {
+    throw InputError(fmt::format(
+        "{}: the series has no bond graph (written for a scene without bonds)", o.series));
+  }
+  AgglomerateTable table(o.agglomerates);
+  std::vector<Bond> bonds;
+  for (std::size_t k = 0; k < info.frames; ++k) {
+    const SeriesFrame f = read_series_frame(o.series, k);
+    AgglomerateInput in;
+    in.position = f.position;
+    in.radius = f.radius;
+    in.mass = f.mass;
+    in.id = f.id;
+    in.film = f.film;
+    in.bonds = f.bonds;
+    in.period = f.period;
+    in.time = f.time;
+    table.add(find_agglomerates(in, granule_options(f.drum_omega, o.granule_age)).stats);
+  }
+  table.finish();
+  const AgglomerateStats& last = table.rows().back();
+  fmt::print("series            {}: {} frames{}\n", o.series, info.frames,
+             info.complete ? "" : " (unfinished: the run was stopped; its complete frames)");
+  fmt::print(
+      "agglomerates      {} ({}); last frame: {} of size >= 2, largest {}, d50 {:.3g} mm; "
+      "largest plain component {:.1f} % of the bed\n",
+      table.file().string(), last.criterion, last.count, last.largest, 1000.0 * last.d50,
+      100.0 * last.largest_plain_share);
+#ifdef DRUMLAB_WITH_RENDER
+  render::write_agglomerate_chart(table.rows(), table.chart_file());
+  fmt::print("agglomerate chart {}\n", table.chart_file().string());
+#endif
+}
+
+}  // namespace
+
+void add_analyze_command(CLI::App& app) {
+  auto o = std::make_shared<AnalyzeOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "analyze", "Agglomerate statistics per frame of an HDF5 series (drumlab run --h5)");
+  cmd->add_option("series", o->series, "HDF5 series written by run --h5")->required();
+  cmd->add_option("--agglomerates", o->agglomerates,
+                  "write the statistics to FILE.csv and their chart to FILE.png")
+      ->required();
+  cmd->add_option("--granule-age", o->granule_age,
+                  "granule criterion: bonds older than T s join (0: plain components; default: "
+                  "one drum revolution)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->callback([o] { analyze(*o); });
+}
+
+}  // namespace drumlab::cli

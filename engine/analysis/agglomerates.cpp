@@ -1,0 +1,266 @@
+#include "engine/analysis/agglomerates.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "engine/periodic.hpp"
+#include "engine/simulation.hpp"
+
+namespace drumlab {
+namespace {
+
+/// Union-find over storage slots (path halving, union by size).
+class DisjointSets {
+ public:
+  explicit DisjointSets(std::size_t n) : parent_(n), size_(n, 1) {
+    for (std::size_t i = 0; i < n; ++i) parent_[i] = i;
+  }
+  std::size_t find(std::size_t i) {
+    while (parent_[i] != i) {
+      parent_[i] = parent_[parent_[i]];
+      i = parent_[i];
+    }
+    return i;
+  }
+  void unite(std::size_t a, std::size_t b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return;
+    if (size_[a] < size_[b]) std::swap(a, b);
+    parent_[b] = a;
+    size_[a] += size_[b];
+  }
+  std::size_t size_of_root(std::size_t root) const { return size_[root]; }
+
+ private:
+  std::vector<std::size_t> parent_;
+  std::vector<std::size_t> size_;
+};
+
+void check_input(const AgglomerateInput& in) {
+  const std::size_t n = in.position.size();
+  if (in.radius.size() != n || in.mass.size() != n || in.id.size() != n ||
+      (!in.film.empty() && in.film.size() != n)) {
+    throw std::invalid_argument("find_agglomerates: per-particle arrays differ in length");
+  }
+  for (const Bond& b : in.bonds) {
+    if (b.i >= n || b.j >= n || b.i == b.j) {
+      throw std::invalid_argument(fmt::format(
+          "find_agglomerates: bond ({}, {}) out of range of {} particles", b.i, b.j, n));
+    }
+  }
+}
+
+bool joins(const Bond& b, const AgglomerateOptions& o) {
+  return o.min_bond_age <= 0.0 || b.age >= o.min_bond_age;
+}
+
+/// Mass-weighted percentile q of the diameters: the smallest diameter at which the cumulative
+/// mass (agglomerates by increasing diameter) reaches q of the total.
+double mass_percentile(const std::vector<std::pair<double, double>>& by_diameter, double total,
+                       double q) {
+  double cumulative = 0.0;
+  for (const auto& [d, m] : by_diameter) {
+    cumulative += m;
+    if (cumulative >= q * total) return d;
+  }
+  return by_diameter.empty() ? 0.0 : by_diameter.back().first;
+}
+
+/// Members unwrapped along the bonds of their component (breadth first from the first member), so
+/// that every bond is its minimum image: a cluster across periodic ends stays in one piece.
+std::vector<Vec3> unwrapped_positions(const AgglomerateInput& in,
+                                      const std::vector<std::size_t>& root,
+                                      const std::vector<const Bond*>& used) {
+  const std::size_t n = in.position.size();
+  std::vector<Vec3> x(in.position.begin(), in.position.end());
+  if (in.period <= 0.0 || used.empty()) return x;
+  std::vector<std::size_t> start(n + 1, 0);
+  for (const Bond* b : used) {
+    ++start[b->i + 1];
+    ++start[b->j + 1];
+  }
+  for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+  std::vector<Index> next(start[n]);
+  for (const Bond* b : used) {
+    next[fill[b->i]++] = b->j;
+    next[fill[b->j]++] = b->i;
+  }
+  std::vector<char> seen(n, 0);
+  std::vector<Index> queue;
+  for (std::size_t s = 0; s < n; ++s) {
+    if (seen[s] || start[s] == start[s + 1]) continue;
+    seen[s] = 1;
+    queue.assign(1, static_cast<Index>(s));
+    for (std::size_t q = 0; q < queue.size(); ++q) {
+      const Index a = queue[q];
+      for (std::size_t k = start[a]; k < start[a + 1]; ++k) {
+        const Index b = next[k];
+        if (seen[b] || root[b] != root[a]) continue;
+        seen[b] = 1;
+        x[b] = x[a] + nearest_image(in.position[b], in.position[a], in.period);
+        queue.push_back(b);
+      }
+    }
+  }
+  return x;
+}
+
+}  // namespace
+
+AgglomerateFrame find_agglomerates(const AgglomerateInput& in, const AgglomerateOptions& options) {
+  check_input(in);
+  const std::size_t n = in.position.size();
+  AgglomerateFrame out;
+  AgglomerateStats& st = out.stats;
+  st.time = in.time;
+  st.criterion = criterion_name(options);
+  st.bonds = in.bonds.size();
+  for (const Bond& b : in.bonds) st.bridge_liquid += b.volume;
+  for (double f : in.film) st.free_liquid += f;
+
+  DisjointSets plain(n);
+  DisjointSets sets(n);
+  std::vector<const Bond*> used;
+  for (const Bond& b : in.bonds) {
+    plain.unite(b.i, b.j);
+    if (joins(b, options)) {
+      sets.unite(b.i, b.j);
+      used.push_back(&b);
+    }
+  }
+  std::size_t largest_plain = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (plain.find(i) == i) largest_plain = std::max(largest_plain, plain.size_of_root(i));
+  }
+  st.largest_plain_share = n ? static_cast<double>(largest_plain) / static_cast<double>(n) : 0.0;
+
+  std::vector<std::size_t> root(n);
+  for (std::size_t i = 0; i < n; ++i) root[i] = sets.find(i);
+  // One agglomerate per root, numbered in order of first appearance.
+  std::vector<std::size_t> slot_of_root(n, n);
+  std::vector<Agglomerate> a;
+  std::vector<std::size_t> member_of(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::size_t& s = slot_of_root[root[i]];
+    if (s == n) {
+      s = a.size();
+      a.push_back({});
+      a.back().id = in.id[i];
+    }
+    member_of[i] = s;
+    Agglomerate& g = a[s];
+    g.id = std::min(g.id, in.id[i]);
+    ++g.primaries;
+    g.mass += in.mass[i];
+    g.diameter += std::pow(2.0 * in.radius[i], 3);  // sum d^3 until the cube root below
+    if (!in.film.empty()) g.liquid += in.film[i];
+  }
+  for (const Bond& b : in.bonds) {
+    if (root[b.i] == root[b.j]) a[member_of[b.i]].liquid += b.volume;
+  }
+  const std::vector<Vec3> x = unwrapped_positions(in, root, used);
+  for (std::size_t i = 0; i < n; ++i) a[member_of[i]].centre += in.mass[i] * x[i];
+  for (Agglomerate& g : a) {
+    g.centre /= g.mass;
+    g.diameter = std::cbrt(g.diameter);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    Agglomerate& g = a[member_of[i]];
+    g.radius_of_gyration += in.mass[i] * (x[i] - g.centre).squaredNorm();
+  }
+  for (Agglomerate& g : a) {
+    g.radius_of_gyration = std::sqrt(g.radius_of_gyration / g.mass);
+    if (in.period > 0.0) {
+      g.centre.z() = std::fmod(g.centre.z(), in.period);
+      if (g.centre.z() < 0.0) g.centre.z() += in.period;
+    }
+  }
+  out.label.resize(n);
+  out.size_of.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    out.label[i] = a[member_of[i]].id;
+    out.size_of[i] = a[member_of[i]].primaries;
+  }
+
+  double total_mass = 0.0;
+  std::vector<std::pair<double, double>> by_diameter;
+  by_diameter.reserve(a.size());
+  std::size_t members_in_clusters = 0;
+  for (const Agglomerate& g : a) {
+    st.largest = std::max(st.largest, g.primaries);
+    by_diameter.emplace_back(g.diameter, g.mass);
+    total_mass += g.mass;
+    if (g.primaries >= 2) {
+      ++st.count;
+      members_in_clusters += g.primaries;
+    }
+  }
+  st.mean_size = st.count ? static_cast<double>(members_in_clusters) / st.count : 0.0;
+  std::sort(by_diameter.begin(), by_diameter.end());
+  st.d10 = mass_percentile(by_diameter, total_mass, 0.1);
+  st.d50 = mass_percentile(by_diameter, total_mass, 0.5);
+  st.d90 = mass_percentile(by_diameter, total_mass, 0.9);
+
+  std::sort(a.begin(), a.end(),
+            [](const Agglomerate& l, const Agglomerate& r) { return l.id < r.id; });
+  out.agglomerates = std::move(a);
+  return out;
+}
+
+bool scene_has_bonds(const SceneConfig& scene) {
+  return scene.liquid.enabled;
+}
+
+double default_granule_age(double omega) {
+  return omega != 0.0 ? 2.0 * std::numbers::pi / std::abs(omega) : 0.0;
+}
+
+AgglomerateOptions granule_options(double omega, double requested) {
+  return {requested < 0.0 ? default_granule_age(omega) : requested};
+}
+
+std::string criterion_name(const AgglomerateOptions& options) {
+  if (options.min_bond_age <= 0.0) return "components";
+  return fmt::format("bond_age>={:.6g}s", options.min_bond_age);
+}
+
+AgglomerateInput agglomerate_input(const Simulation& sim, std::vector<Bond>& bonds) {
+  sim.bonds(bonds);
+  const Particles& p = sim.particles();
+  AgglomerateInput in;
+  in.position = p.position;
+  in.radius = p.radius;
+  in.mass = p.mass;
+  in.id = p.id;
+  if (const std::vector<double>* film = p.find_array(kLiquidFilmArray)) in.film = *film;
+  in.bonds = bonds;
+  in.period = sim.search_input().period_z.value_or(0.0);
+  in.time = sim.time();
+  return in;
+}
+
+std::vector<std::uint32_t> agglomerate_labels(const Simulation& sim, double granule_age) {
+  std::vector<Bond> bonds;
+  return find_agglomerates(agglomerate_input(sim, bonds),
+                           granule_options(sim.scene().drum.omega, granule_age))
+      .label;
+}
+
+std::string agglomerate_csv_header() {
+  return "time,criterion,agglomerates,mean_size,largest,d10,d50,d90,bonds,free_liquid,"
+         "bridge_liquid,largest_plain_share";
+}
+
+std::string agglomerate_csv_row(const AgglomerateStats& s) {
+  return fmt::format("{:.9g},{},{},{:.6g},{},{:.6g},{:.6g},{:.6g},{},{:.6g},{:.6g},{:.6g}", s.time,
+                     s.criterion, s.count, s.mean_size, s.largest, s.d10, s.d50, s.d90, s.bonds,
+                     s.free_liquid, s.bridge_liquid, s.largest_plain_share);
+}
+
+}  // namespace drumlab
