@@ -661,6 +661,15 @@ SearchVisit DrumView::focus_visit() const {
   return *impl_->grid->visit();
 }
 
+void DrumView::redraw() {
+  Impl& m = *impl_;
+  if (!m.drum_built) throw std::logic_error("DrumView::redraw before the first frame");
+  m.target.make_current();
+  m.show_parts();
+  if (!m.camera_placed) m.place_camera();
+  m.window->Render();
+}
+
 void DrumView::set_options(const ViewOptions& options) {
   Impl& m = *impl_;
   if (options.width != m.options.width || options.height != m.options.height) {

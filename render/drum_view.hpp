@@ -91,6 +91,9 @@ class DrumView {
   Image render(const FrameSnapshot& snapshot);
   /// As render(snapshot), without reading the frame back (a window shows it itself).
   void draw(const FrameSnapshot& snapshot);
+  /// Draws the last frame's scene again (a new camera, the walls/legend/text toggles), without
+  /// reading a snapshot: a paused window turning its camera. Throws before the first frame.
+  void redraw();
   /// Changes what the next frames show (colour-by, grid, focus, camera preset, zoom to focus,
   /// neutral particles). The size, the title and the overlay stay those given at construction.
   void set_options(const ViewOptions& options);

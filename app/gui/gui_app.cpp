@@ -16,6 +16,7 @@
 // clang-format on
 
 #include "engine/io/checkpoint.hpp"
+#include "engine/scene/scene_writer.hpp"
 #include "engine/search/search_methods.hpp"
 #include "engine/threads.hpp"
 
@@ -53,7 +54,10 @@ double now_seconds() {
 }  // namespace
 
 SceneConfig gui_scene(const std::string& file) {
-  SceneConfig scene = load_dynamic_scene(file);
+  return with_gui_checks(load_dynamic_scene(file));
+}
+
+SceneConfig with_gui_checks(SceneConfig scene) {
   scene.output.diagnostics_every = std::min<std::uint64_t>(scene.output.diagnostics_every, 50);
   return scene;
 }
@@ -90,11 +94,12 @@ GuiApp::GuiApp(const GuiOptions& options) : options_(options), methods_(all_meth
     view_options_.focus_id = render::auto_focus_id(probe.simulation().particles());
     wish.view.focus_id = view_options_.focus_id;
   }
-  sim_ =
-      std::make_unique<SimThread>(scene, session_options(options), wish, options.switch_at, limit);
+  sim_ = std::make_unique<SimThread>(scene, session_options(options), wish, options.threads,
+                                     options.switch_at, limit);
   sim_->set_chunk(options.steps_per_frame);
-  edited_ = sim_->scene();
-  const auto it = std::find(methods_.begin(), methods_.end(), edited_.search_method);
+  edited_ = load_dynamic_scene(options.scene);  // the file's scene, not the GUI's run of it
+  for (const std::string& e : options.edits) apply_edit(edited_, e);
+  const auto it = std::find(methods_.begin(), methods_.end(), sim_->scene().search_method);
   method_index_ = it == methods_.end() ? 0 : static_cast<int>(it - methods_.begin());
 
   if (glfwInit() != GLFW_TRUE) {
@@ -144,8 +149,13 @@ GuiApp::~GuiApp() {
   }
 }
 
+void GuiApp::save_edited_scene(const std::string& file) {
+  save_scene(edited_, file);
+}
+
 void GuiApp::push_view_options() {
   view_->set_options(view_options_);
+  view_dirty_ = true;
   push_wish();
 }
 
@@ -272,10 +282,20 @@ void GuiApp::frame(const std::string& grab) {
   if (s != nullptr) {
     if (view_options_.zoom_to_focus) view_->reset_camera();  // follow the focus particle
     try {
-      view_->draw(display_snapshot(*s));
+      // A new snapshot, new options or a teaching step: the scene is updated; else only the
+      // camera may have moved.
+      const bool teaching = teach_ && s->focus_index && !s->compare_visits.empty();
+      if (shown_generation_ != drawn_generation_ || view_dirty_ || teaching) {
+        view_->draw(display_snapshot(*s));
+        drawn_generation_ = shown_generation_;
+        view_dirty_ = false;
+      } else {
+        view_->redraw();
+      }
     } catch (const InputError& e) {  // e.g. occupancy asked of a method without a grid
       view_options_.grid = false;
       view_->set_options(view_options_);
+      view_dirty_ = true;
       export_message_ = e.what();
     }
     if (grab_view_) {  // the view alone, before the panels are drawn over it
@@ -313,6 +333,7 @@ void GuiApp::run() {
   shown_generation_ = sim_->generation();
   if (shown_) update_history(*shown_);
   frame(options_.screenshot);  // the last snapshot, panels included
+  if (!options_.save_scene.empty()) save_edited_scene(options_.save_scene);
   if (!options_.checkpoint.empty()) {
     const std::string file = options_.checkpoint;
     sim_->with_simulation(

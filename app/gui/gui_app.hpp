@@ -26,6 +26,8 @@ namespace drumlab::gui {
 /// every 50 steps, so the settling shows as it happens. Checks are read-only: the trajectory is
 /// the same as with the scene's own interval.
 SceneConfig gui_scene(const std::string& file);
+/// The same interval for a scene edited in the GUI.
+SceneConfig with_gui_checks(SceneConfig scene);
 
 /// A bounded series for a history plot.
 struct History {
@@ -65,6 +67,8 @@ class GuiApp {
   /// The snapshot as drawn (the teaching mode shows a prefix of the focus particle's search).
   FrameSnapshot display_snapshot(const FrameSnapshot& s);
   void push_view_options();
+  /// The scene panel's scene as TOML (engine/scene/scene_writer.hpp; atomic).
+  void save_edited_scene(const std::string& file);
   void push_wish();
 
   void panel_run();
@@ -82,10 +86,13 @@ class GuiApp {
   render::ViewOptions view_options_;
   std::shared_ptr<const FrameSnapshot> shown_;
   std::uint64_t shown_generation_ = 0;
+  std::uint64_t drawn_generation_ = 0;  ///< the snapshot the view's scene was last updated from
+  bool view_dirty_ = true;              ///< options changed since the last update
 
   // Scene editing.
-  SceneConfig edited_;
+  SceneConfig edited_;  ///< the scene file's scene with the panel's edits
   std::string scene_message_;
+  std::string scene_path_ = "out/gui/edited_scene.toml";
   // Search.
   std::vector<std::string> methods_;
   int method_index_ = 0;

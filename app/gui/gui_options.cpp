@@ -1,6 +1,7 @@
 #include "app/gui/gui_options.hpp"
 
 #include <charconv>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -30,6 +31,46 @@ ScheduledSwitch parse_switch_at(const std::string& text) {
   s.method = text.substr(colon + 1);
   check_method(s.method, "--switch-at");
   return s;
+}
+
+void apply_edit(SceneConfig& scene, const std::string& edit) {
+  const auto eq = edit.find('=');
+  const std::string key = edit.substr(0, eq);
+  double v = 0.0;
+  if (eq != std::string::npos) {
+    const char* first = edit.data() + eq + 1;
+    const char* last = edit.data() + edit.size();
+    const auto [end, ec] = std::from_chars(first, last, v);
+    if (ec != std::errc() || end != last || first == last) {
+      throw InputError(fmt::format("--edit: '{}' is not KEY=NUMBER", edit));
+    }
+  } else {
+    throw InputError(fmt::format("--edit: '{}' is not KEY=NUMBER", edit));
+  }
+  if (key == "omega") {
+    scene.drum.omega = v;
+  } else if (key == "rpm") {
+    scene.drum.omega = v * 2.0 * std::numbers::pi / 60.0;
+  } else if (key == "friction") {
+    scene.material.friction = v;
+  } else if (key == "restitution") {
+    scene.material.restitution = v;
+  } else if (key == "wall_friction") {
+    scene.wall.friction = v;
+  } else if (key == "count" && v >= 0.0) {
+    scene.fill.count = static_cast<std::size_t>(v);
+  } else if (key == "fill_fraction") {
+    scene.fill.volume_fraction = v;
+  } else if (key == "seed" && v >= 0.0) {
+    scene.fill.seed = static_cast<std::uint64_t>(v);
+  } else if (key == "settle_time") {
+    scene.fill.settle_time = v;
+  } else {
+    throw InputError(fmt::format(
+        "--edit: unknown key in '{}' (omega, rpm, friction, restitution, wall_friction, count, "
+        "fill_fraction, seed, settle_time)",
+        edit));
+  }
 }
 
 }  // namespace drumlab::gui

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "app/gui/sim_thread.hpp"
 
@@ -31,7 +32,14 @@ struct GuiOptions {
   std::string teach_method;  ///< the teaching panel's method (default: the first, m1)
   int teach_cells = -1;      ///< cells of the walk shown (< 0: the whole search)
   bool bench = false;
+  std::vector<std::string> edits;  ///< KEY=VALUE edits of the scene panel's fields (apply_edit)
+  std::string save_scene;          ///< headless: save the edited scene as TOML at the end
 };
+
+/// One edit of the scene panel's fields, as "KEY=VALUE": omega (rad/s), rpm, friction,
+/// restitution, wall_friction, count, fill_fraction, seed, settle_time. Throws InputError naming
+/// --edit for an unknown key or a value that is not a number.
+void apply_edit(SceneConfig& scene, const std::string& edit);
 
 /// "K:METHOD" -> the switch; throws InputError naming --switch-at otherwise (and for an unknown
 /// method).

@@ -61,6 +61,8 @@ int main(int argc, char** argv) {
   app.add_flag("--teach", o.teach, "open the teaching panel");
   app.add_option("--teach-method", o.teach_method, "the teaching panel's method (m1..m5)");
   app.add_option("--teach-cells", o.teach_cells, "cells of the walk shown (default: all)");
+  app.add_option("--edit", o.edits, "KEY=VALUE: edit the scene panel's field (repeatable)");
+  app.add_option("--save-scene", o.save_scene, "headless: save the edited scene as TOML");
   app.add_flag("--bench", o.bench, "print frames/s paused and running, and particle-steps/s");
   app.add_option("--bench-frames", bench_frames, "frames per --bench measurement");
   try {
@@ -87,8 +89,9 @@ int main(int argc, char** argv) {
       o.focus_id = static_cast<drumlab::Index>(id);
     }
     o.focus = focus;
-    if ((!o.screenshot.empty() || !o.checkpoint.empty()) && o.frames == 0) {
-      throw drumlab::InputError("--screenshot and --checkpoint need --frames N");
+    if ((!o.screenshot.empty() || !o.checkpoint.empty() || !o.save_scene.empty()) &&
+        o.frames == 0) {
+      throw drumlab::InputError("--screenshot, --checkpoint and --save-scene need --frames N");
     }
     drumlab::gui::GuiApp gui(o);
     if (o.bench) {

@@ -49,7 +49,7 @@ void GuiApp::panel_run() {
   ImGui::SameLine();
   if (ImGui::Button("Reset")) {
     sim_->restart(gui_scene(options_.scene));
-    edited_ = sim_->scene();
+    edited_ = load_dynamic_scene(options_.scene);
   }
   int chunk = static_cast<int>(options_.steps_per_frame);
   if (ImGui::SliderInt("steps / frame", &chunk, 1, 500)) {
@@ -100,8 +100,18 @@ void GuiApp::panel_scene() {
   if (ImGui::InputInt("fill seed", &seed)) edited_.fill.seed = static_cast<std::uint64_t>(seed);
   input_double("settle time (s)", edited_.fill.settle_time, 0.05, "%.3f");
   if (ImGui::Button("Restart from edited scene")) {
-    sim_->restart(edited_);
+    sim_->restart(with_gui_checks(edited_));
     scene_message_ = "restarted (paused): press Run";
+  }
+  ImGui::InputText("##scenefile", &scene_path_);
+  ImGui::SameLine();
+  if (ImGui::Button("Save scene as TOML")) {
+    try {
+      save_edited_scene(scene_path_);
+      scene_message_ = fmt::format("wrote {}", scene_path_);
+    } catch (const std::exception& e) {
+      scene_message_ = e.what();
+    }
   }
   if (!scene_message_.empty()) ImGui::TextWrapped("%s", scene_message_.c_str());
   ImGui::End();
@@ -201,6 +211,8 @@ void GuiApp::panel_view(const FrameSnapshot* s) {
   changed |= ImGui::Checkbox("legend", &view_options_.legend);
   ImGui::SameLine();
   changed |= ImGui::Checkbox("text", &view_options_.text);
+  changed |= ImGui::Checkbox("grey particles (the focus colours stand out)",
+                             &view_options_.neutral_particles);
   if (ImGui::Button("camera: axis")) {
     view_options_.camera = render::CameraMode::axis;
     view_->set_options(view_options_);

@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "engine/threads.hpp"
+
 namespace drumlab::gui {
 
 namespace {
@@ -17,12 +19,13 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
-SimThread::SimThread(SceneConfig scene, SessionOptions options, SnapshotWish wish,
+SimThread::SimThread(SceneConfig scene, SessionOptions options, SnapshotWish wish, int threads,
                      std::optional<ScheduledSwitch> scheduled, std::uint64_t step_limit)
     : options_(std::move(options)),
       session_(std::make_unique<RunSession>(std::move(scene), options_)),
       scheduled_(std::move(scheduled)),
       step_limit_(step_limit),
+      threads_(threads),
       wish_(std::move(wish)) {
   if (wish_.view.focus_id) {  // an unknown id is bad input: one line, before any window opens
     render::index_of_id(session_->simulation().particles(), *wish_.view.focus_id);
@@ -223,6 +226,7 @@ bool SimThread::settle_progress() {
 }
 
 void SimThread::loop() {
+  set_thread_count(threads_);  // OpenMP's count is this thread's own
   bool settled = false;
   std::uint64_t turn_start = 0;
   std::unique_lock lock(mutex_);

@@ -37,7 +37,9 @@ class SimThread {
   /// Builds the session on the calling thread (fill, auto), so bad input throws here
   /// (InputError), then starts the thread paused. `step_limit` > 0: stop for good once the
   /// simulation has made that many steps (headless runs).
-  SimThread(SceneConfig scene, SessionOptions options, SnapshotWish wish,
+  /// `threads`: the simulation's OpenMP threads (set on the simulation thread itself: the count
+  /// is per thread).
+  SimThread(SceneConfig scene, SessionOptions options, SnapshotWish wish, int threads,
             std::optional<ScheduledSwitch> scheduled = {}, std::uint64_t step_limit = 0);
   ~SimThread();
   SimThread(const SimThread&) = delete;
@@ -87,6 +89,7 @@ class SimThread {
   std::unique_ptr<RunSession> session_;
   std::optional<ScheduledSwitch> scheduled_;
   std::uint64_t step_limit_ = 0;
+  int threads_ = 1;
 
   mutable std::mutex mutex_;
   mutable std::condition_variable cv_;
