@@ -108,12 +108,14 @@ struct LiquidConfig {
   /// Share of each particle's liquid in its film at the start, in [0, 1]; the rest forms the
   /// bridges of the contacts present at the start (none: all stays in the film).
   double film_share = 1.0;
-  double max_bridge_volume = 0.0;       ///< m^3, > 0 (migration)
-  double viscosity = 0.0;               ///< eta of the liquid, Pa s; 0: no viscous term
-  double min_gap = 0.0;                 ///< m, > 0 with viscosity: the viscous term's smallest gap
-  bool wall_bridges = true;             ///< particle-wall bridges (R = 2 Rp)
-  double wall_surface_tension = 0.0;    ///< N/m; defaults to surface_tension
-  double wall_contact_angle_deg = 0.0;  ///< degrees; defaults to contact_angle_deg
+  double max_bridge_volume = 0.0;  ///< m^3, > 0 (migration)
+  double viscosity = 0.0;          ///< eta of the liquid, Pa s; 0: no viscous term
+  double min_gap = 0.0;            ///< m, > 0 with viscosity: the viscous term's smallest gap
+  bool wall_bridges = true;        ///< particle-wall bridges (R = 2 Rp)
+  /// N/m; the loader sets it to surface_tension when the scene gives none (a config built in
+  /// code must set it too)
+  double wall_surface_tension = 0.0;
+  double wall_contact_angle_deg = 0.0;  ///< degrees; the loader's default is contact_angle_deg
 
   friend bool operator==(const LiquidConfig&, const LiquidConfig&) = default;
 };

@@ -27,7 +27,7 @@ namespace {
 std::unique_ptr<Simulation> wet_pairs(bool wet) {
   SceneConfig scene = small_drum_scene(0.01);
   scene.liquid.enabled = wet;
-  scene.liquid.surface_tension = 0.072;
+  scene.liquid.surface_tension = scene.liquid.wall_surface_tension = 0.072;
   scene.liquid.bridge_volume = 1e-9;
   Particles p;
   // Off the cap's spokes (every 60 degrees from the x axis), which are drawn over the particles.

@@ -175,7 +175,7 @@ TEST(Agglomerates, IdFollowsTheSmallestMemberAcrossFramesAndBadInputIsRefused) {
 TEST(Agglomerates, LiveWetDrumHasBridgedAgglomerates) {
   SceneConfig scene = output_scene();
   scene.liquid.enabled = true;
-  scene.liquid.surface_tension = 0.072;
+  scene.liquid.surface_tension = scene.liquid.wall_surface_tension = 0.072;
   scene.liquid.bridge_volume = 1e-9;
   ASSERT_TRUE(scene_has_bonds(scene));
   EXPECT_FALSE(scene_has_bonds(output_scene()));

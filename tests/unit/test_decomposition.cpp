@@ -234,7 +234,9 @@ TEST(Decomposition, ReachIsTwoLargestRadiiPlusPairRangePlusSkin) {
   scene.search_method = "verlet:m2";
   EXPECT_DOUBLE_EQ(ghost_reach(scene),
                    2.0 * 0.015 + range + kTouchTolerance + scene.performance.verlet_skin * 0.005);
-  scene.liquid = {true, 0.072, 0.0, 1e-9};  // rupture distance (1 + 0/2) V^(1/3) = 1 mm
+  scene.liquid.enabled = true;  // rupture distance (1 + 0/2) V^(1/3) = 1 mm
+  scene.liquid.surface_tension = scene.liquid.wall_surface_tension = 0.072;
+  scene.liquid.bridge_volume = 1e-9;
   EXPECT_NEAR(ghost_reach(scene) - (2.0 * 0.015 + scene.performance.verlet_skin * 0.005),
               1e-3 + kTouchTolerance, 1e-12);
 }
