@@ -156,14 +156,7 @@ void decompose(const DecomposeOptions& opt) {
   fmt::print("scene             {} ({}), {} particles, search {}\n", run.name, opt.scene, n,
              run.search_method);
   const SessionPlan plan = session.plan();
-  if (plan.settle_steps > 0) {
-    ProgressBar bar("settle", plan.settle_steps);
-    session.settle([&](std::uint64_t done, std::uint64_t) {
-      bar.update(done);
-      return true;
-    });
-    bar.finish();
-  }
+  settle_with_progress(session, plan.settle_steps);
   double rate = opt.rate;
   std::string rate_source = "--rate";
   if (!(rate > 0.0)) {

@@ -84,4 +84,14 @@ void print_summary(const Simulation& sim, const PhaseStats& phase) {
       d.max_overlap_ratio, d.outside_drum, d.non_finite, d.contacts, d.wall_contacts);
 }
 
+void settle_with_progress(RunSession& session, std::uint64_t steps) {
+  if (steps == 0) return;
+  ProgressBar bar("settle", steps);
+  session.settle([&](std::uint64_t done, std::uint64_t) {
+    bar.update(done);
+    return true;
+  });
+  bar.finish();
+}
+
 }  // namespace drumlab::cli

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "engine/session/phase_meter.hpp"
+#include "engine/session/run_session.hpp"
 #include "engine/simulation.hpp"
 
 namespace drumlab::cli {
@@ -24,6 +25,9 @@ class ProgressBar {
   bool tty_;
   std::chrono::steady_clock::time_point start_;
 };
+
+/// Runs the session's settling steps (`steps`, from its plan; none: nothing) with a progress bar.
+void settle_with_progress(RunSession& session, std::uint64_t steps);
 
 /// Prints the summary of a phase: throughput as "... particle-steps/s", the time split, search
 /// counters per particle and step, energies and health.

@@ -118,14 +118,7 @@ void run_session(const RunOptions& opt, std::span<FrameObserver* const> extra_ob
       static_cast<double>(plan.turn_steps) * sim.dt(),
       static_cast<double>(plan.turn_steps) * sim.dt() * std::abs(scene.drum.omega) /
           (2.0 * std::numbers::pi));
-  if (plan.settle_steps > 0) {
-    ProgressBar bar("settle", plan.settle_steps);
-    session.settle([&](std::uint64_t done, std::uint64_t) {
-      bar.update(done);
-      return true;
-    });
-    bar.finish();
-  }
+  settle_with_progress(session, plan.settle_steps);
   ProgressBar bar("turn", plan.turn_steps);
   const TurnResult turn = session.run_turn(plan.turn_steps, observers.empty() ? 0 : every,
                                            observers, [&](std::uint64_t done, std::uint64_t) {

@@ -18,21 +18,12 @@
 #include "engine/search/contact_search.hpp"
 #include "engine/spatial_order.hpp"
 #include "engine/threads.hpp"
+#include "tests/same_bits.hpp"
 #include "tests/unit/cli_runner.hpp"
 #include "tests/unit/output_test_scene.hpp"
 
 namespace drumlab::test {
 namespace {
-
-bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
-}
-
-bool same_bits(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0);
-}
 
 // ---------------------------------------------------------------- per-contact state
 

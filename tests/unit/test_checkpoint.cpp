@@ -10,6 +10,7 @@
 #include <fstream>
 
 #include "engine/io/checkpoint.hpp"
+#include "tests/same_bits.hpp"
 #include "tests/unit/cli_runner.hpp"
 #include "tests/unit/file_size_limit.hpp"
 #include "tests/unit/output_test_scene.hpp"
@@ -18,21 +19,6 @@ namespace drumlab::test {
 namespace {
 
 constexpr std::uint64_t kN = 300;
-
-/// Bitwise equality (so -0.0 != 0.0 and NaN payloads count).
-bool same_bits(double a, double b) {
-  return std::memcmp(&a, &b, sizeof a) == 0;
-}
-
-bool same_bits(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0);
-}
-
-bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
-}
 
 void expect_same_state(const SimulationState& a, const SimulationState& b) {
   EXPECT_TRUE(same_bits(a.particles.position, b.particles.position));

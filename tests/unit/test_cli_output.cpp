@@ -7,15 +7,12 @@
 
 #include "engine/io/checkpoint.hpp"
 #include "engine/io/h5_file.hpp"
+#include "tests/same_bits.hpp"
 #include "tests/unit/cli_runner.hpp"
 #include "tests/unit/output_test_scene.hpp"
 
 namespace drumlab::test {
 namespace {
-
-bool same_bits(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0;
-}
 
 TEST(CliOutput, RestartContinuesBitIdentically) {
   TempDir dir("cli-restart");

@@ -18,6 +18,7 @@
 #include "engine/io/checkpoint.hpp"
 #include "engine/scene/scene_features.hpp"
 #include "engine/search/contact_search.hpp"
+#include "tests/same_bits.hpp"
 #include "tests/unit/cli_runner.hpp"
 #include "tests/unit/output_test_scene.hpp"
 
@@ -26,15 +27,6 @@ namespace {
 
 constexpr double kGamma = 0.072;
 constexpr double kPi = std::numbers::pi;
-
-bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
-}
-bool same_bits(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-  return a.size() == b.size() &&
-         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec3)) == 0);
-}
 
 // The small drum (radii 4 and 8 mm) with a [liquid] table of `liquid` lines (and `extra` after).
 SceneConfig scene_with(const std::string& tables, const std::string& method = "m5") {
