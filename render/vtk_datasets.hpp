@@ -1,7 +1,11 @@
 #pragma once
 // VTK datasets built from the simulation's public state (read only), for the VTU/PVD series.
+#include <cstdint>
+#include <span>
+
 #include <vtkSmartPointer.h>
 
+#include "engine/io/h5_series.hpp"
 #include "engine/simulation.hpp"
 
 class vtkImageData;
@@ -22,6 +26,31 @@ inline constexpr const char* kParticleArrays[] = {
 /// criterion of granule_age: see granule_options) and liquid_volume (m^3, the film; 0 without one).
 vtkSmartPointer<vtkUnstructuredGrid> particles_dataset(const Simulation& sim,
                                                        double granule_age = -1.0);
+
+/// The per-particle fields a particle dataset is built from, as plain spans over one storage
+/// order. position, id, radius, size_class, velocity and omega are required; force and
+/// coordination are written when non-empty; agglomerate_id and liquid_volume together, when
+/// non-empty.
+struct ParticleFields {
+  std::span<const Vec3> position, velocity, omega, force;
+  std::span<const double> radius;
+  std::span<const std::uint32_t> id;
+  std::span<const std::uint8_t> size_class;
+  std::span<const std::uint32_t> coordination;
+  std::span<const std::uint32_t> agglomerate_id;
+  std::span<const double> liquid_volume;
+};
+vtkSmartPointer<vtkUnstructuredGrid> particles_dataset(const ParticleFields& f);
+
+/// A frame of an HDF5 series (engine/io/h5_series.hpp) as a particle dataset: the arrays of
+/// kParticleArrays the series stores (no force, no coordination), and agglomerate_id and
+/// liquid_volume for a frame with a bond graph.
+vtkSmartPointer<vtkUnstructuredGrid> particles_dataset(const SeriesFrame& frame);
+
+/// The bond graph of a series frame as lines from centre to centre (minimum image across
+/// periodic ends, as contacts_dataset). Cell data: bridge_volume (m^3), bridge_force (N,
+/// attractive, >= 0), age (s), id_a, id_b (stable ids). Empty for a frame without bonds.
+vtkSmartPointer<vtkPolyData> bonds_dataset(const SeriesFrame& frame);
 
 /// The analytic drum wall as a surface: the cylinder (quads) and, unless the ends are periodic,
 /// the two end caps (polygons). Cell data: part (0 cylinder, 1 cap z = 0, 2 cap z = H) and

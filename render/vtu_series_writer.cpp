@@ -61,4 +61,17 @@ void VtuSeriesWriter::write_frame(const Simulation& sim) {
   ++frames_;
 }
 
+void VtuSeriesWriter::write_frame(const SeriesFrame& frame) {
+  const std::string particles = frame_name("particles", frames_, "vtu");
+  write_vtk_xml(particles_dataset(frame), dir_ / particles);
+  std::string bonds;
+  if (frame.has_bonds) {
+    bonds = frame_name("bonds", frames_, "vtp");
+    write_vtk_xml(bonds_dataset(frame), dir_ / bonds);
+  }
+  add("particles", particles, frame.time);
+  if (!bonds.empty()) add("bonds", bonds, frame.time);
+  ++frames_;
+}
+
 }  // namespace drumlab::render

@@ -4,6 +4,7 @@
 //   drum_NNNNNN.vtp        the analytic drum wall, turned by the drum angle
 //   contacts_NNNNNN.vtp    contacts as lines with force magnitude (on request)
 //   grid_NNNNNN.vti        contact-search grid occupancy (on request; grid methods only)
+//   bonds_NNNNNN.vtp       the bond graph of an HDF5 series frame (drumlab convert)
 // and rewrites particles.pvd, drum.pvd (, contacts.pvd, grid.pvd) so each is always a valid series
 // of the frames written so far. Every file goes through a temporary name and a rename.
 #include <cstdint>
@@ -11,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/io/h5_series.hpp"
 #include "engine/simulation.hpp"
 #include "render/vtk_files.hpp"
 
@@ -29,6 +31,10 @@ class VtuSeriesWriter {
 
   /// Writes one frame (numbered from 0 in call order) at the simulation's current time.
   void write_frame(const Simulation& sim);
+  /// Writes one frame of an HDF5 series (`drumlab convert`): particles_NNNNNN.vtu with the
+  /// arrays the series stores, and for a frame with a bond graph bonds_NNNNNN.vtp + bonds.pvd
+  /// (bonds_dataset). The series holds no drum geometry, forces or contacts.
+  void write_frame(const SeriesFrame& frame);
 
   const std::filesystem::path& directory() const { return dir_; }
   std::size_t frames() const { return frames_; }

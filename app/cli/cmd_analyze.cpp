@@ -30,6 +30,9 @@ void analyze(const AnalyzeOptions& o) {
   std::vector<Bond> bonds;
   for (std::size_t k = 0; k < info.frames; ++k) {
     const SeriesFrame f = read_series_frame(o.series, k);
+    if (!f.has_bonds) {
+      throw InputError(fmt::format("{}: {} has no bond graph", o.series, h5_frame_group(k)));
+    }
     AgglomerateInput in;
     in.position = f.position;
     in.radius = f.radius;

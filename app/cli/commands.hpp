@@ -16,5 +16,6 @@ void add_stress_command(CLI::App& app);
 // Built only with DRUMLAB_WITH_RENDER:
 void add_render_command(CLI::App& app);
 void add_teach_command(CLI::App& app);
+void add_convert_command(CLI::App& app);
 
 }  // namespace drumlab::cli

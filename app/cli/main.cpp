@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
 #ifdef DRUMLAB_WITH_RENDER
   drumlab::cli::add_render_command(app);
   drumlab::cli::add_teach_command(app);
+  drumlab::cli::add_convert_command(app);
 #endif
   try {
     app.parse(argc, argv);

@@ -242,13 +242,15 @@ SeriesFrame read_series_frame(const std::filesystem::path& file, std::size_t k) 
   s.id = h5::read_u32(g.get(), "id", h5::kAnySize);
   const std::size_t n = s.id.size();
   s.position = h5::read_vec3(g.get(), "position", n);
+  s.velocity = h5::read_vec3(g.get(), "velocity", n);
+  s.omega = h5::read_vec3(g.get(), "omega", n);
   s.radius = h5::read_doubles(g.get(), "radius", n);
-  if (!h5::exists(g.get(), "bonds")) {
-    throw InputError(fmt::format("{}: {} has no bond graph (the series of a scene without bonds)",
-                                 file.string(), name));
-  }
+  s.size_class = h5::read_u8(g.get(), "size_class", n);
+  s.has_bonds = h5::exists(g.get(), "bonds");
+  if (!s.has_bonds) return s;
   s.mass = h5::read_doubles(g.get(), "mass", n);
   s.film = h5::read_doubles(g.get(), "liquid_volume", n);
+  s.agglomerate_id = h5::read_u32(g.get(), "agglomerate_id", n);
   s.period = h5::read_double_attribute(g.get(), "period_z");
   s.drum_omega = h5::read_double_attribute(g.get(), "drum_omega");
   h5::Handle b = h5::open_group(g.get(), "bonds");

@@ -88,15 +88,22 @@ std::string xdmf_for_series(const std::string& h5_name, const std::vector<double
                             const std::vector<std::size_t>& counts,
                             const std::vector<bool>& with_bonds = {});
 
-/// One frame of a series as the agglomerate analysis reads it back (bonds in storage slots).
+/// One frame of a series as written (bonds in storage slots). The bond part (mass, film,
+/// agglomerate_id, bonds, period, drum_omega) is filled only for a frame with a bond graph
+/// (has_bonds); the agglomerate analysis and `drumlab convert` read frames this way.
 struct SeriesFrame {
   double time = 0.0;
   std::uint64_t step = 0;
   std::vector<Vec3> position;
+  std::vector<Vec3> velocity;
+  std::vector<Vec3> omega;
   std::vector<double> radius;
-  std::vector<double> mass;
   std::vector<std::uint32_t> id;
+  std::vector<std::uint8_t> size_class;
+  bool has_bonds = false;
+  std::vector<double> mass;
   std::vector<double> film;
+  std::vector<std::uint32_t> agglomerate_id;
   std::vector<Bond> bonds;
   double period = 0.0;
   double drum_omega = 0.0;
@@ -110,8 +117,8 @@ struct SeriesInfo {
   bool has_bonds = false;  ///< frames carry the bond graph
 };
 SeriesInfo read_series_info(const std::filesystem::path& file);
-/// Frame k of the series with its bond graph. Throws InputError naming the file and frame if the
-/// frame or its bond graph is missing or inconsistent.
+/// Frame k of the series, with its bond graph where the frame has one. Throws InputError naming
+/// the file and frame if the frame is missing or inconsistent.
 SeriesFrame read_series_frame(const std::filesystem::path& file, std::size_t k);
 
 }  // namespace drumlab
