@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "engine/parallel/ghost_layer.hpp"
+#include "engine/periodic.hpp"
 #include "engine/spatial_order.hpp"
 
 namespace drumlab {
@@ -148,6 +149,7 @@ void MpiDomain::assemble(Simulation& sim, const std::vector<std::byte>& owned,
       std::move(records), slot_,
       [&](std::size_t i, std::size_t j) { return ghost[i] == 0 || ghost[j] == 0; }, s);
   moved_ = 0.0;
+  reference_ = s.particles.position;
   sim.replace_local(std::move(s), std::move(ghost), slot_);
 }
 
@@ -198,6 +200,9 @@ std::unique_ptr<Simulation> MpiDomain::distribute(const SceneConfig& scene,
 void MpiDomain::refresh_ghosts(Simulation& sim, double moved) {
   // `moved` is already every rank's bound: all ranks take the same branch.
   moved_ += moved;
+  // The bound only grows; once it passes half the skin, the real displacements decide (one more
+  // reduction), as the serial Verlet list checks its particles only when its bound says so.
+  if (!(2.0 * moved_ <= options_.skin)) moved_ = measured_displacement(sim);
   const bool rebalance_due =
       options_.rebalance_every > 0 && sim.steps() + 1 - last_balance_ >= options_.rebalance_every;
   if (!(2.0 * moved_ <= options_.skin) || rebalance_due) {
@@ -206,6 +211,17 @@ void MpiDomain::refresh_ghosts(Simulation& sim, double moved) {
   } else {
     forward(sim);
   }
+}
+
+double MpiDomain::measured_displacement(const Simulation& sim) {
+  const Particles& p = sim.particles();
+  const double period = options_.period_z.value_or(0.0);
+  double d2 = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (sim.is_ghost(i)) continue;
+    d2 = std::max(d2, nearest_image(p.position[i], reference_[i], period).squaredNorm());
+  }
+  return comm_.max(std::sqrt(d2));
 }
 
 void MpiDomain::forward(Simulation& sim) {
@@ -337,6 +353,8 @@ void MpiDomain::reorder(Simulation& sim) {
     slot_[k] = next[order[k]];
   }
   sim.permute_particles(order, slot_);
+  std::vector<Vec3> scratch;
+  apply_order(reference_, order, scratch);
   for (auto* lists : {&send_, &recv_}) {
     for (auto& list : *lists) {
       for (Index& i : list) i = new_index[i];

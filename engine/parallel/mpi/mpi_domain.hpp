@@ -7,8 +7,9 @@
 // (ContactList::set_row_keys) and the trajectory is the serial one, bit for bit.
 //
 // Every step (refresh_ghosts, between drift and search) the owners send their ghosts' position,
-// velocity and angular velocity to the neighbouring ranks. When the bound on the largest
-// displacement since the last exchange (the drifts' bounds, over all ranks) exceeds half the skin,
+// velocity and angular velocity to the neighbouring ranks. When the largest displacement since the
+// last exchange (bounded by the drifts' bounds, measured when the bound exceeds) exceeds half the
+// skin,
 // or a re-balance is due, particles migrate to the rank whose box holds them with their arrays,
 // wall history and contact records, and the ghost layer is rebuilt. At a re-ordering step the ranks
 // agree on the serial run's new order (same Morton keys and ties as Simulation::reorder_particles).
@@ -68,6 +69,8 @@ class MpiDomain final : public DomainHooks {
   /// Migration, optional re-balance and a new ghost layer; replaces sim's particles.
   void exchange(Simulation& sim);
   void forward(Simulation& sim);
+  /// The largest displacement of any rank's particles since the last exchange (m). Collective.
+  double measured_displacement(const Simulation& sim);
   void rebalance(const Simulation& sim);
   /// The local set from the owned particles' bytes `owned` and the ghosts' bytes by source rank:
   /// particles sorted by serial slot, send and receive lists, reference positions.
@@ -84,8 +87,9 @@ class MpiDomain final : public DomainHooks {
   std::vector<std::uint64_t> slot_;              ///< serial slot of each local particle
   std::vector<std::vector<Index>> send_, recv_;  ///< local slots per neighbour rank
   std::vector<std::vector<double>> send_buf_, recv_buf_;
-  double moved_ = 0.0;  ///< bound on the largest displacement since the last exchange, m
-  double cell_ = 0.0;   ///< Morton cell, 2 r_max over all ranks
+  double moved_ = 0.0;           ///< bound on the largest displacement since the last exchange, m
+  std::vector<Vec3> reference_;  ///< positions at the last exchange
+  double cell_ = 0.0;            ///< Morton cell, 2 r_max over all ranks
   std::uint64_t last_balance_ = 0;
   std::uint64_t exchanges_ = 0, rebalances_ = 0;
 };
