@@ -53,6 +53,19 @@ double smallest_radius(const SceneConfig& scene, const Particles& p) {
   return r;
 }
 
+/// Sums and maxima of the ranks' diagnostics (a decomposed run: every rank calls this together).
+void reduce_diagnostics(DomainHooks& domain, Diagnostics& d) {
+  for (double* v : {&d.kinetic_energy, &d.rotational_energy, &d.potential_energy, &d.elastic_energy,
+                    &d.liquid_volume}) {
+    *v = domain.sum(*v);
+  }
+  for (std::size_t* v : {&d.outside_drum, &d.non_finite, &d.contacts, &d.wall_contacts, &d.bridges,
+                         &d.wall_bridges}) {
+    *v = static_cast<std::size_t>(domain.sum(static_cast<std::uint64_t>(*v)));
+  }
+  d.max_overlap_ratio = domain.max(d.max_overlap_ratio);
+}
+
 }  // namespace
 
 double rayleigh_time(double radius, const Material& m) {
@@ -364,14 +377,16 @@ void Simulation::kick(double h) {
   Particles& p = particles_;
   const auto n = static_cast<std::int64_t>(p.size());
   const bool rotation = impl_->model.uses_rotation();
+  const std::uint8_t* ghost = ghost_.empty() ? nullptr : ghost_.data();
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
+    if (ghost != nullptr && ghost[i] != 0) continue;  // integrated by its owner
     p.velocity[i] += h * (p.inv_mass[i] * p.force[i] + gravity_);
     if (rotation) p.omega[i] += (h * p.inv_inertia[i]) * p.torque[i];
   }
 }
 
-void Simulation::kick_drift(double h) {
+double Simulation::kick_drift(double h) {
   // The half kick and the drift in one pass over the particles (each particle's update reads only
   // its own data), which also clears the forces for the coming evaluation: three passes in one.
   Particles& p = particles_;
@@ -381,8 +396,14 @@ void Simulation::kick_drift(double h) {
   // The largest speed and coordinate, for the bound on this drift's displacements.
   double v2max = 0.0, xmax = 0.0;
   int non_finite = 0;
+  const std::uint8_t* ghost = ghost_.empty() ? nullptr : ghost_.data();
 #pragma omp parallel for schedule(static) reduction(max : v2max, xmax) reduction(| : non_finite)
   for (std::int64_t i = 0; i < n; ++i) {
+    if (ghost != nullptr && ghost[i] != 0) {  // integrated by its owner; its force is discarded
+      p.force[i].setZero();
+      p.torque[i].setZero();
+      continue;
+    }
     p.velocity[i] += h * (p.inv_mass[i] * p.force[i] + gravity_);
     if (rotation) p.omega[i] += (h * p.inv_inertia[i]) * p.torque[i];
     p.force[i].setZero();
@@ -395,19 +416,47 @@ void Simulation::kick_drift(double h) {
     xmax = std::max(xmax, p.position[i].cwiseAbs().maxCoeff());
   }
   impl_->forces_cleared = true;
+  if (domain_ != nullptr) {  // every rank's bound: the ghosts moved as far as their owners saw
+    double m[3] = {v2max, xmax, static_cast<double>(non_finite)};
+    domain_->max(m);
+    v2max = m[0];
+    xmax = m[1];
+    non_finite = m[2] > 0.0 ? 1 : 0;
+  }
   // |x_new - x_old| <= dt |v|, plus the round-off of the sum (a few ulps of the coordinates) and
   // of the periodic wrap (of the period).
   const double period = impl_->drum.period();
   const double bound = dt_ * std::sqrt(v2max) * (1.0 + 1e-12) +
                        8.0 * std::numeric_limits<double>::epsilon() * (xmax + period);
-  impl_->moved +=
+  const double moved =
       non_finite != 0 || !std::isfinite(xmax) ? std::numeric_limits<double>::infinity() : bound;
+  impl_->moved += moved;
+  return moved;
 }
 
 void Simulation::reorder_particles() {
   if (particles_.size() < 2) return;
   ReorderBuffers& b = impl_->reorder;
   morton_order(particles_.position, 2.0 * particles_.max_radius(), b);
+  apply_reorder();
+}
+
+void Simulation::permute_particles(std::span<const Index> order,
+                                   std::span<const std::uint64_t> row_keys) {
+  ReorderBuffers& b = impl_->reorder;
+  b.order.assign(order.begin(), order.end());
+  b.new_index.resize(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) b.new_index[order[k]] = static_cast<Index>(k);
+  apply_reorder();
+  if (!ghost_.empty()) {
+    std::vector<std::uint8_t> scratch;
+    apply_order(ghost_, b.order, scratch);
+  }
+  impl_->contacts.set_row_keys(row_keys);
+}
+
+void Simulation::apply_reorder() {
+  ReorderBuffers& b = impl_->reorder;
   particles_.reorder(b.order, b);
   apply_order(impl_->wall_history, b.order, impl_->wall_scratch);
   impl_->contacts.renumber(b.new_index);
@@ -420,8 +469,15 @@ void Simulation::step() {
   // half kick. Spheres need no orientation, so rotation is the same scheme on omega.
   const auto t0 = Clock::now();
   const std::uint64_t sort_every = scene_.performance.sort_every;
-  if (sort_every > 0 && steps_ > 0 && steps_ % sort_every == 0) reorder_particles();
-  kick_drift(0.5 * dt_);
+  if (sort_every > 0 && steps_ > 0 && steps_ % sort_every == 0) {
+    if (domain_ != nullptr) {
+      domain_->reorder(*this);
+    } else {
+      reorder_particles();
+    }
+  }
+  const double moved = kick_drift(0.5 * dt_);
+  if (domain_ != nullptr) domain_->refresh_ghosts(*this, moved);
   const auto t1 = Clock::now();
   compute_forces(dt_, true);
   const auto t2 = Clock::now();
@@ -448,6 +504,20 @@ void Simulation::set_search_method(std::string_view name) {
   scene_.search_method = std::string(name);
 }
 
+void Simulation::replace_local(SimulationState state, std::vector<std::uint8_t> ghost,
+                               std::span<const std::uint64_t> row_keys) {
+  particles_ = std::move(state.particles);
+  ghost_ = std::move(ghost);
+  ContactList& c = impl_->contacts;
+  c.assign(state.contact_row_start, state.contact_col, state.contact_history, state.contact_state);
+  c.set_row_keys(row_keys);
+  impl_->wall_history = std::move(state.wall_history);
+  use_search(make_search(scene_.search_method, search_tuning()));  // a fresh list
+  impl_->walls.invalidate();
+  impl_->moved = std::numeric_limits<double>::infinity();
+  impl_->forces_cleared = false;
+}
+
 void Simulation::set_drum_omega(double omega) {
   if (!std::isfinite(omega)) throw InputError("drum angular velocity must be finite");
   omega_ = omega;
@@ -460,6 +530,7 @@ Diagnostics Simulation::diagnostics() const {
   const double tol = kOutsideTolerance * drum.radius();
   Diagnostics d;
   for (std::size_t i = 0; i < p.size(); ++i) {
+    if (is_ghost(i)) continue;  // its owner counts it
     const Vec3& x = p.position[i];
     d.kinetic_energy += 0.5 * p.mass[i] * p.velocity[i].squaredNorm();
     d.rotational_energy += 0.5 * p.omega[i].squaredNorm() / p.inv_inertia[i];
@@ -482,6 +553,7 @@ Diagnostics Simulation::diagnostics() const {
   const auto col = contacts.col();
   const double period = drum.period();
   for (std::size_t i = 0; i < contacts.rows(); ++i) {
+    if (is_ghost(i)) continue;  // the pair is counted by the owner of i, its first particle
     for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
       const Index j = col[k];
       const Vec3 dx = nearest_image(p.position[i], p.position[j], period);
@@ -498,6 +570,7 @@ Diagnostics Simulation::diagnostics() const {
   d.bridges = liquid.bridge_count;
   d.wall_bridges = liquid.wall_bridge_count;
   d.liquid_volume = liquid.total();
+  if (domain_ != nullptr) reduce_diagnostics(*domain_, d);
   return d;
 }
 

@@ -8,6 +8,7 @@
 
 #include "engine/contact/bond.hpp"
 #include "engine/contact/cohesion_loops.hpp"
+#include "engine/parallel/domain_hooks.hpp"
 #include "engine/particles.hpp"
 #include "engine/scene/scene_config.hpp"
 #include "engine/search/contact_search.hpp"
@@ -70,10 +71,28 @@ class Simulation {
   /// automatically every scene.performance.sort_every steps. Storage slots change, stable ids
   /// (particles().id) and contact histories follow.
   void reorder_particles();
+  /// Re-orders the particles so that slot k holds the particle now at order[k] (histories and
+  /// lists follow, as for reorder_particles); `row_keys` as for replace_local (empty: serial).
+  void permute_particles(std::span<const Index> order, std::span<const std::uint64_t> row_keys);
   /// Switches the contact search between steps (contact history is kept).
   void set_search_method(std::string_view name);
   /// Sets the drum's angular velocity (rad/s), e.g. 0 while settling.
   void set_drum_omega(double omega);
+
+  /// Makes this simulation one rank's part of a decomposed run (engine/parallel/domain_hooks.hpp):
+  /// global decisions through `domain`'s reductions, ghosts refreshed between drift and search.
+  void set_domain(DomainHooks* domain) { domain_ = domain; }
+  /// 1 for a ghost (another rank's particle), 0 for an owned one; empty: all owned (serial).
+  /// Ghosts are neither integrated nor checked; their forces are computed and discarded.
+  const std::vector<std::uint8_t>& ghost_mask() const { return ghost_; }
+  bool is_ghost(std::size_t i) const { return !ghost_.empty() && ghost_[i] != 0; }
+  /// The particles for the decomposition to update ghosts in (never during a step's loops).
+  Particles& local_particles() { return particles_; }
+  /// Replaces this rank's particles, contact list and wall history (a migration): `ghost` is the
+  /// mask above, `row_keys` the serial run's slot of each particle (ContactList::set_row_keys).
+  /// The search lists are rebuilt at the next evaluation.
+  void replace_local(SimulationState state, std::vector<std::uint8_t> ghost,
+                     std::span<const std::uint64_t> row_keys);
 
   const Particles& particles() const { return particles_; }
   const SceneConfig& scene() const { return scene_; }
@@ -128,9 +147,12 @@ class Simulation {
   SearchTuning search_tuning() const;
   /// Makes `search` the active method (and notes whether it is a Verlet list).
   void use_search(std::unique_ptr<ContactSearch> search);
+  /// Applies impl_->reorder's order and new_index to the particles, histories and lists.
+  void apply_reorder();
   void kick(double h);
-  /// kick(h), then positions advanced by dt (the forces are cleared on the way).
-  void kick_drift(double h);
+  /// kick(h), then positions advanced by dt (the forces are cleared on the way); returns a bound
+  /// on how far any particle moved (over all ranks with a domain; infinite if not finite).
+  double kick_drift(double h);
 
   SceneConfig scene_;
   Particles particles_;
@@ -145,6 +167,8 @@ class Simulation {
   double omega_ = 0.0;
   double drum_angle_ = 0.0;
   std::uint64_t steps_ = 0;
+  DomainHooks* domain_ = nullptr;
+  std::vector<std::uint8_t> ghost_;
 };
 
 /// Largest time step accepted without allow_unsafe_dt, in Rayleigh times of the smallest

@@ -21,22 +21,23 @@ std::uint64_t spread_bits(std::uint64_t v) {
 
 }  // namespace
 
-void morton_order(std::span<const Vec3> position, double cell, ReorderBuffers& b) {
-  const std::size_t n = position.size();
-  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
-  for (const Vec3& x : position) lo = lo.cwiseMin(x);
+std::uint64_t morton_key(const Vec3& x, const Vec3& lo, double cell) {
   // Cells beyond 2^21 per axis share the last code: the order is then only coarser, still valid.
   constexpr double kMaxCell = (1 << 21) - 1;
   const auto coord = [&](double v, double origin) {
     return static_cast<std::uint64_t>(std::clamp(std::floor((v - origin) / cell), 0.0, kMaxCell));
   };
+  return spread_bits(coord(x.x(), lo.x())) | spread_bits(coord(x.y(), lo.y())) << 1 |
+         spread_bits(coord(x.z(), lo.z())) << 2;
+}
+
+void morton_order(std::span<const Vec3> position, double cell, ReorderBuffers& b) {
+  const std::size_t n = position.size();
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  for (const Vec3& x : position) lo = lo.cwiseMin(x);
   b.keys.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const Vec3& x = position[i];
-    const std::uint64_t code = spread_bits(coord(x.x(), lo.x())) |
-                               spread_bits(coord(x.y(), lo.y())) << 1 |
-                               spread_bits(coord(x.z(), lo.z())) << 2;
-    b.keys[i] = {code, static_cast<Index>(i)};
+    b.keys[i] = {morton_key(position[i], lo, cell), static_cast<Index>(i)};
   }
   std::sort(b.keys.begin(), b.keys.end());
   b.order.resize(n);

@@ -22,6 +22,9 @@ struct ReorderBuffers {
   std::vector<Index> index;
 };
 
+/// The Morton code of x's cell (side `cell` > 0, m) counted from `lo`, the smallest coordinates.
+std::uint64_t morton_key(const Vec3& x, const Vec3& lo, double cell);
+
 /// Fills b.order and b.new_index: particles sorted by the Morton code of their cell (side
 /// `cell` > 0, m), ties by current index, so the order is deterministic.
 void morton_order(std::span<const Vec3> position, double cell, ReorderBuffers& b);

@@ -130,12 +130,37 @@ void ContactList::index_cross_block(std::size_t block_rows) {
   cross_block_rows_ = block_rows;
 }
 
+void ContactList::set_row_keys(std::span<const std::uint64_t> keys) {
+  row_keys_.assign(keys.begin(), keys.end());
+  cross_block_rows_ = 0;
+}
+
+void ContactList::build_blocks(std::size_t block_rows) {
+  const std::size_t n = rows();
+  const bool keyed = row_keys_.size() == n && n > 0;
+  const auto block_of = [&](std::size_t i) {
+    return (keyed ? row_keys_[i] : static_cast<std::uint64_t>(i)) / block_rows;
+  };
+  block_start_.assign(1, 0);
+  for (std::size_t i = 1; i < n; ++i) {
+    if (block_of(i) != block_of(i - 1)) block_start_.push_back(i);
+  }
+  if (n > 0) block_start_.push_back(n);
+  row_block_end_.resize(n);
+  for (std::size_t b = 0; b + 1 < block_start_.size(); ++b) {
+    for (std::size_t i = block_start_[b]; i < block_start_[b + 1]; ++i) {
+      row_block_end_[i] = block_start_[b + 1];
+    }
+  }
+}
+
 void ContactList::build_cross_block(std::size_t block_rows) {
+  build_blocks(block_rows);
   const std::size_t n = rows();
   // Count per partner, then the receivers in increasing order, then the contacts by k.
   fill_.assign(n + 1, 0);
   for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t block_end = (i / block_rows + 1) * block_rows;
+    const std::size_t block_end = row_block_end_[i];
     for (std::size_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {
       if (col_[k] >= block_end) ++fill_[col_[k]];
     }
@@ -150,7 +175,7 @@ void ContactList::build_cross_block(std::size_t block_rows) {
   }
   cross_k_.resize(cross_start_.back());
   for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t block_end = (i / block_rows + 1) * block_rows;
+    const std::size_t block_end = row_block_end_[i];
     for (std::size_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {
       if (col_[k] >= block_end) cross_k_[fill_[col_[k]]++] = k;
     }

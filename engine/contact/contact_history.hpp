@@ -12,6 +12,7 @@
 // saved and restored through assign(). Contact k's scalars are state()[k * state_size() + c].
 // With state_size() == 0 (a dry scene) none of this runs: the dry paths are the ones from before.
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -44,10 +45,19 @@ class ContactList {
   /// Contacts of particle i are k in [row_start()[i], row_start()[i + 1]), partner col()[k] > i.
   std::span<const std::size_t> row_start() const { return row_start_; }
   std::span<const Index> col() const { return col_; }
-  /// Builds the cross-block index below if the list or `block_rows` changed since it was last
-  /// built. Rows are grouped in blocks of `block_rows` (particles i / block_rows); a contact is
-  /// "cross-block" if its partner j lies in another block than i (always a later one).
+  /// Builds the row blocks and the cross-block index below if the list or `block_rows` changed
+  /// since they were last built. Rows are grouped in blocks of `block_rows` by their key (see
+  /// set_row_keys; by default row i's key is i, so block b holds rows [b, b + 1) x block_rows); a
+  /// contact is "cross-block" if its partner j lies in another block than i (always a later one).
   void index_cross_block(std::size_t block_rows);
+  /// Gives each row a key (increasing with the row; empty: the row index itself). A rank of an
+  /// MPI run keys its rows with the serial run's slots of its particles, so its blocks group
+  /// the particles as the serial run's blocks do and every force is summed in the serial order.
+  void set_row_keys(std::span<const std::uint64_t> keys);
+  /// The row blocks (valid after index_cross_block): block b is rows [block_start()[b],
+  /// block_start()[b + 1]); row_block_end()[i] is the end of row i's block.
+  std::span<const std::size_t> block_start() const { return block_start_; }
+  std::span<const std::size_t> row_block_end() const { return row_block_end_; }
   /// The particles that are the partner of some cross-block contact, increasing; for the r-th,
   /// its cross-block contacts are k = cross_contacts()[q] for q in [cross_start()[r],
   /// cross_start()[r + 1]), increasing k. Valid after index_cross_block().
@@ -81,6 +91,7 @@ class ContactList {
   /// Contact k of the list, or npos if (i, j) is not listed.
   std::size_t locate(Index i, Index j) const;
   void build_cross_block(std::size_t block_rows);
+  void build_blocks(std::size_t block_rows);
 
   std::vector<std::size_t> row_start_;
   std::vector<Index> col_;
@@ -97,7 +108,10 @@ class ContactList {
   std::vector<Index> cross_receivers_;
   std::vector<std::size_t> cross_start_;
   std::vector<std::size_t> cross_k_;
-  std::size_t cross_block_rows_ = 0;   ///< block size of the cross-block index; 0: out of date
+  std::size_t cross_block_rows_ = 0;  ///< block size of the cross-block index; 0: out of date
+  std::vector<std::uint64_t> row_keys_;
+  std::vector<std::size_t> block_start_;
+  std::vector<std::size_t> row_block_end_;
   std::vector<IndexPair> renumbered_;  // scratch of renumber()
   std::vector<std::size_t> by_pair_;
 };

@@ -133,11 +133,8 @@ struct RowSum {
 // A block's rows and partners are all its own, so a thread that takes a whole block adds the first
 // two parts straight into the particles; only the cross-block shares (about a fifth to a third of
 // the contacts, with particles in Morton order) pass through buffers and a second pass.
+// The blocks are ContactList's (index_cross_block): i / kBlockRows in a serial run.
 constexpr std::size_t kBlockRows = kPairBlockRows;
-
-[[gnu::always_inline]] inline bool same_block(std::size_t i, std::size_t j) {
-  return i / kBlockRows == j / kBlockRows;
-}
 
 // One thread: the rows in order; the cross-block shares summed per partner in cross_force /
 // cross_torque (by k, as the rows come in order) and added at the end.
@@ -147,6 +144,7 @@ std::size_t pair_loop_serial(const ContactLaw<Normal>& law, Particles& p, Contac
   constexpr bool kTorque = Tangential || Rolling;
   contacts.index_cross_block(kBlockRows);
   const auto receivers = contacts.cross_receivers();
+  const auto block_end = contacts.row_block_end();
   buf.cross_force.resize(p.size());
   if constexpr (kTorque) buf.cross_torque.resize(p.size());
   for (const Index j : receivers) {
@@ -161,7 +159,7 @@ std::size_t pair_loop_serial(const ContactLaw<Normal>& law, Particles& p, Contac
         const Index i = b.i[l];
         const Index j = b.j[l];
         own.add(p, i, b, l);
-        const bool inner = same_block(i, j);  // no branch: one of two addresses
+        const bool inner = j < block_end[i];  // no branch: one of two addresses
         Vec3* force = inner ? p.force.data() : buf.cross_force.data();
         force[j] -= b.force.vec3(l);
         if constexpr (kTorque) {
@@ -189,8 +187,8 @@ template <class Normal, bool Tangential, bool Rolling>
                                          std::size_t block, double period, double dt,
                                          double history_dt) {
   constexpr bool kTorque = Tangential || Rolling;
-  const std::size_t begin = block * kBlockRows;
-  const std::size_t end = std::min(contacts.rows(), begin + kBlockRows);
+  const std::size_t begin = contacts.block_start()[block];
+  const std::size_t end = contacts.block_start()[block + 1];
   const auto row = contacts.row_start();
   const auto zero = static_cast<std::uint32_t>(contacts.size());
   std::fill(buf.slot.begin() + static_cast<std::ptrdiff_t>(row[begin]),
@@ -230,7 +228,6 @@ std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& 
                                                          history_dt);
   }
   constexpr bool kTorque = Tangential || Rolling;
-  const auto blocks = static_cast<std::int64_t>((contacts.rows() + kBlockRows - 1) / kBlockRows);
   const std::size_t zero = contacts.size();  // the slot of the pairs that do not overlap
   buf.slot.resize(contacts.size());
   buf.force.resize(contacts.size() + 1);
@@ -240,6 +237,7 @@ std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& 
     buf.torque_j[zero].setZero();
   }
   contacts.index_cross_block(kBlockRows);
+  const auto blocks = static_cast<std::int64_t>(contacts.block_start().size()) - 1;
   std::size_t touching = 0;
 #pragma omp parallel for schedule(static) reduction(+ : touching)
   for (std::int64_t b = 0; b < blocks; ++b) {

@@ -54,6 +54,15 @@ void ranks_near(const Decomposition& d, int id, const Vec3& x, double reach,
 
 }  // namespace
 
+void ranks_within(const Decomposition& d, const Vec3& x, double reach,
+                  std::optional<double> period_z, std::vector<int>& out) {
+  out.clear();
+  if (d.nodes.empty()) return;
+  auto add = [&](int rank) { out.push_back(rank); };
+  ranks_near(d, 0, x, reach, period_z, add);
+  std::sort(out.begin(), out.end());
+}
+
 GhostLayer ghost_layer(const Decomposition& d, std::span<const Vec3> position, double reach,
                        std::optional<double> period_z) {
   GhostLayer g;

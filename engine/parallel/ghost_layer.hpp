@@ -31,6 +31,10 @@ double ghost_reach(const SceneConfig& scene);
 /// nearest periodic image (box and point z in [0, period_z)).
 double box_distance(const Box& box, const Vec3& x, std::optional<double> period_z);
 
+/// The ranks (ascending, possibly including x's owner) whose box lies within `reach` of x.
+void ranks_within(const Decomposition& d, const Vec3& x, double reach,
+                  std::optional<double> period_z, std::vector<int>& out);
+
 struct GhostLayer {
   double reach = 0.0;
   /// Per rank: the particles (indices) of other ranks within `reach` of its box, ascending.

@@ -151,4 +151,14 @@ Decomposition rcb_decompose(std::span<const Vec3> position, std::span<const doub
   return d;
 }
 
+int rcb_owner(const Decomposition& d, const Vec3& x) {
+  if (d.nodes.empty()) return 0;
+  std::size_t id = 0;
+  while (!d.nodes[id].leaf()) {
+    const RcbNode& n = d.nodes[id];
+    id = static_cast<std::size_t>(x[n.axis] < n.cut ? n.left : n.right);
+  }
+  return d.nodes[id].rank_begin;
+}
+
 }  // namespace drumlab

@@ -48,6 +48,10 @@ struct Decomposition {
 Decomposition rcb_decompose(std::span<const Vec3> position, std::span<const double> weight,
                             const Box& domain, int ranks);
 
+/// The rank whose box holds x: the cut tree walked from the root (coordinates below a cut go
+/// left), so every point has exactly one owner, also outside the domain.
+int rcb_owner(const Decomposition& d, const Vec3& x);
+
 /// The drum's bounding box in its own frame, [-D/2, D/2]^2 x [0, depth]: the domain RCB cuts.
 Box drum_domain(double diameter, double depth);
 

@@ -1,0 +1,111 @@
+// drumlab-mpi: the drum on N MPI ranks (issue 15). Run it with mpirun:
+//   mpirun -np 4 drumlab-mpi run scenes/drum_demo.toml --steps 2000 --checkpoint out/state.h5
+// Exit codes as drumlab's: 0 success, 1 unexpected failure, 2 bad input, 3 unstable. An error is
+// printed once (by rank 0, or by the rank that met it if only one did) and every rank exits.
+#include <mpi.h>
+
+#include <csignal>
+#include <cstdio>
+#include <exception>
+#include <optional>
+#include <string>
+
+#include <fmt/format.h>
+#include <CLI/CLI.hpp>
+
+#include "app/mpi/mpi_run.hpp"
+#include "engine/search/search_methods.hpp"
+#include "engine/types.hpp"
+
+namespace {
+
+using drumlab::mpi::MpiRunOptions;
+
+void add_run(CLI::App& app, MpiRunOptions& o, std::optional<std::uint64_t>& steps) {
+  auto* run = app.add_subcommand("run", "fill (or restart), settle and turn a scene on all ranks");
+  run->add_option("scene", o.session.scene_file, "scene TOML file")->required();
+  run->add_option("--method", o.session.method,
+                  fmt::format("contact search method: {}, or auto", drumlab::search_method_help()));
+  auto* s = run->add_option("--steps", steps, "turning steps after settling");
+  run->add_option("--revolutions", o.session.revolutions, "drum revolutions after settling")
+      ->check(CLI::PositiveNumber)
+      ->excludes(s);
+  run->add_option("--settle-time", o.session.settle_time, "seconds of settling")
+      ->check(CLI::NonNegativeNumber);
+  run->add_option("--dt-factor", o.session.dt_factor, "time step in Rayleigh times")
+      ->check(CLI::PositiveNumber);
+  run->add_option("--sort-every", o.session.sort_every, "re-order every K steps (0: never)")
+      ->check(CLI::NonNegativeNumber);
+  run->add_option("--skin", o.session.skin, "Verlet skin in smallest radii")
+      ->check(CLI::Range(1e-6, 10.0));
+  run->add_option("--threads", o.threads, "OpenMP threads per rank")->check(CLI::Range(1, 1024));
+  run->add_option("--checkpoint", o.checkpoint, "write a checkpoint (serial layout) at the end");
+  run->add_option("--checkpoint-every", o.checkpoint_every, "also every K turning steps")
+      ->check(CLI::PositiveNumber);
+  run->add_option("--restart", o.session.restart, "continue from a checkpoint (any rank count)");
+  run->add_option("--rebalance-every", o.rebalance_every,
+                  "steps between RCB re-balances (0: never)");
+}
+
+void print_summary(const drumlab::mpi::MpiRunSummary& s) {
+  fmt::print("scene             {} ({} particles, search {})\n", s.scene, s.particles, s.method);
+  if (!s.search_reason.empty())
+    fmt::print("search auto       -> {}: {}\n", s.method, s.search_reason);
+  fmt::print("ranks             {} x {} thread(s)\n", s.ranks, s.threads);
+  fmt::print("owned per rank    min {} / mean {:.1f} / max {} (max/mean {:.3f})\n", s.owned_min,
+             s.owned_mean, s.owned_max, s.owned_mean > 0 ? s.owned_max / s.owned_mean : 0.0);
+  fmt::print(
+      "communication     {:.1f} % of the time inside MPI (mean over ranks; max {:.1f} %), "
+      "{} exchanges, {} re-balances\n",
+      100.0 * s.comm_share_mean, 100.0 * s.comm_share_max, s.exchanges, s.rebalances);
+  const double rate =
+      s.turn_seconds > 0 ? static_cast<double>(s.particles * s.turn_steps) / s.turn_seconds : 0.0;
+  fmt::print(
+      "steps             {} settling + {} turning in {:.3f} s ({:.3g} particle-steps/s "
+      "turning)\n",
+      s.settle_steps, s.turn_steps, s.seconds, rate);
+}
+
+/// Prints the error: bad input (exit 2) is met by every rank alike and printed by rank 0; any
+/// other failure may be one rank's alone, and that rank prints it.
+int fail(int code, const char* kind, const std::string& what, int rank) {
+  if (rank == 0 || code != 2) fmt::print(stderr, "drumlab-mpi: {}: {}\n", kind, what);
+  return code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::signal(SIGXFSZ, SIG_IGN);
+  MPI_Init(&argc, &argv);
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  CLI::App app{"drumlab-mpi: the drumlab DEM on MPI ranks (run it with mpirun -np N)"};
+  app.require_subcommand(1);
+  MpiRunOptions o;
+  std::optional<std::uint64_t> steps;
+  add_run(app, o, steps);
+  int code = 0;
+  try {
+    app.parse(argc, argv);
+    o.session.steps = steps;
+    const auto summary = drumlab::mpi::run_mpi(MPI_COMM_WORLD, o);
+    if (rank == 0) print_summary(summary);
+  } catch (const CLI::ParseError& e) {
+    if (rank == 0) app.exit(e);
+    code = e.get_exit_code() != 0 ? 2 : 0;
+  } catch (const drumlab::InputError& e) {
+    code = fail(2, "error", e.what(), rank);
+  } catch (const drumlab::UnstableError& e) {
+    code = fail(3, "unstable", e.what(), rank);
+  } catch (const std::exception& e) {
+    code = fail(1, "failed", e.what(), rank);
+  }
+  if (code != 0 && code != 2) {
+    // A failure met by one rank only would leave the others waiting in a collective: stop all.
+    std::fflush(stderr);
+    MPI_Abort(MPI_COMM_WORLD, code);
+  }
+  MPI_Finalize();
+  return code;
+}

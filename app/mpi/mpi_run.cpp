@@ -1,0 +1,128 @@
+#include "app/mpi/mpi_run.hpp"
+
+#include <algorithm>
+#include <memory>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "engine/analysis/agglomerates.hpp"
+#include "engine/contact/contact_model.hpp"
+#include "engine/io/checkpoint.hpp"
+#include "engine/parallel/ghost_layer.hpp"
+#include "engine/parallel/mpi/mpi_domain.hpp"
+#include "engine/threads.hpp"
+
+namespace drumlab::mpi {
+
+namespace {
+
+/// The session on every rank; "auto" is resolved on rank 0 only (it times the candidates) and
+/// its choice sent to the others, so every rank runs the same method.
+std::unique_ptr<RunSession> make_session(MPI_Comm comm, int rank, const SceneConfig& scene,
+                                         SessionOptions o, std::string& reason) {
+  const std::string asked = o.method.empty() ? scene.search_method : o.method;
+  if (asked != "auto") return std::make_unique<RunSession>(scene, o);
+  std::unique_ptr<RunSession> session;
+  std::string chosen;
+  if (rank == 0) {
+    session = std::make_unique<RunSession>(scene, o);
+    chosen = session->scene().search_method;
+    if (session->auto_choice()) reason = session->auto_choice()->reason;
+  }
+  int length = static_cast<int>(chosen.size());
+  MPI_Bcast(&length, 1, MPI_INT, 0, comm);
+  chosen.resize(static_cast<std::size_t>(length));
+  MPI_Bcast(chosen.data(), length, MPI_CHAR, 0, comm);
+  if (rank != 0) {
+    o.method = chosen;
+    session = std::make_unique<RunSession>(scene, o);
+  }
+  return session;
+}
+
+MpiDomainOptions domain_options(const SceneConfig& scene, const MpiRunOptions& o) {
+  MpiDomainOptions d;
+  const double skin = scene.performance.verlet_skin * scene.min_radius();
+  d.skin = skin;
+  d.reach = ghost_reach(scene.max_radius(), ContactModel(scene).max_pair_range(), skin);
+  if (scene.drum.ends == DrumEnds::periodic) d.period_z = scene.drum.depth;
+  d.domain = drum_domain(scene.drum.diameter, scene.drum.depth);
+  d.rebalance_every = o.rebalance_every;
+  return d;
+}
+
+void write_gathered(MpiDomain& domain, const Simulation& sim, const std::string& file) {
+  const auto state = domain.gather(sim);
+  if (state) write_checkpoint(file, *state, sim.scene().name);
+  MPI_Barrier(domain.comm().comm());  // the file is complete when any rank goes on
+}
+
+}  // namespace
+
+MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  set_thread_count(o.threads);
+  SceneConfig scene = load_dynamic_scene(o.session.scene_file);
+  if (scene_has_bonds(scene)) {
+    throw InputError(fmt::format(
+        "{}: drumlab-mpi runs dry scenes only so far ([liquid] and [cohesion] keep per-contact "
+        "state that does not migrate yet); use drumlab run",
+        o.session.scene_file));
+  }
+  MpiRunSummary s;
+  auto session = make_session(comm, rank, scene, o.session, s.search_reason);
+  const SessionPlan plan = session->plan();
+  const SceneConfig run_scene = session->scene();
+  MpiDomain domain(comm, domain_options(run_scene, o));
+  std::unique_ptr<Simulation> sim;
+  {
+    const SimulationState full = session->simulation().state();
+    session.reset();
+    sim = domain.distribute(run_scene, full);
+    s.particles = full.particles.size();
+  }
+  MPI_Barrier(comm);
+  const double t0 = MPI_Wtime();
+  if (plan.settle_steps > 0) {
+    sim->set_drum_omega(0.0);
+    sim->advance(plan.settle_steps);
+    sim->set_drum_omega(run_scene.drum.omega);
+  }
+  const double t1 = MPI_Wtime();
+  std::uint64_t done = 0;
+  while (done < plan.turn_steps) {
+    std::uint64_t k = plan.turn_steps - done;
+    if (o.checkpoint_every > 0) k = std::min(k, o.checkpoint_every - done % o.checkpoint_every);
+    sim->advance(k);
+    done += k;
+    if (!o.checkpoint.empty() && o.checkpoint_every > 0 && done % o.checkpoint_every == 0 &&
+        done < plan.turn_steps) {
+      write_gathered(domain, *sim, o.checkpoint);
+    }
+  }
+  const double t2 = MPI_Wtime();
+  if (!o.checkpoint.empty()) write_gathered(domain, *sim, o.checkpoint);
+  const MpiBalance b = domain.balance(*sim);
+  const double share = (t2 - t0) > 0.0 ? b.comm_seconds / (t2 - t0) : 0.0;
+  s.scene = run_scene.name;
+  s.method = run_scene.search_method;
+  s.ranks = ranks;
+  s.threads = o.threads;
+  s.settle_steps = plan.settle_steps;
+  s.turn_steps = plan.turn_steps;
+  s.seconds = t2 - t0;
+  s.turn_seconds = t2 - t1;
+  s.owned_min = b.owned_min;
+  s.owned_max = b.owned_max;
+  s.owned_mean = b.owned_mean;
+  s.comm_share_max = domain.max(share);
+  s.comm_share_mean = domain.sum(share) / ranks;
+  s.exchanges = b.exchanges;
+  s.rebalances = b.rebalances;
+  return s;
+}
+
+}  // namespace drumlab::mpi

@@ -1,0 +1,45 @@
+#pragma once
+// `drumlab-mpi run`: one scene on the ranks of MPI_COMM_WORLD (engine/parallel/mpi/mpi_domain.hpp).
+// Every rank fills the scene with the same seed (or reads the same checkpoint), rank 0 resolves
+// search "auto" and tells the others, the particles are cut by RCB, then the ranks settle and turn
+// the drum together. Checkpoints are gathered on rank 0 and written in the serial layout
+// (engine/io/checkpoint.hpp), so `drumlab run --restart` and `drumlab-mpi run --restart` on any
+// rank count continue from them.
+#include <cstdint>
+#include <string>
+
+#include <mpi.h>
+
+#include "engine/session/run_session.hpp"
+
+namespace drumlab::mpi {
+
+struct MpiRunOptions {
+  SessionOptions session;
+  int threads = 1;
+  std::string checkpoint;  ///< written at the end (and every checkpoint_every steps)
+  std::uint64_t checkpoint_every = 0;
+  std::uint64_t rebalance_every = 1000;  ///< turning and settling steps between RCB re-balances
+};
+
+struct MpiRunSummary {
+  std::string scene;
+  std::string method;
+  std::size_t particles = 0;
+  int ranks = 1;
+  int threads = 1;
+  std::uint64_t settle_steps = 0, turn_steps = 0;
+  double seconds = 0.0;  ///< wall time of settling and turning
+  double turn_seconds = 0.0;
+  std::size_t owned_min = 0, owned_max = 0;
+  double owned_mean = 0.0;
+  double comm_share_max = 0.0;  ///< largest share of a rank's time inside MPI
+  double comm_share_mean = 0.0;
+  std::uint64_t exchanges = 0, rebalances = 0;
+  std::string search_reason;  ///< auto's reason, if it chose
+};
+
+/// Runs the scene; throws InputError / UnstableError as `drumlab run` does (on every rank).
+MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& options);
+
+}  // namespace drumlab::mpi

@@ -1,0 +1,46 @@
+#pragma once
+// Thin MPI helpers for the domain decomposition, each timed: the seconds a rank spends inside MPI
+// (waiting for others included) are what the run summary reports as time in communication.
+#include <mpi.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace drumlab {
+
+class MpiComm {
+ public:
+  explicit MpiComm(MPI_Comm comm);
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  MPI_Comm comm() const { return comm_; }
+  double max(double v);
+  double min(double v);
+  double sum(double v);
+  std::uint64_t sum(std::uint64_t v);
+  void min3(double v[3]);
+  void max(std::span<double> v);
+  /// Sends out[q] to rank q for every q and returns what each rank sent here, by source.
+  std::vector<std::vector<std::byte>> all_to_all(const std::vector<std::vector<std::byte>>& out);
+  /// Every rank's `mine`, concatenated in rank order, on every rank.
+  std::vector<std::uint64_t> all_gather(std::span<const std::uint64_t> mine);
+  std::vector<double> all_gather(std::span<const double> mine);
+  /// Every rank's bytes on rank 0, by rank (empty elsewhere).
+  std::vector<std::vector<std::byte>> gather(std::span<const std::byte> mine);
+  /// Point-to-point doubles: send[q] to q and recv[q].size() doubles from q, for every q with a
+  /// non-empty buffer.
+  void exchange(const std::vector<std::vector<double>>& send,
+                std::vector<std::vector<double>>& recv);
+  /// Seconds spent inside MPI calls so far.
+  double seconds() const { return seconds_; }
+
+ private:
+  MPI_Comm comm_;
+  int rank_ = 0;
+  int size_ = 1;
+  double seconds_ = 0.0;
+};
+
+}  // namespace drumlab

@@ -1,0 +1,97 @@
+#pragma once
+// One rank's side of the MPI domain decomposition (issue 15; design in engine/README.md, "Domain
+// decomposition"). The particles are cut into boxes by RCB (engine/parallel/rcb.hpp); a rank keeps
+// its owned particles and, as ghosts, the other ranks' particles within the ghost reach of its box
+// (engine/parallel/ghost_layer.hpp), all in the serial run's order (each particle's slot in the
+// serial run, `slots()`), so its pair loop sums every owned particle's force in the serial order
+// (ContactList::set_row_keys) and the trajectory is the serial one, bit for bit.
+//
+// Every step (refresh_ghosts, between drift and search) the owners send their ghosts' position,
+// velocity and angular velocity to the neighbouring ranks. When the largest displacement since the
+// last exchange (bounded by the drifts' bounds, measured when the bound exceeds) exceeds half the
+// skin,
+// or a re-balance is due, particles migrate to the rank whose box holds them with their arrays,
+// wall history and contact records, and the ghost layer is rebuilt. At a re-ordering step the ranks
+// agree on the serial run's new order (same Morton keys and ties as Simulation::reorder_particles).
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "engine/parallel/domain_hooks.hpp"
+#include "engine/parallel/mpi/mpi_comm.hpp"
+#include "engine/parallel/particle_pack.hpp"
+#include "engine/parallel/rcb.hpp"
+#include "engine/simulation.hpp"
+
+namespace drumlab {
+
+struct MpiDomainOptions {
+  double reach = 0.0;  ///< ghost reach (m), ghost_reach() with the skin
+  double skin = 0.0;   ///< m: particles migrate when one moved more than half of it
+  std::optional<double> period_z;
+  Box domain;                         ///< drum_domain of the scene
+  std::uint64_t rebalance_every = 0;  ///< steps between RCB re-balances (0: never)
+};
+
+struct MpiBalance {
+  std::size_t owned_min = 0, owned_max = 0;
+  double owned_mean = 0.0;
+  std::uint64_t exchanges = 0, rebalances = 0;
+  double comm_seconds = 0.0;  ///< this rank's seconds inside MPI
+};
+
+class MpiDomain final : public DomainHooks {
+ public:
+  MpiDomain(MPI_Comm comm, MpiDomainOptions options);
+
+  /// This rank's part of `full` (the same on every rank, particles in the serial run's order),
+  /// as a Simulation wired to this domain.
+  std::unique_ptr<Simulation> distribute(const SceneConfig& scene, const SimulationState& full);
+  /// The whole state on rank 0, particles in the serial run's order (nothing elsewhere): what a
+  /// serial run at this step would export. Collective.
+  std::optional<SimulationState> gather(const Simulation& sim);
+  /// Owned counts over ranks and this rank's communication time. Collective.
+  MpiBalance balance(const Simulation& sim);
+
+  double max(double v) override { return comm_.max(v); }
+  void max(std::span<double> v) override { comm_.max(v); }
+  double min(double v) override { return comm_.min(v); }
+  double sum(double v) override { return comm_.sum(v); }
+  std::uint64_t sum(std::uint64_t v) override { return comm_.sum(v); }
+  void reorder(Simulation& sim) override;
+  void refresh_ghosts(Simulation& sim, double moved) override;
+
+  MpiComm& comm() { return comm_; }
+  const std::vector<std::uint64_t>& slots() const { return slot_; }
+
+ private:
+  /// Migration, optional re-balance and a new ghost layer; replaces sim's particles.
+  void exchange(Simulation& sim);
+  void forward(Simulation& sim);
+  /// The largest displacement of any rank's particles since the last exchange (m). Collective.
+  double measured_displacement(const Simulation& sim);
+  void rebalance(const Simulation& sim);
+  /// The local set from the owned particles' bytes `owned` and the ghosts' bytes by source rank:
+  /// particles sorted by serial slot, send and receive lists, reference positions.
+  void assemble(Simulation& sim, const std::vector<std::byte>& owned, std::size_t owned_count,
+                const std::vector<std::vector<std::byte>>& ghosts, ContactRecords records);
+  /// Bytes of the ghosts of each other rank among the owned particles packed in `owned`.
+  std::vector<std::vector<std::byte>> ghost_packs(const Particles& p,
+                                                  const std::vector<std::uint64_t>& slot,
+                                                  const WallHistory& wall);
+
+  MpiComm comm_;
+  MpiDomainOptions options_;
+  Decomposition decomposition_;
+  std::vector<std::uint64_t> slot_;              ///< serial slot of each local particle
+  std::vector<std::vector<Index>> send_, recv_;  ///< local slots per neighbour rank
+  std::vector<std::vector<double>> send_buf_, recv_buf_;
+  double moved_ = 0.0;           ///< bound on the largest displacement since the last exchange, m
+  std::vector<Vec3> reference_;  ///< positions at the last exchange
+  double cell_ = 0.0;            ///< Morton cell, 2 r_max over all ranks
+  std::uint64_t last_balance_ = 0;
+  std::uint64_t exchanges_ = 0, rebalances_ = 0;
+};
+
+}  // namespace drumlab

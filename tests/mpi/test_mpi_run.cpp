@@ -1,0 +1,208 @@
+// drumlab-mpi against drumlab run: the same scene on 1-4 ranks gives the serial run's state bit for
+// bit (positions, velocities, angular velocities, forces, ids, the contact set with its tangential
+// history, the wall history), with caps, periodic ends and a tilted drum, through re-orderings,
+// migrations and RCB re-balances; and checkpoints restart across rank counts (N -> M, N -> serial,
+// serial -> N) as the uninterrupted run. Compared through the checkpoints both write (the serial
+// layout, engine/io/checkpoint.hpp).
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "engine/periodic.hpp"
+#include "tests/mpi/mpi_runner.hpp"
+#include "tests/same_bits.hpp"
+#include "tests/small_drum_text.hpp"
+#include "tests/unit/cli_runner.hpp"
+
+namespace drumlab::test {
+namespace {
+
+/// 700 particles (two of the pair loop's blocks of 512 rows), settling 0.004 s (41 steps),
+/// re-ordered every 30 steps, a small Verlet skin so that particles migrate often. (Short: ranks
+/// oversubscribed on a busy 2-core machine take tens of milliseconds a step, each one waiting for
+/// the others to be scheduled.)
+std::string scene_text(const std::string& search, const std::string& drum_extra,
+                       const std::string& ends) {
+  SmallDrumText t;
+  t.search = search;
+  t.omega = "6.0" + drum_extra;
+  t.ends = ends;
+  t.time = "dt_factor = 0.2\nduration = 0.01";
+  t.output = "diagnostics_every = 50";
+  t.depth = "0.1";
+  t.fill = "count = 700\nsettle_time = 0.004\nseed = 3";
+  t.gravity = "[0.0, -150.0, 0.0]";  // packs the loose fill into a bed within these few steps
+  return t.text() + "[performance]\nsort_every = 30\nverlet_skin = 0.1\n";
+}
+
+/// The contacts of a state: the listed pairs that overlap, as (id, id) with their tangential
+/// history. (A Verlet list also lists pairs apart within its skin, with zero history; which of
+/// those it holds depends on when it was last rebuilt, which a decomposed run does more often.)
+struct Contact {
+  Index a, b;
+  Vec3 history;
+};
+std::vector<Contact> contacts(const SimulationState& s, double period) {
+  std::vector<Contact> out;
+  const Particles& p = s.particles;
+  for (std::size_t i = 0; i + 1 < s.contact_row_start.size(); ++i) {
+    for (std::size_t k = s.contact_row_start[i]; k < s.contact_row_start[i + 1]; ++k) {
+      const Index j = s.contact_col[k];
+      const double r = p.radius[i] + p.radius[j];
+      if (nearest_image(p.position[i], p.position[j], period).squaredNorm() >= r * r) continue;
+      out.push_back({p.id[i], p.id[j], s.contact_history[k]});
+    }
+  }
+  return out;
+}
+
+/// Equal bit for bit: every particle array, the contacts and their history, the wall history,
+/// the clock.
+void expect_same_state(const SimulationState& a, const SimulationState& b, const std::string& what,
+                       double period = 0.0) {
+  SCOPED_TRACE(what);
+  ASSERT_EQ(a.particles.size(), b.particles.size());
+  EXPECT_EQ(a.particles.id, b.particles.id);  // ids conserved, in the serial order
+  EXPECT_TRUE(same_bits(a.particles.position, b.particles.position));
+  EXPECT_TRUE(same_bits(a.particles.velocity, b.particles.velocity));
+  EXPECT_TRUE(same_bits(a.particles.omega, b.particles.omega));
+  EXPECT_TRUE(same_bits(a.particles.force, b.particles.force));
+  EXPECT_TRUE(same_bits(a.particles.torque, b.particles.torque));
+  const auto ca = contacts(a, period), cb = contacts(b, period);
+  EXPECT_GT(ca.size(), 200u);  // a bed in contact, not a gas (~230 after 60 steps, ~450 after 120)
+  ASSERT_EQ(ca.size(), cb.size());
+  for (std::size_t k = 0; k < ca.size(); ++k) {
+    EXPECT_TRUE(ca[k].a == cb[k].a && ca[k].b == cb[k].b) << "contact " << k;
+    EXPECT_TRUE(same_bits(std::vector{ca[k].history}, std::vector{cb[k].history})) << k;
+  }
+  ASSERT_EQ(a.wall_history.size(), b.wall_history.size());
+  EXPECT_TRUE(same_bits(a.wall_history, b.wall_history));
+  EXPECT_TRUE(same_bits(a.time, b.time));
+  EXPECT_EQ(a.steps, b.steps);
+}
+
+class MpiRun : public ::testing::Test {
+ protected:
+  TempDir tmp{std::string("mpi-") +
+              ::testing::UnitTest::GetInstance()->current_test_info()->name()};
+  struct Files {
+    const TempDir& d;
+    std::string file(const std::string& name) const { return (d.path() / name).string(); }
+    std::string write(const std::string& name, const std::string& text) const {
+      return d.write(name, text).string();
+    }
+  } dir{tmp};
+
+  void SetUp() override {
+    if (mpirun(1).empty()) FAIL() << "mpirun not found at configure time (Debian: openmpi-bin)";
+  }
+  SimulationState serial(const std::string& scene, const std::string& args,
+                         const std::string& out) {
+    const Ran r = shell(std::string(DRUMLAB_CLI) + " run " + scene + " --threads 1 " + args +
+                        " --checkpoint " + dir.file(out));
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    return read_checkpoint(dir.file(out)).state;
+  }
+  SimulationState parallel(int ranks, const std::string& scene, const std::string& args,
+                           const std::string& out, int threads = 1) {
+    const std::string t = std::to_string(threads);
+    const Ran r =
+        shell(mpirun(ranks) + "-x OMP_NUM_THREADS=" + t + " " + DRUMLAB_MPI_CLI + " run " + scene +
+              " --threads " + t + " " + args + " --checkpoint " + dir.file(out));
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    if (ranks > 1) {  // particles did migrate
+      EXPECT_EQ(r.output.find(" 0 exchanges"), std::string::npos) << r.output;
+    }
+    EXPECT_NE(r.output.find("ranks             " + std::to_string(ranks) + " x " + t),
+              std::string::npos)
+        << r.output;
+    return read_checkpoint(dir.file(out)).state;
+  }
+  void same_on_ranks(const std::string& text, std::initializer_list<int> ranks,
+                     double period = 0.0) {
+    const std::string scene = dir.write("scene.toml", text);
+    const std::string args = "--steps 120 --rebalance-every 50";
+    const SimulationState want = serial(scene, "--steps 120", "serial.h5");
+    for (const int r : ranks) {
+      expect_same_state(want, parallel(r, scene, args, "mpi.h5"), std::to_string(r) + " ranks",
+                        period);
+    }
+  }
+};
+
+TEST_F(MpiRun, CapsDrumIsBitIdenticalOnOneToFourRanks) {
+  same_on_ranks(scene_text("verlet:m2", "", ""), {1, 2, 3, 4});
+}
+
+TEST_F(MpiRun, HybridTwoRanksTimesTwoThreadsIsBitIdentical) {
+  const std::string scene = dir.write("scene.toml", scene_text("m5", "", ""));
+  const SimulationState want = serial(scene, "--steps 60", "serial.h5");
+  expect_same_state(want, parallel(2, scene, "--steps 60", "mpi.h5", 2), "2 ranks x 2 threads");
+}
+
+TEST_F(MpiRun, PeriodicDrumIsBitIdenticalOnTwoAndThreeRanks) {
+  same_on_ranks(scene_text("m5", "", "periodic"), {2, 3}, 0.1);
+}
+
+TEST_F(MpiRun, TiltedDrumIsBitIdenticalOnTwoAndFourRanks) {
+  same_on_ranks(scene_text("verlet:m2", "\ntilt_deg = 20.0", ""), {2, 4});
+}
+
+TEST_F(MpiRun, CheckpointsRestartAcrossRankCounts) {
+  const std::string scene = dir.write("scene.toml", scene_text("verlet:m2", "", ""));
+  const SimulationState whole = serial(scene, "--steps 120", "whole.h5");
+  // N -> M and N -> serial
+  parallel(3, scene, "--steps 60", "half3.h5");
+  expect_same_state(whole,
+                    parallel(2, scene, "--steps 60 --restart " + dir.file("half3.h5"), "a.h5"),
+                    "3 -> 2 ranks");
+  expect_same_state(whole, serial(scene, "--steps 60 --restart " + dir.file("half3.h5"), "b.h5"),
+                    "3 ranks -> serial");
+  // serial -> N
+  serial(scene, "--steps 60", "half1.h5");
+  expect_same_state(whole,
+                    parallel(4, scene, "--steps 60 --restart " + dir.file("half1.h5"), "c.h5"),
+                    "serial -> 4 ranks");
+}
+
+TEST_F(MpiRun, KilledRankStopsEveryRankAndLeavesARestartableCheckpoint) {
+  const std::string scene = dir.write("scene.toml", scene_text("verlet:m2", "", ""));
+  const std::string ck = dir.file("ck.h5");
+  // A long run checkpointing every 20 steps; once a checkpoint exists, SIGKILL one rank (a child
+  // of this mpirun only) and wait for mpirun to stop the others.
+  const std::string script =
+      mpirun(2) + DRUMLAB_MPI_CLI + " run " + scene + " --steps 100000000 --checkpoint " + ck +
+      " --checkpoint-every 20 > " + dir.file("run.log") + " 2>&1 & M=$!\n" +
+      "for i in $(seq 600); do [ -f " + ck +
+      " ] && break; sleep 0.1; done\n"
+      "sleep 0.5\n"
+      "R=$(pgrep -P $M -f drumlab-mpi | head -n 1)\n"
+      "[ -n \"$R\" ] && kill -9 $R && echo killed\n"
+      "for i in $(seq 600); do kill -0 $M 2>/dev/null || break; sleep 0.1; done\n"
+      "if kill -0 $M 2>/dev/null; then echo still running; kill -9 $M; fi\n"
+      "wait $M; echo \"mpirun exit $?\"\n";
+  const Ran r = shell("bash -c '" + script + "'");
+  EXPECT_NE(r.output.find("killed"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("still running"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("mpirun exit 0"), std::string::npos) << r.output;
+  const Checkpoint c = read_checkpoint(ck);  // intact: complete, readable
+  EXPECT_EQ(c.state.particles.size(), 700u);
+  EXPECT_GE(c.state.steps, 60u);  // written after settling (~41 steps) and 20 turning steps
+  const Ran again = shell(std::string(DRUMLAB_CLI) + " run " + scene + " --threads 1 --steps 10 " +
+                          "--restart " + ck);
+  EXPECT_EQ(again.exit_code, 0) << again.output;
+}
+
+TEST_F(MpiRun, WetSceneIsRefusedWithOneLine) {
+  SmallDrumText t;
+  t.fill = "count = 50\nsettle_time = 0.0";
+  const std::string scene =
+      dir.write("wet.toml", t.text() + "[liquid]\nbridge_volume = 1e-9\nsurface_tension = 0.07\n");
+  const Ran r = shell(mpirun(2) + DRUMLAB_MPI_CLI + " run " + scene + " --steps 1");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("dry scenes only"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace drumlab::test
