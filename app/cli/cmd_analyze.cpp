@@ -40,6 +40,7 @@ void analyze(const AnalyzeOptions& o) {
     in.id = f.id;
     in.film = f.film;
     in.bonds = f.bonds;
+    in.wall_liquid = f.wall_liquid;
     in.period = f.period;
     in.time = f.time;
     table.add(find_agglomerates(in, granule_options(f.drum_omega, o.granule_age)).stats);

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "engine/contact/cohesion_loops.hpp"
 #include "engine/periodic.hpp"
 #include "engine/simulation.hpp"
 
@@ -123,6 +124,7 @@ AgglomerateFrame find_agglomerates(const AgglomerateInput& in, const Agglomerate
   st.bonds = in.bonds.size();
   for (const Bond& b : in.bonds) st.bridge_liquid += b.volume;
   for (double f : in.film) st.free_liquid += f;
+  st.wall_liquid = in.wall_liquid;
 
   DisjointSets plain(n);
   DisjointSets sets(n);
@@ -240,6 +242,7 @@ AgglomerateInput agglomerate_input(const Simulation& sim, std::vector<Bond>& bon
   in.id = p.id;
   if (const std::vector<double>* film = p.find_array(kLiquidFilmArray)) in.film = *film;
   in.bonds = bonds;
+  in.wall_liquid = wall_bridge_liquid(p);
   in.period = sim.search_input().period_z.value_or(0.0);
   in.time = sim.time();
   return in;
@@ -254,13 +257,14 @@ std::vector<std::uint32_t> agglomerate_labels(const Simulation& sim, double gran
 
 std::string agglomerate_csv_header() {
   return "time,criterion,agglomerates,mean_size,largest,d10,d50,d90,bonds,free_liquid,"
-         "bridge_liquid,largest_plain_share";
+         "bridge_liquid,wall_bridge_liquid,largest_plain_share";
 }
 
 std::string agglomerate_csv_row(const AgglomerateStats& s) {
-  return fmt::format("{:.9g},{},{},{:.6g},{},{:.6g},{:.6g},{:.6g},{},{:.6g},{:.6g},{:.6g}", s.time,
-                     s.criterion, s.count, s.mean_size, s.largest, s.d10, s.d50, s.d90, s.bonds,
-                     s.free_liquid, s.bridge_liquid, s.largest_plain_share);
+  return fmt::format(
+      "{:.9g},{},{},{:.6g},{},{:.6g},{:.6g},{:.6g},{},{:.12g},{:.12g},{:.12g},{:.6g}", s.time,
+      s.criterion, s.count, s.mean_size, s.largest, s.d10, s.d50, s.d90, s.bonds, s.free_liquid,
+      s.bridge_liquid, s.wall_liquid, s.largest_plain_share);
 }
 
 }  // namespace drumlab

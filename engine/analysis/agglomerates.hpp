@@ -45,8 +45,9 @@ struct AgglomerateInput {
   std::span<const std::uint32_t> id;  ///< stable ids
   std::span<const double> film;       ///< liquid film volume per particle (m^3); empty: 0
   std::span<const Bond> bonds;
-  double period = 0.0;  ///< z period of periodic ends; <= 0: none
-  double time = 0.0;    ///< s
+  double wall_liquid = 0.0;  ///< liquid in bridges with the drum wall (m^3), in no agglomerate
+  double period = 0.0;       ///< z period of periodic ends; <= 0: none
+  double time = 0.0;         ///< s
 };
 
 struct AgglomerateOptions {
@@ -76,6 +77,8 @@ struct AgglomerateStats {
   std::size_t bonds = 0;             ///< bonds in the frame (all ages)
   double free_liquid = 0.0;          ///< sum of the films (m^3)
   double bridge_liquid = 0.0;        ///< sum of the bond volumes (m^3)
+  double wall_liquid = 0.0;          ///< liquid in wall bridges (m^3): free + bridge + wall
+                                     ///< = all the liquid
   double largest_plain_share = 0.0;  ///< share of the particles in the largest plain component
 };
 
@@ -113,7 +116,8 @@ AgglomerateInput agglomerate_input(const Simulation& sim, std::vector<Bond>& bon
 /// `render --color-by agglomerate` show.
 std::vector<std::uint32_t> agglomerate_labels(const Simulation& sim, double granule_age);
 
-/// The CSV header and one row (SI units; diameters in m, liquid in m^3).
+/// The CSV header and one row (SI units; diameters in m, liquid in m^3, 12 significant digits:
+/// free_liquid + bridge_liquid + wall_bridge_liquid is the scene's liquid).
 std::string agglomerate_csv_header();
 std::string agglomerate_csv_row(const AgglomerateStats& s);
 

@@ -1,5 +1,6 @@
 #include "engine/contact/cohesion_loops.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -37,7 +38,7 @@ double pair_attraction(const CohesiveParts& parts, Particles& p, double* film, I
   double pull = 0.0;
   if (const LiquidBridge* b = parts.bridge) {
     double* s = state + parts.bridge_offset;
-    if (s[0] > 0.0 && gap > 0.0 && gap > b->pair_rupture(s[0])) {
+    if (s[0] > 0.0 && b->pair.ruptured(gap, s[0])) {
       rupture(s, film, i, j);
     }
     if (s[0] > 0.0) {
@@ -71,6 +72,77 @@ double pair_attraction(const CohesiveParts& parts, Particles& p, double* film, I
   return pull;
 }
 
+// True if the pair's bridge forms or ruptures at this step (its films change): with a bridge
+// beyond its rupture distance, or touching without one (MercuryDPM's form()/rupture()).
+bool bridge_event(const CohesiveParts& parts, const double* state, double gap) {
+  const LiquidBridge* b = parts.bridge;
+  if (b == nullptr) return false;
+  const double v = state[parts.bridge_offset];
+  return v > 0.0 ? b->pair.ruptured(gap, v) : gap <= 0.0;
+}
+
+// The force of listed pair k (i, j) without a bridge event (its state advanced), or a marked
+// entry if it has one; nothing if no part acts on it.
+[[gnu::always_inline]] inline void cohesion_entry(const CohesiveParts& parts, Particles& p,
+                                                  double* st, Index i, Index j, std::size_t k,
+                                                  const Vec3& d, double dt,
+                                                  CohesionBuffers::Entry* out, std::size_t& n) {
+  const double dist = d.norm();
+  const auto kk = static_cast<std::uint32_t>(k);
+  if (bridge_event(parts, st, dist - (p.radius[i] + p.radius[j]))) {
+    out[n++] = {i, j, kk, 1, Vec3::Zero()};
+    return;
+  }
+  const double pull = pair_attraction(parts, p, nullptr, i, j, d, dist, st, dt);
+  if (pull != 0.0) out[n++] = {i, j, kk, 0, (pull / dist) * d};
+}
+
+// Pass 1 of cohesion_pair_loop over the rows of block `block`. Most listed pairs are apart, with
+// no bridge and no adhesive contact: nothing acts (a bridge forms only on contact; sjkr acts only
+// while overlapping). Each chunk of a row is first sifted by a loop without branches (as the pair
+// loop's split_row does), then the few pairs that remain are evaluated, by increasing k.
+[[gnu::noinline]] void cohesion_block(const CohesiveParts& parts, Particles& p,
+                                      ContactList& contacts, double period, double dt,
+                                      std::size_t block, CohesionBuffers& buffers) {
+  constexpr std::size_t kChunk = 64;
+  std::uint32_t sel[kChunk];
+  const auto row = contacts.row_start();
+  const auto col = contacts.col();
+  const auto state = contacts.state();
+  const std::size_t stride = contacts.state_size();
+  const bool bridges = parts.bridge != nullptr;
+  const bool sjkr = parts.sjkr != nullptr;
+  const std::size_t bo = parts.bridge_offset, so = parts.sjkr_offset;  // < stride
+  const std::size_t begin = block * kCohesionBlockRows;
+  const std::size_t end = std::min(contacts.rows(), begin + kCohesionBlockRows);
+  CohesionBuffers::Entry* out = &buffers.entries[row[begin]];
+  std::size_t n = 0;
+  for (std::size_t i = begin; i < end; ++i) {
+    const Vec3 x = p.position[i];
+    const double r_i = p.radius[i];
+    for (std::size_t k0 = row[i]; k0 < row[i + 1]; k0 += kChunk) {
+      const std::size_t k1 = std::min(row[i + 1], k0 + kChunk);
+      std::size_t m = 0;
+      for (std::size_t k = k0; k < k1; ++k) {
+        const Index j = col[k];
+        const double dist2 = nearest_image(x, p.position[j], period).squaredNorm();
+        const double sum_r = r_i + p.radius[j];
+        const double* st = &state[k * stride];
+        const bool live = (bridges & (st[bo] > 0.0)) | (sjkr & (st[so] > 0.0));
+        sel[m] = static_cast<std::uint32_t>(k - k0);
+        m += static_cast<std::size_t>((!(dist2 > sum_r * sum_r) | live) & (dist2 != 0.0));
+      }
+      for (std::size_t q = 0; q < m; ++q) {
+        const std::size_t k = k0 + sel[q];
+        const Index j = col[k];
+        cohesion_entry(parts, p, &state[k * stride], static_cast<Index>(i), j, k,
+                       nearest_image(x, p.position[j], period), dt, out, n);
+      }
+    }
+  }
+  buffers.count[block] = n;
+}
+
 }  // namespace
 
 WallGap wall_gap(const Drum& drum, WallPart part, const Vec3& x, double r) {
@@ -82,14 +154,21 @@ WallGap wall_gap(const Drum& drum, WallPart part, const Vec3& x, double r) {
 }
 
 void cohesion_pair_loop(const CohesiveParts& parts, Particles& p, ContactList& contacts,
-                        double period, double dt) {
+                        double period, double dt, CohesionBuffers& buffers) {
   const auto row = contacts.row_start();
-  const auto col = contacts.col();
-  const auto state = contacts.state();
-  const std::size_t stride = contacts.state_size();
+  const std::size_t blocks = (contacts.rows() + kCohesionBlockRows - 1) / kCohesionBlockRows;
+  if (buffers.entries.size() < contacts.size()) buffers.entries.resize(contacts.size());
+  if (buffers.count.size() < blocks) buffers.count.resize(blocks);
+  const auto n = static_cast<std::int64_t>(blocks);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t b = 0; b < n; ++b) {
+    cohesion_block(parts, p, contacts, period, dt, static_cast<std::size_t>(b), buffers);
+  }
   double* film = film_of(parts, p);
   const auto dropped = contacts.dropped();
   const auto dropped_state = contacts.dropped_state();
+  const auto state = contacts.state();
+  const std::size_t stride = contacts.state_size();
   std::size_t q = 0;
   // The dropped pairs before (i, j): beyond every rupture distance, so their bridges end.
   const auto settle_dropped = [&](IndexPair until) {
@@ -99,27 +178,21 @@ void cohesion_pair_loop(const CohesiveParts& parts, Particles& p, ContactList& c
       if (s[0] > 0.0) rupture(s, film, dropped[q].i, dropped[q].j);
     }
   };
-  for (std::size_t i = 0; i < contacts.rows(); ++i) {
-    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
-      const Index j = col[k];
-      settle_dropped({static_cast<Index>(i), j});
-      const Vec3 d = nearest_image(p.position[i], p.position[j], period);
-      const double dist2 = d.squaredNorm();
-      double* st = &state[k * stride];
-      // Most listed pairs are apart, with no bridge and no adhesive contact: nothing to do (a
-      // bridge forms only on contact; sjkr acts only while overlapping).
-      const double sum_r = p.radius[i] + p.radius[j];
-      const bool bridged = parts.bridge != nullptr && st[parts.bridge_offset] > 0.0;
-      const bool stuck = parts.sjkr != nullptr && st[parts.sjkr_offset] > 0.0;
-      if (dist2 > sum_r * sum_r && !bridged && !stuck) continue;
-      if (dist2 == 0.0) continue;
-      const double dist = std::sqrt(dist2);
-      const double pull =
-          pair_attraction(parts, p, film, static_cast<Index>(i), j, d, dist, st, dt);
-      if (pull == 0.0) continue;
-      const Vec3 f = (pull / dist) * d;  // along i - j: attraction pulls i toward j
-      p.force[i] -= f;
-      p.force[j] += f;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const CohesionBuffers::Entry* e = &buffers.entries[row[b * kCohesionBlockRows]];
+    for (const CohesionBuffers::Entry* last = e + buffers.count[b]; e != last; ++e) {
+      settle_dropped({e->i, e->j});
+      Vec3 f = e->force;
+      if (e->event != 0) {
+        const Vec3 d = nearest_image(p.position[e->i], p.position[e->j], period);
+        const double dist = d.norm();
+        const double pull =
+            pair_attraction(parts, p, film, e->i, e->j, d, dist, &state[e->k * stride], dt);
+        if (pull == 0.0) continue;
+        f = (pull / dist) * d;  // along i - j: attraction pulls i toward j
+      }
+      p.force[e->i] -= f;
+      p.force[e->j] += f;
     }
   }
   constexpr Index kLast = std::numeric_limits<Index>::max();
@@ -145,7 +218,10 @@ void cohesion_wall_loop(const CohesiveParts& parts, Particles& p, std::span<cons
       age[w] = a->data();
     }
   }
-  for (const Index i : candidates) {
+  const auto count = static_cast<std::int64_t>(candidates.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t q = 0; q < count; ++q) {
+    const Index i = candidates[static_cast<std::size_t>(q)];
     const Vec3& x = p.position[i];
     const double r = p.radius[i];
     for (std::size_t w = 0; w < n_parts; ++w) {
@@ -154,7 +230,7 @@ void cohesion_wall_loop(const CohesiveParts& parts, Particles& p, std::span<cons
       double pull = 0.0;
       if (b != nullptr) {
         double& v = volume[w][i];
-        if (v > 0.0 && g.gap > b->wall.rupture_distance(v)) {
+        if (v > 0.0 && b->wall.ruptured(g.gap, v)) {
           if (film != nullptr) film[i] += v;
           v = 0.0;
           age[w][i] = 0.0;
@@ -307,12 +383,20 @@ LiquidTotals liquid_totals(const CohesiveParts& parts, const Particles& p,
   for (std::size_t w = 0; w < kWallParts; ++w) {
     const std::vector<double>* v = p.find_array(kWallBridgeVolumeArrays[w]);
     if (v == nullptr) continue;
-    for (double x : *v) {
-      t.wall_bridges += x;
-      t.wall_bridge_count += x > 0.0;
-    }
+    for (double x : *v) t.wall_bridge_count += x > 0.0;
   }
+  t.wall_bridges = wall_bridge_liquid(p);
   return t;
+}
+
+double wall_bridge_liquid(const Particles& p) {
+  double sum = 0.0;
+  for (std::size_t w = 0; w < kWallParts; ++w) {
+    const std::vector<double>* v = p.find_array(kWallBridgeVolumeArrays[w]);
+    if (v == nullptr) continue;
+    for (double x : *v) sum += x;
+  }
+  return sum;
 }
 
 }  // namespace drumlab

@@ -10,6 +10,7 @@
 // so every search method (whatever extra pairs it lists within its skin) makes the same changes
 // to the films in the same order.
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -33,13 +34,36 @@ struct CohesiveParts {
   bool any() const { return bridge != nullptr || sjkr != nullptr; }
 };
 
+/// Scratch of cohesion_pair_loop, reused every step (grows, never shrinks). Block b (rows
+/// [b * kCohesionBlockRows, ...)) keeps its entries in entries[row_start[first row] + q] for q <
+/// count[b]: every listed pair that changes a particle's force or a film, by increasing (i, j).
+struct CohesionBuffers {
+  struct Entry {
+    Index i;
+    Index j;
+    std::uint32_t k;  ///< the pair's place in the contact list
+    std::uint32_t
+        event;   ///< 1: a bridge forms or ruptures (films change): the ordered pass does it
+    Vec3 force;  ///< otherwise the force on j (-force on i)
+  };
+  std::vector<Entry> entries;
+  std::vector<std::size_t> count;
+};
+inline constexpr std::size_t kCohesionBlockRows = 256;
+
 /// Advances every listed pair's cohesive state by dt (bridges form, age, rupture; films give and
 /// take liquid) and adds the attractive forces to p.force. Settles and forgets the dropped pairs.
+/// Two passes: (1) in parallel over blocks of rows, every pair whose bridge neither forms nor
+/// ruptures gets its force and its state advanced (they read no film); the others are marked;
+/// (2) one thread, by increasing (i, j) with the dropped pairs merged in, does the marked pairs'
+/// bridge events (liquid migration) and adds every force. The films and the sums of p.force are
+/// then made in the same order as by one pass over the pairs, for any thread count.
 void cohesion_pair_loop(const CohesiveParts& parts, Particles& p, ContactList& contacts,
-                        double period, double dt);
+                        double period, double dt, CohesionBuffers& buffers);
 
 /// The same for the particles `candidates` (increasing) against the drum wall turning at omega:
-/// wall bridges (state in the kWallBridge*Arrays of p) and sjkr with the wall (no state).
+/// wall bridges (state in the kWallBridge*Arrays of p) and sjkr with the wall (no state). In
+/// parallel over the candidates: a particle's wall bridges change only its own film and force.
 void cohesion_wall_loop(const CohesiveParts& parts, Particles& p, std::span<const Index> candidates,
                         const Drum& drum, double omega, double dt);
 
@@ -75,6 +99,8 @@ struct LiquidTotals {
 };
 LiquidTotals liquid_totals(const CohesiveParts& parts, const Particles& p,
                            const ContactList& contacts);
+/// Liquid held in wall bridges (m^3): the sum of p's kWallBridgeVolumeArrays (0 without them).
+double wall_bridge_liquid(const Particles& p);
 
 /// Gap (m, negative: overlap) and unit normal (from the wall into the particle) of a sphere
 /// against one wall part, also when apart (Drum::contact reports only overlaps).

@@ -463,7 +463,7 @@ std::size_t ContactModel::add_pair_forces(Particles& p, ContactList& contacts,
                                                           history_dt);
            });
   if (const CohesiveParts parts = cohesive_parts(); parts.any()) {
-    cohesion_pair_loop(parts, p, contacts, period, history_dt);
+    cohesion_pair_loop(parts, p, contacts, period, history_dt, buffers.cohesion);
   }
   return touching;
 }

@@ -62,6 +62,7 @@ struct PairForceBuffers {
   std::vector<std::uint32_t> slot;
   std::vector<Vec3> force;
   std::vector<Vec3> torque_j;
+  CohesionBuffers cohesion;  ///< the cohesive parts' pass (a scene with [liquid] or [cohesion])
 };
 
 class ContactModel {

@@ -62,6 +62,17 @@ struct BridgeLiquid {
   double touching_force(double r_eff) const { return f0_per_radius * r_eff; }
   /// s_rup = (1 + theta / 2) V^(1/3), m.
   double rupture_distance(double v) const { return (1.0 + 0.5 * contact_angle) * std::cbrt(v); }
+  /// gap > rupture_distance(v), decided exactly as that comparison, but with a cube root only
+  /// when the gap lies within 1e-6 (relative) of s_rup: (gap / (1 + theta / 2))^3 against v
+  /// settles every other case (its rounding is ~1e-15), and a bridge is checked every step.
+  bool ruptured(double gap, double v) const {
+    if (!(gap > 0.0)) return false;
+    const double g = gap / (1.0 + 0.5 * contact_angle);
+    const double g3 = g * g * g;
+    if (g3 < (1.0 - 1e-6) * v) return false;
+    if (g3 > (1.0 + 1e-6) * v) return true;
+    return gap > rupture_distance(v);
+  }
   /// Force of a bridge of volume v at gap s (N, attractive, >= 0), for s <= s_rup.
   double force(double gap, double r_eff, double v) const {
     const double f0 = touching_force(r_eff);
@@ -91,10 +102,6 @@ struct LiquidBridge {
 
   /// The largest gap at which a particle-particle / particle-wall bridge can live (m).
   double range() const { return pair.rupture_distance(max_volume); }
-  /// s_rup of a particle-particle bridge of volume v (m); no cube root for the (common) largest.
-  double pair_rupture(double v) const {
-    return v == max_volume ? range() : pair.rupture_distance(v);
-  }
   double wall_range() const { return wall_bridges ? wall.rupture_distance(max_volume) : 0.0; }
 
   /// Viscous normal force (N, along the normal towards i: positive repulsive) of a live bridge:

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "engine/contact/cohesion_loops.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/io/h5_file.hpp"
 
@@ -126,6 +127,7 @@ namespace {
 void write_bond_frame(hid_t g, const Particles& p, const SeriesBondFrame& b) {
   h5::write_attribute(g, "period_z", b.period);
   h5::write_attribute(g, "drum_omega", b.drum_omega);
+  h5::write_attribute(g, "wall_bridge_liquid", wall_bridge_liquid(p));
   h5::write(g, "mass", p.mass, {p.size()});
   const std::vector<double>* film = p.find_array(kLiquidFilmArray);
   const std::vector<double> no_film(film ? 0 : p.size(), 0.0);
@@ -253,6 +255,9 @@ SeriesFrame read_series_frame(const std::filesystem::path& file, std::size_t k) 
   s.agglomerate_id = h5::read_u32(g.get(), "agglomerate_id", n);
   s.period = h5::read_double_attribute(g.get(), "period_z");
   s.drum_omega = h5::read_double_attribute(g.get(), "drum_omega");
+  if (H5Aexists(g.get(), "wall_bridge_liquid") > 0) {
+    s.wall_liquid = h5::read_double_attribute(g.get(), "wall_bridge_liquid");
+  }
   h5::Handle b = h5::open_group(g.get(), "bonds");
   const std::vector<std::uint32_t> id_a = h5::read_u32(b.get(), "id_a", h5::kAnySize);
   const std::size_t m = id_a.size();

@@ -9,7 +9,8 @@
 // A scene with bonds (scene_has_bonds) adds to every frame mass (N), liquid_volume (N, the film;
 // 0 without a film array), agglomerate_id (N, u32) and the bond graph
 // /frame_NNNNNN/bonds/{id_a, id_b (u32, stable ids), volume, force, age}, with frame attributes
-// `period_z` and `drum_omega` (what the agglomerate analysis needs to rerun afterwards).
+// `period_z`, `drum_omega` and `wall_bridge_liquid` (m^3 in bridges with the wall: what the
+// agglomerate analysis needs to rerun afterwards).
 // Each frame opens the file, appends, flushes (H5Fflush) and closes it (so HDF5's metadata cache
 // never grows with the run, and a reader can open the file between frames), then the sidecar
 // FILE.xdmf is rewritten atomically, listing the frames written so far (after every frame of the
@@ -105,6 +106,7 @@ struct SeriesFrame {
   std::vector<double> film;
   std::vector<std::uint32_t> agglomerate_id;
   std::vector<Bond> bonds;
+  double wall_liquid = 0.0;  ///< liquid in wall bridges (frame attribute; 0 in older series)
   double period = 0.0;
   double drum_omega = 0.0;
 };

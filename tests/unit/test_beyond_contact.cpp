@@ -348,6 +348,35 @@ TEST(BeyondContact, WetRunIsBitIdenticalForAnyThreadCount) {
   set_thread_count(saved);
 }
 
+// The same with liquid migration and wall bridges on more rows than one block of the cohesive
+// pass (granulation_small: 300 particles, blocks of kCohesionBlockRows), so the blocks run on
+// different threads; and a grid method lists other pairs than the Verlet list: the same bits.
+TEST(BeyondContact, MigratingRunIsBitIdenticalForAnyThreadCountAndMethod) {
+  SceneConfig scene = load_scene(std::string(DRUMLAB_SCENES_DIR) + "/granulation_small.toml");
+  ASSERT_GT(scene.fill.count, kCohesionBlockRows);
+  const Particles start = random_fill(scene);
+  const int saved = max_threads();
+  std::vector<Vec3> position;
+  std::vector<double> film;
+  for (const auto& [threads, method] : {std::pair{1, "verlet:m2"}, {2, "verlet:m2"}, {2, "m5"}}) {
+    set_thread_count(threads);
+    scene.search_method = method;
+    Simulation sim(scene, start);
+    sim.advance(1500);
+    ASSERT_GT(sim.liquid().bridge_count, 50u);
+    ASSERT_GT(sim.liquid().wall_bridge_count, 0u);
+    const std::vector<double>& f = *sim.particles().find_array(kLiquidFilmArray);
+    if (position.empty()) {
+      position = sim.particles().position;
+      film = f;
+      continue;
+    }
+    EXPECT_TRUE(same_bits(position, sim.particles().position)) << threads << " " << method;
+    EXPECT_TRUE(same_bits(film, f)) << threads << " " << method;
+  }
+  set_thread_count(saved);
+}
+
 TEST(BeyondContact, InfoSaysAWetSceneNeedsCohesion) {
   EXPECT_FALSE(scene_features(output_scene()).cohesion);
   const SceneFeatures wet = scene_features(wet_scene());

@@ -12,7 +12,9 @@
 #include <filesystem>
 #include <fstream>
 #include <numbers>
+#include <sstream>
 
+#include "engine/analysis/agglomerates.hpp"
 #include "engine/contact/contact_model.hpp"
 #include "engine/contact/law_probe.hpp"
 #include "engine/io/checkpoint.hpp"
@@ -199,6 +201,29 @@ TEST(WetLaws, LiquidIsConservedThroughReorderingAndRestart) {
   for (const char* name : {"liquid_film", "wall_bridge_volume_mantle", "wall_bridge_age_low_cap"}) {
     ASSERT_NE(a.particles.find_array(name), nullptr) << name;
     EXPECT_TRUE(same_bits(*a.particles.find_array(name), *b.particles.find_array(name))) << name;
+  }
+}
+
+// The agglomerate rows' liquid columns (films, pair bridges, wall bridges) add up to the scene's
+// liquid at every frame, to round-off, and so do the printed columns (12 digits each).
+TEST(WetLaws, AgglomerateLiquidColumnsSumToTheLiquid) {
+  const SceneConfig scene = scene_with(kMigration);
+  const double total = total_liquid(scene);
+  auto sim = settled_simulation(scene, 0);
+  std::vector<Bond> bonds;
+  for (int frame = 0; frame < 3; ++frame) {
+    sim->advance(frame == 0 ? 300 : 100);
+    const AgglomerateStats s = find_agglomerates(agglomerate_input(*sim, bonds), {}).stats;
+    EXPECT_GT(s.wall_liquid, 0.0);
+    EXPECT_GT(s.bridge_liquid, 0.0);
+    EXPECT_NEAR(s.free_liquid + s.bridge_liquid + s.wall_liquid, total, 1e-12 * total);
+    std::stringstream row(agglomerate_csv_row(s));
+    std::vector<double> column;
+    for (std::string cell; std::getline(row, cell, ',');) {
+      column.push_back(cell == s.criterion ? 0.0 : std::stod(cell));
+    }
+    ASSERT_EQ(column.size(), 13u);
+    EXPECT_NEAR(column[9] + column[10] + column[11], total, 1e-11 * total);
   }
 }
 
