@@ -60,7 +60,13 @@ void GuiApp::apply_view_flags() {
       front = std::min(front, *depth);
     }
   }
+  const std::uint64_t before = sim_->generation();
   const auto id = pick(x, y);
+  // The focus is the snapshot's: wait for the one that carries it (the run has finished, so the
+  // simulation thread answers the new wish at once), so the last frame shows it.
+  for (int k = 0; id && sim_->generation() == before && k < 2000; ++k) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
   if (!id) {
     fmt::print("pick ({}, {}): none ({} particles under the cursor)\n", x, y, under);
     return;
