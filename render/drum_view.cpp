@@ -46,22 +46,6 @@ constexpr int kSpokes = 6;
 /// Frames at least this high get the full overlay column; smaller ones two short lines.
 constexpr int kFullOverlayHeight = 480;
 
-/// Viridis (van der Walt and Smith, matplotlib 2.0's default map, perceptually uniform and
-/// readable in grey and by colour-blind readers): matplotlib's published table sampled at
-/// t = 0, 0.1, ..., 1; the 256 colours of the map are interpolated linearly between them.
-constexpr double kViridis[11][3] = {
-    {0.267004, 0.004874, 0.329415}, {0.282623, 0.140926, 0.457517}, {0.253935, 0.265254, 0.529983},
-    {0.206756, 0.371758, 0.553117}, {0.163625, 0.471133, 0.558148}, {0.127568, 0.566949, 0.550556},
-    {0.134692, 0.658636, 0.517649}, {0.266941, 0.748751, 0.440573}, {0.477504, 0.821444, 0.318195},
-    {0.741388, 0.873449, 0.149561}, {0.993248, 0.906157, 0.143936}};
-
-/// Categories (size classes): the Okabe-Ito palette (Okabe and Ito 2008, "Color Universal
-/// Design"), distinct for colour-blind readers; black is left out (the background is dark).
-constexpr double kCategories[7][3] = {
-    {0.902, 0.624, 0.000}, {0.337, 0.706, 0.914}, {0.000, 0.620, 0.451}, {0.941, 0.894, 0.259},
-    {0.000, 0.447, 0.698}, {0.835, 0.369, 0.000}, {0.800, 0.475, 0.655}};
-constexpr std::size_t kMaxCategories = std::size(kCategories);
-
 struct ColorArray {
   std::vector<double> values;
   double lo = 0.0, hi = 1.0;
@@ -70,9 +54,6 @@ struct ColorArray {
   std::vector<std::pair<double, std::string>> categories;
   bool first_grey = false;  ///< category 0 is grey, the palette starts at category 1
 };
-
-/// Grey of a particle alone in its agglomerate.
-constexpr double kGrey[3] = {0.55, 0.57, 0.6};
 
 /// Size classes: the distinct radii (mm), named after the scene's classes where one has that
 /// radius; none if there are more radii than colours (a continuous map then).
@@ -118,7 +99,7 @@ void use_categories(vtkLookupTable* lut, const std::vector<std::pair<double, std
   lut->ResetAnnotations();
   lut->SetNumberOfTableValues(static_cast<vtkIdType>(cats.size()));
   for (std::size_t k = 0; k < cats.size(); ++k) {
-    const double* c = first_grey ? (k == 0 ? kGrey : kCategories[k - 1]) : kCategories[k];
+    const double* c = first_grey ? (k == 0 ? kNeutralGrey : kCategories[k - 1]) : kCategories[k];
     lut->SetTableValue(static_cast<vtkIdType>(k), c[0], c[1], c[2], 1.0);
     lut->SetAnnotation(vtkVariant(cats[k].first), cats[k].second);
   }
@@ -373,6 +354,7 @@ struct DrumView::Impl {
   Impl(const ViewOptions& o, RenderTarget& t) : options(o), target(t) {}
   void build_scene();
   void build_annotations();  // legend and text overlay, in the top layer
+  void place_text();         // the overlay text's corner and font for the frame's height
   void build_drum(const FrameSnapshot& s);
   void update_particles(const FrameSnapshot& s);
   void update_overlay(const FrameSnapshot& s);
@@ -443,10 +425,16 @@ void DrumView::Impl::build_annotations() {
   legend->SetHeight(0.8);
   legend->GetTitleTextProperty()->SetFontSize(14);
   legend->GetLabelTextProperty()->SetFontSize(12);
-  const int font = options.height >= 600 ? 16 : 11;
-  text->GetTextProperty()->SetFontSize(options.title.empty() ? font : 13);
   text->GetTextProperty()->SetFontFamilyToCourier();
   text->GetTextProperty()->SetColor(0.95, 0.95, 0.95);
+  place_text();
+  if (options.overlay || !options.title.empty()) top->AddActor2D(text);
+  if (options.overlay) top->AddActor2D(legend);
+}
+
+void DrumView::Impl::place_text() {
+  const int font = options.height >= 600 ? 16 : 11;
+  text->GetTextProperty()->SetFontSize(options.title.empty() ? font : 13);
   if (options.title.empty() && compact_overlay()) {
     text->SetDisplayPosition(6, 6);
     text->GetTextProperty()->SetVerticalJustificationToBottom();
@@ -459,8 +447,6 @@ void DrumView::Impl::build_annotations() {
     text->GetTextProperty()->SetBackgroundColor(0.0, 0.0, 0.0);
     text->GetTextProperty()->SetBackgroundOpacity(0.6);
   }
-  if (options.overlay || !options.title.empty()) top->AddActor2D(text);
-  if (options.overlay) top->AddActor2D(legend);
 }
 
 void DrumView::Impl::build_drum(const FrameSnapshot& s) {
@@ -540,7 +526,7 @@ void DrumView::Impl::update_particles(const FrameSnapshot& p) {
   particles->Modified();
   if (options.neutral_particles) {
     sphere_mapper->ScalarVisibilityOff();
-    particle_actor->GetProperty()->SetColor(0.55, 0.57, 0.6);
+    particle_actor->GetProperty()->SetColor(kNeutralGrey[0], kNeutralGrey[1], kNeutralGrey[2]);
   }
   if (colors.categories.empty()) {
     use_viridis(lut);
@@ -654,6 +640,39 @@ std::array<double, 2> DrumView::project(const Vec3& x) {
   return {d[0], static_cast<double>(impl_->options.height) - d[1]};
 }
 
+std::array<Vec3, 2> DrumView::sight_line(double x, double y) {
+  vtkRenderer* r = impl_->renderer;
+  std::array<Vec3, 2> ends;
+  for (int k = 0; k < 2; ++k) {  // display depth 0: the near plane, 1: the far plane
+    r->SetDisplayPoint(x, static_cast<double>(impl_->options.height) - y, k);
+    r->DisplayToWorld();
+    const double* w = r->GetWorldPoint();
+    ends[static_cast<std::size_t>(k)] = Vec3(w[0] / w[3], w[1] / w[3], w[2] / w[3]);
+  }
+  return ends;
+}
+
+std::optional<std::size_t> first_sphere_hit(const Vec3& near, const Vec3& far,
+                                            std::span<const Vec3> centres,
+                                            std::span<const double> radii) {
+  const Vec3 d = (far - near).normalized();
+  std::optional<std::size_t> best;
+  double best_t = 0.0;
+  for (std::size_t i = 0; i < centres.size(); ++i) {
+    // |near + t d - c|^2 = r^2: t = b -+ sqrt(b^2 - (|near - c|^2 - r^2)), b = d.(c - near).
+    const Vec3 m = centres[i] - near;
+    const double b = d.dot(m);
+    const double disc = b * b - (m.squaredNorm() - radii[i] * radii[i]);
+    if (disc < 0.0) continue;
+    const double t = b - std::sqrt(disc);  // where the line enters the sphere
+    if (!best || t < best_t) {
+      best = i;
+      best_t = t;
+    }
+  }
+  return best;
+}
+
 SearchVisit DrumView::focus_visit() const {
   if (!impl_->grid || !impl_->grid->visit()) {
     throw std::logic_error("DrumView::focus_visit: no focus particle drawn yet");
@@ -672,20 +691,29 @@ void DrumView::redraw() {
 
 void DrumView::set_options(const ViewOptions& options) {
   Impl& m = *impl_;
-  if (options.width != m.options.width || options.height != m.options.height) {
-    throw std::logic_error("DrumView::set_options: the size is the target's (make a new view)");
-  }
   if (options.title.empty() != m.options.title.empty() || options.overlay != m.options.overlay) {
     throw std::logic_error("DrumView::set_options: title and overlay are set at construction");
   }
   const bool camera_changed =
       options.camera != m.options.camera || options.zoom_to_focus != m.options.zoom_to_focus;
   const bool shade_changed = options.neutral_particles != m.options.neutral_particles;
+  const int width = m.options.width, height = m.options.height;
   m.options = options;
+  m.options.width = width;  // the size is set_size's
+  m.options.height = height;
   if (camera_changed) m.camera_placed = false;
   if (shade_changed && !options.neutral_particles) {
     m.sphere_mapper->ScalarVisibilityOn();
   }
+}
+
+void DrumView::set_size(int width, int height) {
+  Impl& m = *impl_;
+  if (width == m.options.width && height == m.options.height) return;
+  m.options.width = width;
+  m.options.height = height;
+  m.window->SetSize(width, height);
+  m.place_text();
 }
 
 const ViewOptions& DrumView::options() const {

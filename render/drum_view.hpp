@@ -4,6 +4,7 @@
 // optionally the active search grid and one particle's search. Reads a const Simulation; draws
 // into an OpenGL context it is given (a RenderTarget: OSMesa for the CLI and the tests, the GUI's
 // own context). No VTK type appears in this interface.
+#include <array>
 #include <memory>
 #include <optional>
 #include <span>
@@ -15,6 +16,7 @@
 #include "engine/session/frame_snapshot.hpp"
 #include "engine/simulation.hpp"
 #include "render/image.hpp"
+#include "render/palette.hpp"
 #include "render/render_target.hpp"
 
 namespace drumlab::render {
@@ -68,12 +70,6 @@ struct ViewOptions {
   std::string title;               ///< replaces the overlay text when not empty
 };
 
-/// Background colour of every frame (RGB in [0, 1]).
-inline constexpr double kBackground[3] = {0.11, 0.12, 0.15};
-/// Colour of the back end cap, the plate behind the bed: light enough that viridis' dark low end
-/// (slow particles) stands out against it.
-inline constexpr double kBackCapColor[3] = {0.32, 0.33, 0.37};
-
 class DrumView {
  public:
   /// Draws into `target` (which must outlive the view, and be options.width x options.height).
@@ -95,8 +91,11 @@ class DrumView {
   /// reading a snapshot: a paused window turning its camera. Throws before the first frame.
   void redraw();
   /// Changes what the next frames show (colour-by, grid, focus, camera preset, zoom to focus,
-  /// neutral particles). The size, the title and the overlay stay those given at construction.
+  /// neutral particles). The size (set_size), the title and the overlay stay as they are.
   void set_options(const ViewOptions& options);
+  /// Draws the next frames at width x height pixels (the target must be of that size by then): a
+  /// resized window, or a reduced image while the camera moves. The camera keeps its view.
+  void set_size(int width, int height);
   const ViewOptions& options() const;
   /// Places the camera by the preset again at the next frame (and frames the focus if
   /// zoom_to_focus).
@@ -106,6 +105,9 @@ class DrumView {
   void zoom(double factor);
   /// Pixel (column, row from the top) where a drum-frame point appears in the last frame.
   std::array<double, 2> project(const Vec3& x);
+  /// The line of sight through pixel (column x, row y from the top) of the last frame: its points
+  /// on the near and the far clipping plane, in the drum frame (picking: first_sphere_hit).
+  std::array<Vec3, 2> sight_line(double x, double y);
   /// The focus particle's search as drawn in the last frame (ContactSearch::visit). Throws
   /// std::logic_error without a focus particle or before the first frame.
   SearchVisit focus_visit() const;
@@ -118,6 +120,12 @@ class DrumView {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// Of the spheres (centres, radii) that the line of sight from `near` to `far` passes through, the
+/// one it enters first (the front-most under a cursor); none if it meets none.
+std::optional<std::size_t> first_sphere_hit(const Vec3& near, const Vec3& far,
+                                            std::span<const Vec3> centres,
+                                            std::span<const double> radii);
 
 /// Storage index of the particle with stable id `id`; throws InputError if there is none.
 Index index_of_id(const Particles& p, Index id);

@@ -312,8 +312,8 @@ void GridOverlay::draw_highlights(const FrameSnapshot& p, const SearchVisit& v, 
   radius->SetName("radius");
   vtkNew<vtkUnsignedCharArray> colors;
   colors->SetNumberOfComponents(3);
-  const double white[3] = {1.0, 1.0, 1.0};
-  append_sphere(pts, radius, colors, p.position[focus], p.radius[focus] * kMarkerScale, white);
+  append_sphere(pts, radius, colors, p.position[focus], p.radius[focus] * kMarkerScale,
+                kFocusParticleColor);
   vtkNew<vtkPoints> link_pts;
   vtkNew<vtkCellArray> links;
   // Brute force tests everyone: its candidates would cover the bed; only its contacts are drawn.

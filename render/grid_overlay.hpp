@@ -13,21 +13,13 @@
 
 #include "engine/search/cell_grid.hpp"
 #include "engine/session/frame_snapshot.hpp"
+#include "render/palette.hpp"  // the focus picture's colours
 
 class vtkActor;
 class vtkRenderer;
 class vtkPolyData;
 
 namespace drumlab::render {
-
-/// Cell colours of the focus picture (RGB in [0, 1]).
-inline constexpr double kOwnCellColor[3] = {1.0, 0.85, 0.1};
-inline constexpr double kForwardCellColor[3] = {0.2, 0.8, 0.3};
-inline constexpr double kSkippedCellColor[3] = {0.85, 0.25, 0.25};
-inline constexpr double kBackwardRingColor[3] = {0.2, 0.7, 0.95};
-inline constexpr double kCandidateColor[3] = {1.0, 0.6, 0.1};
-inline constexpr double kContactColor[3] = {1.0, 0.2, 0.9};
-inline constexpr double kSmallerLevelColor[3] = {0.55, 0.45, 1.0};  ///< mlgrid: smaller levels
 
 class GridOverlay {
  public:

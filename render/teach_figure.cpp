@@ -29,8 +29,8 @@ std::string panel_title(const Simulation& sim, const TeachPanel& p) {
   if (const auto colon = what.find(": "); colon != std::string::npos) what.erase(0, colon + 2);
   return fmt::format(
       "{}  cells visited {}  pairs tested {}  found {}\n{}\n"
-      "yellow own cell | green visited | red skipped half\n"
-      "cyan m2 far ring | orange tested | magenta contact",
+      "crimson own cell | lime visited | dark red skipped half\n"
+      "blue m2 far ring | cyan tested | magenta contact",
       p.method, p.cells_visited, p.pairs_tested, p.contacts, what);
 }
 

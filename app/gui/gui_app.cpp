@@ -39,6 +39,12 @@ std::vector<std::string> all_methods() {
   return names;
 }
 
+}  // namespace
+
+double now_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
 SessionOptions session_options(const GuiOptions& o) {
   SessionOptions s;
   s.scene_file = o.scene;
@@ -46,12 +52,6 @@ SessionOptions session_options(const GuiOptions& o) {
   s.settle_time = o.settle_time;
   return s;
 }
-
-double now_seconds() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-}  // namespace
 
 SceneConfig gui_scene(const std::string& file) {
   return with_gui_checks(load_dynamic_scene(file));
@@ -109,7 +109,6 @@ GuiApp::GuiApp(const GuiOptions& options) : options_(options), methods_(all_meth
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 2);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);  // the view is made for one size
   window_ = glfwCreateWindow(options.width, options.height, "drumlab-gui", nullptr, nullptr);
   if (window_ == nullptr) {
     glfwTerminate();
@@ -117,10 +116,9 @@ GuiApp::GuiApp(const GuiOptions& options) : options_(options), methods_(all_meth
   }
   glfwMakeContextCurrent(window_);
   glfwSwapInterval(options.frames > 0 || options.bench ? 0 : 1);
-  int fb_w = 0, fb_h = 0;
-  glfwGetFramebufferSize(window_, &fb_w, &fb_h);
-  view_options_.width = fb_w;
-  view_options_.height = fb_h;
+  glfwGetFramebufferSize(window_, &fb_w_, &fb_h_);
+  view_options_.width = fb_w_;
+  view_options_.height = fb_h_;
 
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
@@ -130,17 +128,25 @@ GuiApp::GuiApp(const GuiOptions& options) : options_(options), methods_(all_meth
   ImGui_ImplOpenGL3_Init("#version 150");
 
   GLFWwindow* w = window_;
-  target_ =
-      std::make_unique<render::CurrentGlContext>(fb_w, fb_h, [w] { glfwMakeContextCurrent(w); });
+  image_.resize(fb_w_, fb_h_);
+  target_ = std::make_unique<render::CurrentGlContext>(fb_w_, fb_h_, [w, this] {
+    glfwMakeContextCurrent(w);
+    image_.bind();
+  });
   view_ = std::make_unique<render::DrumView>(view_options_, *target_);
+  inset_on_ = options.inset;
   if (options.frames > 0 || options.bench) sim_->set_running(options.frames > 0);
   last_frame_time_ = fps_since_ = now_seconds();
 }
 
 GuiApp::~GuiApp() {
   sim_.reset();  // stop the simulation first
+  inset_.reset();
   view_.reset();
   if (window_ != nullptr) {
+    glfwMakeContextCurrent(window_);
+    image_.release();
+    inset_image_.release();
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
@@ -201,177 +207,6 @@ FrameSnapshot GuiApp::display_snapshot(const FrameSnapshot& s) {
   if (!mv.visit.grids.empty()) d.grid = mv.visit.grids.front().geometry;
   d.search_name = mv.method + " (teaching)";
   return d;
-}
-
-void GuiApp::pick(double x, double y) {
-  if (!shown_) return;
-  const FrameSnapshot& s = *shown_;
-  double best = 1e300;
-  std::optional<Index> hit;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    const auto c = view_->project(s.position[i]);
-    const auto e = view_->project(s.position[i] + Vec3(s.radius[i], 0.0, 0.0));
-    const double r = std::max(3.0, std::hypot(e[0] - c[0], e[1] - c[1]));
-    const double d = std::hypot(c[0] - x, c[1] - y);
-    // Nearest centre within its own disc; of overlapping discs the one nearer the camera.
-    const double score = d / r - 1e-3 * s.position[i].z() / std::max(1e-9, s.drum_depth);
-    if (d <= r && score < best) {
-      best = score;
-      hit = s.id[i];
-    }
-  }
-  if (!hit) return;
-  view_options_.focus_id = hit;
-  teach_step_ = 1 << 30;
-  push_view_options();
-}
-
-void GuiApp::handle_mouse() {
-  ImGuiIO& io = ImGui::GetIO();
-  if (io.WantCaptureMouse) return;
-  double x = 0.0, y = 0.0;
-  glfwGetCursorPos(window_, &x, &y);
-  if (ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
-    dragging_ = false;
-    press_x_ = last_x_ = x;
-    press_y_ = last_y_ = y;
-  }
-  if (ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
-    if (std::hypot(x - press_x_, y - press_y_) > 4.0) dragging_ = true;
-    if (dragging_) view_->orbit(-0.4 * (x - last_x_), 0.4 * (y - last_y_));
-    last_x_ = x;
-    last_y_ = y;
-  }
-  if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) && !dragging_) pick(x, y);
-  if (io.MouseWheel != 0.0f) view_->zoom(std::pow(1.1, io.MouseWheel));
-}
-
-void GuiApp::frame(const std::string& grab) {
-  glfwPollEvents();
-  const std::uint64_t gen = sim_->generation();
-  if (gen != shown_generation_ || !shown_) {
-    shown_ = sim_->latest();
-    shown_generation_ = gen;
-    if (shown_) update_history(*shown_);
-  }
-  const double t = now_seconds();
-  ++frames_counted_;
-  if (t - fps_since_ >= 0.5) {  // frames per second over the last half second or more
-    fps_ = static_cast<double>(frames_counted_) / (t - fps_since_);
-    fps_since_ = t;
-    frames_counted_ = 0;
-  }
-  last_frame_time_ = t;
-
-  ImGui_ImplOpenGL3_NewFrame();
-  ImGui_ImplGlfw_NewFrame();
-  ImGui::NewFrame();
-  const FrameSnapshot* s = shown_.get();
-  panel_run();
-  panel_scene();
-  panel_search(s);
-  panel_view(s);
-  panel_export(s);
-  panel_teach(s);
-  handle_mouse();
-  ImGui::Render();
-
-  glViewport(0, 0, target_->width(), target_->height());
-  glClearColor(0.11f, 0.12f, 0.15f, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  if (s != nullptr) {
-    if (view_options_.zoom_to_focus) view_->reset_camera();  // follow the focus particle
-    try {
-      // A new snapshot, new options or a teaching step: the scene is updated; else only the
-      // camera may have moved.
-      const bool teaching = teach_ && s->focus_index && !s->compare_visits.empty();
-      if (shown_generation_ != drawn_generation_ || view_dirty_ || teaching) {
-        view_->draw(display_snapshot(*s));
-        drawn_generation_ = shown_generation_;
-        view_dirty_ = false;
-      } else {
-        view_->redraw();
-      }
-    } catch (const InputError& e) {  // e.g. occupancy asked of a method without a grid
-      view_options_.grid = false;
-      view_->set_options(view_options_);
-      view_dirty_ = true;
-      export_message_ = e.what();
-    }
-    if (grab_view_) {  // the view alone, before the panels are drawn over it
-      grab_view_ = false;
-      try {
-        render::write_png(target_->read_image(), png_path_);
-        export_message_ = fmt::format("wrote {}", png_path_);
-      } catch (const std::exception& e) {
-        export_message_ = e.what();
-      }
-    }
-    if (movie_frames_ && shown_generation_ != movie_last_generation_) {
-      movie_last_generation_ = shown_generation_;
-      movie_frames_->write(target_->read_image(), movie_frames_->frames_written());
-    }
-  }
-  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-  if (!grab.empty()) render::write_png(target_->read_image(), grab);
-  glfwSwapBuffers(window_);
-}
-
-void GuiApp::run() {
-  if (options_.frames == 0) {
-    while (glfwWindowShouldClose(window_) == 0) frame();
-    return;
-  }
-  // Headless: at least `frames` UI frames, and until the simulation has made its steps.
-  for (std::uint64_t k = 0; k < options_.frames || !sim_->finished(); ++k) {
-    frame();
-    if (sim_->state_text().starts_with("stopped")) {
-      throw std::runtime_error(sim_->state_text());
-    }
-  }
-  shown_ = sim_->latest();
-  shown_generation_ = sim_->generation();
-  if (shown_) update_history(*shown_);
-  frame(options_.screenshot);  // the last snapshot, panels included
-  if (!options_.save_scene.empty()) save_edited_scene(options_.save_scene);
-  if (!options_.checkpoint.empty()) {
-    const std::string file = options_.checkpoint;
-    sim_->with_simulation(
-        [&](const Simulation& sim) { write_checkpoint(file, sim.state(), sim.scene().name); });
-  }
-}
-
-BenchFigures GuiApp::bench(std::uint64_t frames) {
-  BenchFigures b;
-  // Settle first (drawing as it goes), then pause: both measurements on the settled bed.
-  sim_->set_running(true);
-  while (!sim_->settled()) {
-    if (sim_->state_text().starts_with("stopped")) throw std::runtime_error(sim_->state_text());
-    frame();
-  }
-  sim_->set_running(false);
-  while (sim_->running()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  frame();
-  // Paused, the camera orbiting: the drawing alone.
-  double t0 = now_seconds();
-  for (std::uint64_t k = 0; k < frames; ++k) {
-    view_->orbit(360.0 / static_cast<double>(frames), 0.0);
-    frame();
-  }
-  b.paused_fps = static_cast<double>(frames) / (now_seconds() - t0);
-  view_->reset_camera();
-  // Running: the same drawing while the simulation thread steps.
-  const auto [steps0, seconds0] = sim_->stepping_totals();
-  sim_->set_running(true);
-  t0 = now_seconds();
-  for (std::uint64_t k = 0; k < frames; ++k) frame();
-  b.running_fps = static_cast<double>(frames) / (now_seconds() - t0);
-  sim_->set_running(false);
-  while (sim_->running()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  const auto [steps1, seconds1] = sim_->stepping_totals();
-  b.gui_particle_steps = seconds1 > seconds0 ? (steps1 - steps0) / (seconds1 - seconds0) : 0.0;
-  b.gui_steps = steps1 - steps0;
-  return b;
 }
 
 }  // namespace drumlab::gui

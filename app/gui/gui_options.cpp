@@ -1,5 +1,6 @@
 #include "app/gui/gui_options.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <numbers>
 
@@ -71,6 +72,20 @@ void apply_edit(SceneConfig& scene, const std::string& edit) {
         "fill_fraction, seed, settle_time)",
         edit));
   }
+}
+
+std::array<double, 2> parse_pair(const std::string& text, const std::string& flag) {
+  std::array<double, 2> v{};
+  const auto comma = text.find(',');
+  const char* bounds[3] = {text.data(), text.data() + std::min(comma, text.size()),
+                           text.data() + text.size()};
+  for (std::size_t k = 0; k < 2 && comma != std::string::npos; ++k) {
+    const char* first = bounds[k] + (k == 1 ? 1 : 0);
+    const auto [end, ec] = std::from_chars(first, bounds[k + 1], v[k]);
+    if (ec != std::errc() || end != bounds[k + 1] || first == bounds[k + 1]) break;
+    if (k == 1) return v;
+  }
+  throw InputError(fmt::format("{}: '{}' is not two numbers A,B", flag, text));
 }
 
 }  // namespace drumlab::gui

@@ -1,6 +1,7 @@
 #pragma once
 // The command line of drumlab-gui: the scene, the window, and the headless driving used by tests
 // and benchmarks (--frames N --screenshot FILE.png, --bench).
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -34,7 +35,16 @@ struct GuiOptions {
   bool bench = false;
   std::vector<std::string> edits;  ///< KEY=VALUE edits of the scene panel's fields (apply_edit)
   std::string save_scene;          ///< headless: save the edited scene as TOML at the end
+  /// Headless, before the last frame: turn the camera (degrees azimuth, elevation), zoom, and
+  /// click the window pixel (column, row from the top) to focus the particle there.
+  std::optional<std::array<double, 2>> orbit;
+  double zoom = 1.0;
+  std::optional<std::array<double, 2>> pick;
+  bool inset = true;  ///< the focus inset (a second view framing the focus particle's search)
 };
+
+/// "A,B" -> {A, B}; throws InputError naming `flag` otherwise.
+std::array<double, 2> parse_pair(const std::string& text, const std::string& flag);
 
 /// One edit of the scene panel's fields, as "KEY=VALUE": omega (rad/s), rpm, friction,
 /// restitution, wall_friction, count, fill_fraction, seed, settle_time. Throws InputError naming

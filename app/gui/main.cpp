@@ -1,7 +1,6 @@
 // drumlab-gui: the interactive workbench (GLFW + Dear ImGui + the VTK drum view). Headless driving
 // for tests and benchmarks: --frames N --screenshot FILE.png, --bench. Exit codes: 0 success,
 // 2 bad input (one line), 1 anything else (no display, a failed run).
-#include <chrono>
 #include <cstdio>
 #include <exception>
 
@@ -10,29 +9,6 @@
 
 #include "app/gui/gui_app.hpp"
 #include "app/gui/gui_options.hpp"
-#include "engine/session/run_session.hpp"
-#include "engine/threads.hpp"
-
-namespace {
-
-/// The CLI-equivalent run: the same scene and options in one RunSession, one thread, no window;
-/// particle-steps per second of `steps` turning steps.
-double cli_particle_steps(const drumlab::gui::GuiOptions& o, std::uint64_t steps) {
-  drumlab::SessionOptions so;
-  so.scene_file = o.scene;
-  so.method = o.method;
-  so.settle_time = o.settle_time;
-  drumlab::set_thread_count(1);
-  drumlab::RunSession session(drumlab::gui::gui_scene(o.scene), so);
-  session.settle();
-  const auto t0 = std::chrono::steady_clock::now();
-  session.advance(steps);
-  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return static_cast<double>(session.simulation().particles().size()) * static_cast<double>(steps) /
-         s;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   drumlab::gui::GuiOptions o;
@@ -63,6 +39,15 @@ int main(int argc, char** argv) {
   app.add_option("--teach-cells", o.teach_cells, "cells of the walk shown (default: all)");
   app.add_option("--edit", o.edits, "KEY=VALUE: edit the scene panel's field (repeatable)");
   app.add_option("--save-scene", o.save_scene, "headless: save the edited scene as TOML");
+  std::string orbit, pick;
+  app.add_option("--orbit", orbit,
+                 "headless: AZ,EL degrees: turn the camera before the last frame");
+  app.add_option("--zoom", o.zoom, "headless: zoom the camera by this factor before the last frame")
+      ->check(CLI::Range(0.01, 100.0));
+  app.add_option("--pick", pick,
+                 "headless: X,Y: click the window pixel (column, row from the top) to focus the "
+                 "front-most particle there, before the last frame");
+  app.add_flag("!--no-inset", o.inset, "no focus inset");
   app.add_flag("--bench", o.bench, "print frames/s paused and running, and particle-steps/s");
   app.add_option("--bench-frames", bench_frames, "frames per --bench measurement");
   try {
@@ -75,6 +60,8 @@ int main(int argc, char** argv) {
   }
   try {
     if (!switch_at.empty()) o.switch_at = drumlab::gui::parse_switch_at(switch_at);
+    if (!orbit.empty()) o.orbit = drumlab::gui::parse_pair(orbit, "--orbit");
+    if (!pick.empty()) o.pick = drumlab::gui::parse_pair(pick, "--pick");
     if (!focus.empty() && focus != "auto") {
       std::size_t end = 0;
       unsigned long id = 0;
@@ -89,21 +76,18 @@ int main(int argc, char** argv) {
       o.focus_id = static_cast<drumlab::Index>(id);
     }
     o.focus = focus;
-    if ((!o.screenshot.empty() || !o.checkpoint.empty() || !o.save_scene.empty()) &&
+    if ((!o.screenshot.empty() || !o.checkpoint.empty() || !o.save_scene.empty() || o.orbit ||
+         o.pick || o.zoom != 1.0) &&
         o.frames == 0) {
-      throw drumlab::InputError("--screenshot, --checkpoint and --save-scene need --frames N");
+      throw drumlab::InputError(
+          "--screenshot, --checkpoint, --save-scene, --orbit, --zoom and --pick need --frames N");
     }
     drumlab::gui::GuiApp gui(o);
     if (o.bench) {
       const auto b = gui.bench(bench_frames);
       const std::uint64_t steps = 300;
-      const double cli = cli_particle_steps(o, steps);
-      fmt::print("drumlab-gui --bench: {} ({} frames each)\n", o.scene, bench_frames);
-      fmt::print("  frames/s paused (orbiting): {:.1f}\n", b.paused_fps);
-      fmt::print("  frames/s running:           {:.1f}\n", b.running_fps);
-      fmt::print("  particle-steps/s in the GUI:        {:.3g}\n", b.gui_particle_steps);
-      fmt::print("  particle-steps/s CLI-equivalent (1 thread, no window, {} steps): {:.3g}\n",
-                 steps, cli);
+      const double cli = drumlab::gui::cli_particle_steps(o, steps);
+      drumlab::gui::print_bench(o, b, bench_frames, cli, steps);
       return 0;
     }
     gui.run();

@@ -30,12 +30,15 @@ bool input_double(const char* label, double& v, double step, const char* format)
   return ImGui::InputDouble(label, &v, step, 10.0 * step, format);
 }
 
-void place(float x, float y, float w) {
-  ImGui::SetNextWindowPos(ImVec2(x, y), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(w, 0.0f), ImGuiCond_FirstUseEver);
-}
-
 }  // namespace
+
+void GuiApp::place(float x, float y, float w) const {
+  // x, y < 0: from the right / bottom edge. Placed again whenever the window changed size.
+  const ImVec2 size = ImGui::GetIO().DisplaySize;
+  const ImGuiCond when = relayout_ ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
+  ImGui::SetNextWindowPos(ImVec2(x < 0.0f ? size.x + x : x, y < 0.0f ? size.y + y : y), when);
+  ImGui::SetNextWindowSize(ImVec2(w, 0.0f), when);
+}
 
 void GuiApp::panel_run() {
   place(10, 10, 330);
@@ -118,7 +121,7 @@ void GuiApp::panel_scene() {
 }
 
 void GuiApp::panel_search(const FrameSnapshot* s) {
-  place(static_cast<float>(options_.width) - 370.0f, 10, 360);
+  place(-370.0f, 10, 360);
   ImGui::Begin("Search");
   std::vector<const char*> names;
   for (const std::string& m : methods_) names.push_back(m.c_str());
@@ -179,7 +182,7 @@ void GuiApp::panel_search(const FrameSnapshot* s) {
 }
 
 void GuiApp::panel_view(const FrameSnapshot* s) {
-  place(10, static_cast<float>(options_.height) - 300.0f, 330);
+  place(10, -300.0f, 330);
   ImGui::Begin("View");
   bool changed = false;
   const auto modes = render::color_by_names();
@@ -216,15 +219,22 @@ void GuiApp::panel_view(const FrameSnapshot* s) {
   if (ImGui::Button("camera: axis")) {
     view_options_.camera = render::CameraMode::axis;
     view_->set_options(view_options_);
-    view_->reset_camera();
+    camera_changed(true);
   }
   ImGui::SameLine();
   if (ImGui::Button("camera: iso")) {
     view_options_.camera = render::CameraMode::iso;
     view_->set_options(view_options_);
-    view_->reset_camera();
+    camera_changed(true);
   }
   ImGui::TextDisabled("drag: orbit, wheel: zoom, click: focus");
+  if (ImGui::TreeNode("speed")) {  // ParaView's image reduction while interacting
+    ImGui::Checkbox("reduce while moving: auto (30 frames/s)", &auto_reduction_);
+    if (!auto_reduction_) ImGui::SliderInt("reduction factor", &reduction_, 1, 4);
+    ImGui::Checkbox("the view moves while the simulation runs", &reduce_running_);
+    ImGui::SliderFloat("frames/s at most while running", &max_running_fps_, 2.0f, 60.0f, "%.0f");
+    ImGui::TreePop();
+  }
   int id = view_options_.focus_id ? static_cast<int>(*view_options_.focus_id) : -1;
   if (ImGui::InputInt("focus id", &id) && s != nullptr) {
     if (id >= 0 && static_cast<std::size_t>(id) < s->size()) {
@@ -249,9 +259,11 @@ void GuiApp::panel_view(const FrameSnapshot* s) {
     view_options_.zoom_to_focus = false;
     changed = true;
   }
+  ImGui::Checkbox("inset", &inset_on_);
+  ImGui::SameLine();
   if (ImGui::Checkbox("zoom to focus", &view_options_.zoom_to_focus)) {
     changed = true;
-    if (!view_options_.zoom_to_focus) view_->reset_camera();
+    if (!view_options_.zoom_to_focus) camera_changed(true);
   }
   if (view_options_.focus_id && s != nullptr && s->focus_visit) {
     const SearchVisit& v = *s->focus_visit;
@@ -264,8 +276,7 @@ void GuiApp::panel_view(const FrameSnapshot* s) {
 }
 
 void GuiApp::panel_export(const FrameSnapshot* s) {
-  place(static_cast<float>(options_.width) - 370.0f, static_cast<float>(options_.height) - 230.0f,
-        360);
+  place(-370.0f, -230.0f, 360);
   ImGui::Begin("Export");
   ImGui::InputText("PNG", &png_path_);
   ImGui::SameLine();

@@ -44,6 +44,7 @@ SimThread::~SimThread() {
 
 std::shared_ptr<const FrameSnapshot> SimThread::latest() const {
   std::lock_guard lock(mutex_);
+  taken_generation_ = generation_;
   return latest_;
 }
 
@@ -303,8 +304,15 @@ void SimThread::loop() {
         session_->set_search_method(scheduled_->method);
         scheduled_.reset();
       }
-      publish();
       lock.lock();
+      // A snapshot when the UI has taken the last one (it draws no faster than that), when not
+      // running on, and at the end.
+      const bool last = step_limit_ > 0 && now >= step_limit_;
+      if (taken_generation_ == generation_ || !running_ || last) {
+        lock.unlock();
+        publish();
+        lock.lock();
+      }
       step_seconds_ += dt;
       particle_steps_ += count * static_cast<double>(n);
       if (step_limit_ > 0 && now >= step_limit_) {

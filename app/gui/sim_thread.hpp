@@ -46,6 +46,7 @@ class SimThread {
   SimThread& operator=(const SimThread&) = delete;
 
   /// The newest snapshot (nullptr before the first) and a counter that grows with every new one.
+  /// While running, a snapshot is taken after a chunk only once the last one has been taken.
   std::shared_ptr<const FrameSnapshot> latest() const;
   std::uint64_t generation() const;
 
@@ -95,6 +96,7 @@ class SimThread {
   mutable std::condition_variable cv_;
   std::shared_ptr<const FrameSnapshot> latest_;
   std::uint64_t generation_ = 0;
+  mutable std::uint64_t taken_generation_ = 0;  ///< the newest snapshot latest() has handed out
   SnapshotWish wish_;
   bool running_ = false;
   bool step_once_ = false;

@@ -39,10 +39,8 @@ TEST(GuiWindow, ScreenshotShowsWidgetsParticlesAndTheFocus) {
   EXPECT_GT(pixels_near(img, check.data(), 3), 20u) << "ImGui check marks";
   EXPECT_GT(pixels_near(img, grab.data(), 3), 20u) << "ImGui slider grab";
   // Particles: the two size classes' Okabe-Ito colours (shaded spheres: a wider tolerance).
-  const double small[3] = {0.902, 0.624, 0.000};
-  const double large[3] = {0.337, 0.706, 0.914};
-  EXPECT_GT(pixels_near(img, small, 40), 500u) << "small particles";
-  EXPECT_GT(pixels_near(img, large, 40), 500u) << "large particles";
+  EXPECT_GT(pixels_near(img, render::kCategories[0], 40), 500u) << "small particles";
+  EXPECT_GT(pixels_near(img, render::kCategories[1], 40), 500u) << "large particles";
   // The focus particle's search: its own cell's outline and its contacts.
   EXPECT_GT(pixels_near(img, render::kOwnCellColor, 30), 20u) << "own cell";
   EXPECT_GT(pixels_near(img, render::kForwardCellColor, 60), 20u) << "visited half stencil";
