@@ -42,6 +42,8 @@ void add_run(CLI::App& app, MpiRunOptions& o, std::optional<std::uint64_t>& step
   run->add_option("--checkpoint", o.checkpoint, "write a checkpoint (serial layout) at the end");
   run->add_option("--checkpoint-every", o.checkpoint_every, "also every K turning steps")
       ->check(CLI::PositiveNumber);
+  run->add_option("--h5", o.h5, "HDF5 series (+ XDMF), gathered on rank 0 in the serial layout");
+  run->add_option("--every", o.every, "steps between series frames (default: 1/100 of the turn)");
   run->add_option("--restart", o.session.restart, "continue from a checkpoint (any rank count)");
   run->add_option("--rebalance-every", o.rebalance_every,
                   "steps between RCB re-balances (0: never)");

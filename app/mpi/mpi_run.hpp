@@ -4,7 +4,8 @@
 // search "auto" and tells the others, the particles are cut by RCB, then the ranks settle and turn
 // the drum together. Checkpoints are gathered on rank 0 and written in the serial layout
 // (engine/io/checkpoint.hpp), so `drumlab run --restart` and `drumlab-mpi run --restart` on any
-// rank count continue from them.
+// rank count continue from them; an HDF5 series (--h5) is gathered and written the same way, so
+// `drumlab analyze` and `drumlab convert` read it.
 #include <cstdint>
 #include <string>
 
@@ -20,6 +21,11 @@ struct MpiRunOptions {
   std::string checkpoint;  ///< written at the end (and every checkpoint_every steps)
   std::uint64_t checkpoint_every = 0;
   std::uint64_t rebalance_every = 1000;  ///< turning and settling steps between RCB re-balances
+  /// HDF5 series (engine/io/h5_series.hpp), gathered on rank 0 and written in the serial layout:
+  /// frame 0 at the start of the turn, then every `every` turning steps (0: 1/100 of the turn),
+  /// as `drumlab run --h5` writes it.
+  std::string h5;
+  std::uint64_t every = 0;
 };
 
 struct MpiRunSummary {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/io/h5_series.hpp"
 #include "engine/periodic.hpp"
 #include "tests/mpi/mpi_runner.hpp"
 #include "tests/same_bits.hpp"
@@ -164,6 +165,37 @@ TEST_F(MpiRun, CheckpointsRestartAcrossRankCounts) {
   expect_same_state(whole,
                     parallel(4, scene, "--steps 60 --restart " + dir.file("half1.h5"), "c.h5"),
                     "serial -> 4 ranks");
+}
+
+// The series drumlab-mpi gathers on rank 0 is the serial run's series: the same frames (frame 0
+// at the start of the turn, then every --every steps), times, steps, ids and positions bit for
+// bit; and `drumlab convert` reads it. An unwritable series path stops every rank with one line.
+TEST_F(MpiRun, SeriesIsTheSerialRunsSeriesFrameByFrame) {
+  const std::string scene = dir.write("scene.toml", scene_text("verlet:m2", "", ""));
+  serial(scene, "--steps 80 --every 40 --h5 " + dir.file("serial_series.h5"), "s.h5");
+  parallel(3, scene, "--steps 80 --every 40 --h5 " + dir.file("mpi_series.h5"), "m.h5");
+  const SeriesInfo want = read_series_info(dir.file("serial_series.h5"));
+  const SeriesInfo got = read_series_info(dir.file("mpi_series.h5"));
+  ASSERT_EQ(want.frames, 3u);
+  ASSERT_EQ(got.frames, want.frames);
+  EXPECT_TRUE(got.complete);
+  for (std::size_t k = 0; k < want.frames; ++k) {
+    const SeriesFrame a = read_series_frame(dir.file("serial_series.h5"), k);
+    const SeriesFrame b = read_series_frame(dir.file("mpi_series.h5"), k);
+    EXPECT_EQ(a.time, b.time) << "frame " << k;
+    EXPECT_EQ(a.step, b.step) << "frame " << k;
+    ASSERT_EQ(a.id, b.id) << "frame " << k;
+    EXPECT_TRUE(same_bits(a.position, b.position)) << "frame " << k;
+    EXPECT_TRUE(same_bits(a.velocity, b.velocity)) << "frame " << k;
+    EXPECT_TRUE(same_bits(a.omega, b.omega)) << "frame " << k;
+  }
+  const Ran convert = shell(std::string(DRUMLAB_CLI) + " convert " + dir.file("mpi_series.h5") +
+                            " --vtu " + dir.file("vtu"));
+  EXPECT_EQ(convert.exit_code, 0) << convert.output;
+  const Ran bad = shell(mpirun(2) + DRUMLAB_MPI_CLI + " run " + scene +
+                        " --steps 10 --h5 /nonexistent-dir/s.h5");
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("/nonexistent-dir/s.h5"), std::string::npos) << bad.output;
 }
 
 TEST_F(MpiRun, KilledRankStopsEveryRankAndLeavesARestartableCheckpoint) {
