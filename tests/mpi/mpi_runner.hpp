@@ -1,33 +1,19 @@
 #pragma once
 // Runs `drumlab run` and `mpirun -np N drumlab-mpi run` on a small scene and reads back their
 // checkpoints, for the mpi tests.
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <array>
-#include <cstdio>
 #include <string>
 
 #include "engine/io/checkpoint.hpp"
+#include "tests/unit/cli_runner.hpp"
 
 namespace drumlab::test {
 
-struct Ran {
-  int exit_code = -1;
-  std::string output;
-};
+using Ran = CliResult;
 
+/// A command line (mpirun ...) with its output: the one shell runner of the tests.
 inline Ran shell(const std::string& command) {
-  Ran r;
-  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
-  if (pipe == nullptr) return r;
-  std::array<char, 4096> buffer{};
-  std::size_t n = 0;
-  while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0)
-    r.output.append(buffer.data(), n);
-  const int status = ::pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return run_shell(command);
 }
 
 /// The mpirun command for `ranks` ranks (root allowed, more ranks than cores allowed), or the

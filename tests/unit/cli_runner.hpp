@@ -17,10 +17,10 @@ struct CliResult {
   std::string output;  ///< stdout and stderr together
 };
 
-inline CliResult run_cli(const std::string& args) {
-  const std::string command = std::string(DRUMLAB_CLI) + " " + args + " 2>&1";
+/// Runs `command` in a shell with stdout and stderr captured together.
+inline CliResult run_shell(const std::string& command) {
   CliResult result;
-  FILE* pipe = ::popen(command.c_str(), "r");
+  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
   if (pipe == nullptr) return result;
   std::array<char, 4096> buffer{};
   std::size_t n = 0;
@@ -29,6 +29,10 @@ inline CliResult run_cli(const std::string& args) {
   const int status = ::pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
+}
+
+inline CliResult run_cli(const std::string& args) {
+  return run_shell(std::string(DRUMLAB_CLI) + " " + args);
 }
 
 /// A small drum for CLI tests: 300 particles of two sizes, settling 0.01 s, a short run set by
