@@ -370,6 +370,9 @@ void Simulation::compute_forces(double history_dt, bool count) {
     timers_.search += seconds_between(t0, t1);
     timers_.forces += seconds_between(t1, t2);
     timers_.walls += seconds_between(t2, t3);
+    work_.listed_pairs += contacts.size();
+    work_.touching_pairs += touching;
+    work_.wall_candidates += impl_->walls.list().size();
   }
 }
 
@@ -467,15 +470,18 @@ void Simulation::apply_reorder() {
 void Simulation::step() {
   // Velocity Verlet: half kick with the forces of the current positions, drift, new forces,
   // half kick. Spheres need no orientation, so rotation is the same scheme on omega.
-  const auto t0 = Clock::now();
   const std::uint64_t sort_every = scene_.performance.sort_every;
   if (sort_every > 0 && steps_ > 0 && steps_ % sort_every == 0) {
+    const auto r0 = Clock::now();
     if (domain_ != nullptr) {
       domain_->reorder(*this);
     } else {
       reorder_particles();
     }
+    timers_.reorder += seconds_between(r0, Clock::now());
+    ++work_.reorders;
   }
+  const auto t0 = Clock::now();
   const double moved = kick_drift(0.5 * dt_);
   if (domain_ != nullptr) domain_->refresh_ghosts(*this, moved);
   const auto t1 = Clock::now();
@@ -484,6 +490,7 @@ void Simulation::step() {
   kick(0.5 * dt_);
   const auto t3 = Clock::now();
   timers_.integration += seconds_between(t0, t1) + seconds_between(t2, t3);
+  work_.particles += particles_.size();
   time_ += dt_;
   drum_angle_ += omega_ * dt_;
   ++steps_;

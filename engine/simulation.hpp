@@ -22,7 +22,18 @@ struct StepTimers {
   double forces = 0.0;
   double walls = 0.0;
   double integration = 0.0;
-  double total() const { return search + forces + walls + integration; }
+  double reorder = 0.0;  ///< re-ordering the particles in memory (every sort_every steps)
+  double total() const { return search + forces + walls + integration + reorder; }
+};
+
+/// The work the steps did, summed since construction: what `drumlab bench roofline` multiplies by
+/// the cost of each unit of work (app/bench/roofline_model.hpp).
+struct StepWork {
+  std::uint64_t particles = 0;        ///< particles in the step's loops (a rank's: with ghosts)
+  std::uint64_t listed_pairs = 0;     ///< pairs in the contact list the force loop walked
+  std::uint64_t touching_pairs = 0;   ///< of those, within the touching tolerance
+  std::uint64_t wall_candidates = 0;  ///< particles in the wall-candidate list
+  std::uint64_t reorders = 0;         ///< re-orderings of the particles in memory
 };
 
 /// Snapshot of physical health, computed on demand (not every step).
@@ -103,6 +114,7 @@ class Simulation {
   /// Search counters summed over all steps since construction.
   const SearchCounters& search_totals() const { return search_totals_; }
   const StepTimers& timers() const { return timers_; }
+  const StepWork& work() const { return work_; }
   double time() const { return time_; }
   double dt() const { return dt_; }
   double rayleigh_time() const { return rayleigh_time_; }
@@ -160,6 +172,7 @@ class Simulation {
   std::unique_ptr<Impl> impl_;
   SearchCounters search_totals_;
   StepTimers timers_;
+  StepWork work_;
   Vec3 gravity_ = Vec3::Zero();
   double time_ = 0.0;
   double dt_ = 0.0;

@@ -118,7 +118,8 @@ void print_row(const ThroughputRow& r) {
       "{:>8} {:>8} {:>8.0f}\n",
       r.label, r.threads, r.phase.steps, r.rate(), r.cpu_rate(), r.speedup,
       100.0 * r.share(r.phase.timers.search), 100.0 * r.share(r.phase.timers.forces),
-      100.0 * r.share(r.phase.timers.walls), 100.0 * r.share(r.phase.timers.integration),
+      100.0 * r.share(r.phase.timers.walls),
+      100.0 * r.share(r.phase.timers.integration + r.phase.timers.reorder),
       r.per_particle_step(r.phase.search.pairs_tested),
       std::isfinite(r.tested_per_contact()) ? fmt::format("{:.2f}", r.tested_per_contact()) : "-",
       r.rebuilds, r.heap_bytes_per_particle);
@@ -139,7 +140,7 @@ void write_csv(const std::filesystem::path& file, const std::string& scene,
           "{:.4g},{:.4g},{},{},{:.1f}\n",
           scene, r.method, r.sort_every, r.threads, r.particles, r.phase.steps, r.stepping(),
           r.rate(), r.cpu_rate(), r.speedup, r.share(t.search), r.share(t.forces), r.share(t.walls),
-          r.share(t.integration), r.per_particle_step(r.phase.search.cells_visited),
+          r.share(t.integration + t.reorder), r.per_particle_step(r.phase.search.cells_visited),
           r.per_particle_step(r.phase.search.pairs_tested),
           2.0 * r.per_particle_step(r.phase.search.pairs_found),
           optional_number(r.tested_per_contact()), r.rebuilds, r.heap_bytes_per_particle);

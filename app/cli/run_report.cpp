@@ -59,9 +59,10 @@ void print_summary(const Simulation& sim, const PhaseStats& phase) {
   fmt::print("throughput        {:.4g} particle-steps/s (stepping only)\n",
              stepping > 0 ? particle_steps / stepping : 0.0);
   fmt::print(
-      "time split        search {:.1f} %, forces {:.1f} %, walls {:.1f} %, integration {:.1f} %\n",
+      "time split        search {:.1f} %, forces {:.1f} %, walls {:.1f} %, integration {:.1f} %, "
+      "re-ordering {:.1f} %\n",
       share(phase.timers.search), share(phase.timers.forces), share(phase.timers.walls),
-      share(phase.timers.integration));
+      share(phase.timers.integration), share(phase.timers.reorder));
   fmt::print(
       "search / particle cells visited {:.2f}, pairs tested {:.2f}, contacts {:.3f}, tested per "
       "contact {:.2f}\n",

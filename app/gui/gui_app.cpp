@@ -186,6 +186,7 @@ void GuiApp::update_history(const FrameSnapshot& s) {
     recent_split_.forces = s.timers.forces - last_timers_.forces;
     recent_split_.walls = s.timers.walls - last_timers_.walls;
     recent_split_.integration = s.timers.integration - last_timers_.integration;
+    recent_split_.reorder = s.timers.reorder - last_timers_.reorder;
     if (last_timer_steps_ > 0) step_ms_.add(1000.0 * recent_split_.total() / steps);
   }
   last_timers_ = s.timers;

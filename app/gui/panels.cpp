@@ -166,7 +166,7 @@ void GuiApp::panel_search(const FrameSnapshot* s) {
   ImGui::Text("step time: search %.0f%%  forces %.0f%%", 100.0 * recent_split_.search / total,
               100.0 * recent_split_.forces / total);
   ImGui::Text("           walls %.0f%%  integration %.0f%%", 100.0 * recent_split_.walls / total,
-              100.0 * recent_split_.integration / total);
+              100.0 * (recent_split_.integration + recent_split_.reorder) / total);
   plot("cells/p", cells_per_particle_, "");
   plot("tests/p", tests_per_particle_, "");
   plot("found/p", contacts_per_particle_, "");

@@ -16,6 +16,7 @@ struct PhaseStats {
   double output_seconds = 0.0;  ///< spent in observers (rendering, writers), not stepping
   StepTimers timers;
   SearchCounters search;
+  StepWork work;
 };
 
 /// Takes the totals now; `finish` turns them into the phase's differences.
@@ -29,6 +30,7 @@ class PhaseMeter {
   std::uint64_t steps0_;
   StepTimers timers0_;
   SearchCounters search0_;
+  StepWork work0_;
   std::chrono::steady_clock::time_point start_;
   std::clock_t cpu_start_;
 };
