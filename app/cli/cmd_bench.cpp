@@ -3,12 +3,14 @@
 // drumlab bench accuracy [--scene S] [--quick] [--out DIR]
 // drumlab bench skips [--scene S] [--steps N] [--repeats R] [--out DIR]
 // drumlab bench regimes [--scene S] [--froude LIST] [--quick] [--out DIR]
+// drumlab bench roofline [--scene S] [--method M] [--threads N] [--steps N] [--out DIR]
 // Benchmarks that print figures (speed targets live here, not in timed tests): see
 // bench_throughput.hpp and bench_search.hpp.
 #include <memory>
 
 #include "app/bench/bench_accuracy.hpp"
 #include "app/bench/bench_regimes.hpp"
+#include "app/bench/bench_roofline.hpp"
 #include "app/bench/bench_search.hpp"
 #include "app/bench/bench_skips.hpp"
 #include "app/bench/bench_throughput.hpp"
@@ -80,11 +82,30 @@ void add_regimes_subcommand(CLI::App* bench) {
   });
 }
 
+/// `bench roofline`: per phase, the work, the rates and the bound (bench_roofline.hpp).
+void add_roofline_subcommand(CLI::App* bench) {
+  auto r = std::make_shared<bench::RooflineOptions>();
+  CLI::App* cmd = bench->add_subcommand(
+      "roofline", "Per phase of the step: flops and bytes, their share of the machine's limits");
+  add_state_options(cmd, r->scene, r->plan, r->out);
+  cmd->add_option("--method", r->method, "search method (default: the scene's)");
+  cmd->add_option("--threads", r->threads, "OpenMP threads")->check(CLI::Range(1, 1024));
+  cmd->add_option("--steps", r->steps, "timed steps")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--warmup", r->warmup, "untimed steps before timing")->capture_default_str();
+  cmd->add_flag("--quick", r->quick, "short machine measurements (coarse roofs)");
+  cmd->callback([r] {
+    if (r->scene.empty()) r->scene = shipped_scene("drum_demo.toml");
+    bench::run_bench_roofline(*r);
+  });
+}
+
 }  // namespace
 
 void add_bench_command(CLI::App& app) {
   CLI::App* bench = app.add_subcommand(
-      "bench", "Benchmarks: throughput, contact search, accuracy, skips, regimes");
+      "bench", "Benchmarks: throughput, contact search, accuracy, skips, regimes, roofline");
   bench->require_subcommand(1);
 
   auto t = std::make_shared<bench::ThroughputOptions>();
@@ -150,6 +171,7 @@ void add_bench_command(CLI::App& app) {
   });
   add_skips_subcommand(bench);
   add_regimes_subcommand(bench);
+  add_roofline_subcommand(bench);
 }
 
 }  // namespace drumlab::cli
