@@ -8,9 +8,11 @@
 #include <CLI/CLI.hpp>
 
 #include "app/cli/commands.hpp"
+#include "engine/openmp_waiting.hpp"
 #include "engine/types.hpp"
 
 int main(int argc, char** argv) {
+  drumlab::choose_openmp_waiting(argc, argv);  // may execute the program again, see there
   // A file size limit (ulimit -f) then fails the write with a clear error instead of killing us.
   std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"drumlab: DEM of granular flow in rotating drums, with switchable contact search"};

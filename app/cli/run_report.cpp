@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "engine/openmp_waiting.hpp"
 #include "engine/threads.hpp"
 
 namespace drumlab::cli {
@@ -51,7 +52,8 @@ void print_summary(const Simulation& sim, const PhaseStats& phase) {
       static_cast<double>(phase.steps) * sim.dt(), sim.time());
   fmt::print("search method     {} ({})\n", sim.search().name(), sim.search().description());
 #ifdef _OPENMP
-  fmt::print("threads           {} (OpenMP: pair forces, walls, integration)\n", max_threads());
+  fmt::print("threads           {} (OpenMP: pair forces, walls, integration); waiting: {}\n",
+             max_threads(), openmp_waiting_description());
 #endif
   const double stepping = phase.wall_seconds - phase.output_seconds;
   fmt::print("wall time         {:.3f} s (stepping {:.3f} s, output {:.3f} s)\n",

@@ -9,8 +9,10 @@
 
 #include "app/gui/gui_app.hpp"
 #include "app/gui/gui_options.hpp"
+#include "engine/openmp_waiting.hpp"
 
 int main(int argc, char** argv) {
+  drumlab::choose_openmp_waiting(argc, argv);  // may execute the program again, see there
   drumlab::gui::GuiOptions o;
   o.scene = DRUMLAB_SCENES_DIR "/drum_demo.toml";
   std::string switch_at, focus;
