@@ -16,6 +16,8 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "engine/parallel/domain_hooks.hpp"
@@ -32,6 +34,14 @@ struct MpiDomainOptions {
   std::optional<double> period_z;
   Box domain;                         ///< drum_domain of the scene
   std::uint64_t rebalance_every = 0;  ///< steps between RCB re-balances (0: never)
+};
+
+/// A packed particle in a message (packed_size bytes at `at`), its serial slot and the rank that
+/// sent it (-1: owned here).
+struct PackedPiece {
+  std::uint64_t slot;
+  const std::byte* at;
+  int source;
 };
 
 struct MpiBalance {
@@ -69,17 +79,18 @@ class MpiDomain final : public DomainHooks {
   /// Migration, optional re-balance and a new ghost layer; replaces sim's particles.
   void exchange(Simulation& sim);
   void forward(Simulation& sim);
-  /// The largest displacement of any rank's particles since the last exchange (m). Collective.
-  double measured_displacement(const Simulation& sim);
+  /// The two largest displacements of all ranks' particles since the last exchange (m), largest
+  /// first. Collective.
+  std::pair<double, double> measured_displacement(const Simulation& sim);
   void rebalance(const Simulation& sim);
   /// The local set from the owned particles' bytes `owned` and the ghosts' bytes by source rank:
   /// particles sorted by serial slot, send and receive lists, reference positions.
   void assemble(Simulation& sim, const std::vector<std::byte>& owned, std::size_t owned_count,
                 const std::vector<std::vector<std::byte>>& ghosts, ContactRecords records);
-  /// Bytes of the ghosts of each other rank among the owned particles packed in `owned`.
-  std::vector<std::vector<std::byte>> ghost_packs(const Particles& p,
-                                                  const std::vector<std::uint64_t>& slot,
-                                                  const WallHistory& wall);
+  /// Bytes of the ghosts of each other rank among the owned particles' records `owned` (sorted by
+  /// serial slot, `size` bytes each); send_ lists them by their index in `owned`.
+  std::vector<std::vector<std::byte>> ghost_packs(std::span<const PackedPiece> owned,
+                                                  std::size_t size);
 
   MpiComm comm_;
   MpiDomainOptions options_;
