@@ -6,6 +6,7 @@
 #include <functional>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
 
 #include "engine/parallel/ghost_layer.hpp"
 #include "engine/periodic.hpp"
@@ -78,10 +79,12 @@ MpiDomain::MpiDomain(MPI_Comm comm, MpiDomainOptions options)
   recv_buf_.assign(r, {});
 }
 
-std::vector<std::vector<std::byte>> MpiDomain::ghost_packs(std::span<const PackedPiece> owned,
-                                                           std::size_t size) {
+std::vector<std::vector<std::byte>> MpiDomain::ghost_packs(
+    std::span<const PackedPiece> owned, std::size_t size,
+    const std::vector<std::vector<std::uint64_t>>& sent) {
   const auto r = static_cast<std::size_t>(comm_.size());
-  std::vector<std::vector<std::byte>> out(r);
+  std::vector<std::vector<std::byte>> full(r), motion(r);
+  std::vector<std::vector<Index>> kept(r);
   for (auto& s : send_) s.clear();
   std::vector<int> near;
   for (std::size_t k = 0; k < owned.size(); ++k) {
@@ -91,27 +94,92 @@ std::vector<std::vector<std::byte>> MpiDomain::ghost_packs(std::span<const Packe
     for (const int q : near) {
       if (q == comm_.rank()) continue;
       const auto uq = static_cast<std::size_t>(q);
-      out[uq].insert(out[uq].end(), at, at + size);
-      send_[uq].push_back(static_cast<Index>(k));  // owned-set index; made local in assemble
+      // Owned-set indices, made local in assemble.
+      if (!sent.empty() && std::binary_search(sent[uq].begin(), sent[uq].end(), owned[k].slot)) {
+        put_bytes(motion[uq], owned[k].slot);  // q holds it as a ghost already: its motion only
+        motion[uq].insert(motion[uq].end(), at, at + kPackedMotionBytes);
+        kept[uq].push_back(static_cast<Index>(k));
+      } else {
+        full[uq].insert(full[uq].end(), at, at + size);
+        send_[uq].push_back(static_cast<Index>(k));
+      }
     }
+  }
+  // To q: the count of new ghosts, their records, then the kept ghosts' slots and motion.
+  std::vector<std::vector<std::byte>> out(r);
+  for (std::size_t q = 0; q < r; ++q) {
+    put_count(out[q], send_[q].size());
+    out[q].insert(out[q].end(), full[q].begin(), full[q].end());
+    out[q].insert(out[q].end(), motion[q].begin(), motion[q].end());
+    if (!sent.empty()) {
+      ghosts_new_ += send_[q].size();
+      ghosts_kept_ += kept[q].size();
+    }
+    send_[q].insert(send_[q].end(), kept[q].begin(), kept[q].end());
   }
   return out;
 }
 
+void MpiDomain::received_ghosts(const std::vector<std::vector<std::byte>>& in, std::size_t size,
+                                const SimulationState* old, std::vector<std::byte>& rebuilt,
+                                std::vector<PackedPiece>& all) {
+  constexpr std::size_t kKept = sizeof(std::uint64_t) + kPackedMotionBytes;
+  std::size_t kept = 0;
+  for (const auto& msg : in) {
+    std::size_t pos = 0;
+    const auto n = get_bytes<std::uint64_t>(msg, pos);
+    kept += (msg.size() - pos - static_cast<std::size_t>(n) * size) / kKept;
+  }
+  rebuilt.reserve(kept * size);  // no reallocation: `all` points into it
+  for (std::size_t q = 0; q < in.size(); ++q) {
+    const std::vector<std::byte>& msg = in[q];
+    std::size_t pos = 0;
+    const auto n = get_bytes<std::uint64_t>(msg, pos);
+    for (std::uint64_t m = 0; m < n; ++m, pos += size) {
+      all.push_back({packed_slot({msg.data() + pos, size}), msg.data() + pos, static_cast<int>(q)});
+    }
+    while (pos < msg.size()) {
+      const auto slot = get_bytes<std::uint64_t>(msg, pos);
+      const auto it = std::lower_bound(slot_.begin(), slot_.end(), slot);
+      if (old == nullptr || it == slot_.end() || *it != slot) {
+        throw std::logic_error("MpiDomain: a kept ghost that this rank does not hold");
+      }
+      const auto i = static_cast<std::size_t>(it - slot_.begin());
+      const std::size_t start = rebuilt.size();
+      pack_particle(old->particles, i, slot, old->wall_history[i], rebuilt);
+      std::memcpy(rebuilt.data() + start, msg.data() + pos, kPackedMotionBytes);
+      pos += kPackedMotionBytes;
+      all.push_back({slot, rebuilt.data() + start, static_cast<int>(q)});
+    }
+  }
+}
+
 void MpiDomain::assemble(Simulation& sim, const std::vector<std::byte>& owned,
                          std::size_t owned_count, const std::vector<std::vector<std::byte>>& ghosts,
-                         ContactRecords records) {
+                         ContactRecords records, const SimulationState* old) {
   const Particles& like = sim.particles();
   const std::size_t size = packed_size(like);
   // Every record is unpacked once, straight into its place in the serial order.
   std::vector<PackedPiece> all = sorted_pieces(owned, owned_count, size);
+  // The ghosts each rank holds of ours (serial slots, ascending): they get their motion only.
+  std::vector<std::vector<std::uint64_t>> sent(old != nullptr ? send_.size() : 0);
+  for (std::size_t q = 0; q < sent.size(); ++q) {
+    for (const Index i : send_[q]) sent[q].push_back(slot_[i]);
+    std::sort(sent[q].begin(), sent[q].end());
+  }
   // Ghosts for the others first (send_ in owned-set indices), then ours from them.
-  const auto out = ghost_packs(all, size);
-  const auto in = ghosts.empty() ? comm_.all_to_all(out) : ghosts;
-  for (std::size_t q = 0; q < in.size(); ++q) {
-    for (std::size_t pos = 0; pos < in[q].size(); pos += size) {
-      const std::byte* at = in[q].data() + pos;
-      all.push_back({packed_slot({at, size}), at, static_cast<int>(q)});
+  const auto out = ghost_packs(all, size, sent);
+  std::vector<std::byte> rebuilt;          // our kept ghosts: our copy with the owner's motion
+  std::vector<std::vector<std::byte>> in;  // `all` points into it and into `rebuilt`
+  if (ghosts.empty()) {
+    in = comm_.all_to_all(out);
+    received_ghosts(in, size, old, rebuilt, all);
+  } else {
+    for (std::size_t q = 0; q < ghosts.size(); ++q) {
+      for (std::size_t pos = 0; pos < ghosts[q].size(); pos += size) {
+        const std::byte* at = ghosts[q].data() + pos;
+        all.push_back({packed_slot({at, size}), at, static_cast<int>(q)});
+      }
     }
   }
   std::vector<Index> order(all.size()), local_of(all.size());
@@ -326,7 +394,7 @@ void MpiDomain::exchange(Simulation& sim) {
   for (const auto& msg : in) {
     if (!msg.empty()) owned_count += read_message(msg, p, owned, records);
   }
-  assemble(sim, owned, owned_count, {}, std::move(records));
+  assemble(sim, owned, owned_count, {}, std::move(records), &old);
   ++exchanges_;
 }
 
@@ -420,6 +488,8 @@ MpiBalance MpiDomain::balance(const Simulation& sim) {
                  static_cast<double>(all.size());
   b.exchanges = exchanges_;
   b.rebalances = rebalances_;
+  b.ghosts_new = comm_.sum(ghosts_new_);
+  b.ghosts_kept = comm_.sum(ghosts_kept_);
   b.comm_seconds = comm_.seconds();
   return b;
 }
