@@ -7,12 +7,12 @@
 // (ContactList::set_row_keys) and the trajectory is the serial one, bit for bit.
 //
 // Every step (refresh_ghosts, between drift and search) the owners send their ghosts' position,
-// velocity and angular velocity to the neighbouring ranks. When the largest displacement since the
-// last exchange (bounded by the drifts' bounds, measured when the bound exceeds) exceeds half the
-// skin,
-// or a re-balance is due, particles migrate to the rank whose box holds them with their arrays,
-// wall history and contact records, and the ghost layer is rebuilt. At a re-ordering step the ranks
-// agree on the serial run's new order (same Morton keys and ties as Simulation::reorder_particles).
+// velocity and angular velocity to the neighbouring ranks. When the two largest displacements since
+// the last exchange (bounded by the drifts' bounds, measured once the bound passes half the skin)
+// sum to more than the skin, or a re-balance is due, particles migrate to the rank whose box holds
+// them with their arrays, wall history and contact records, and the ghost layer is rebuilt (kept
+// ghosts get their motion only). One rank does none of this. At a re-ordering step the ranks agree
+// on the serial run's new order (same Morton keys and ties as Simulation::reorder_particles).
 #include <cstdint>
 #include <memory>
 #include <optional>
