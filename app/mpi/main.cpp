@@ -60,6 +60,8 @@ void print_summary(const drumlab::mpi::MpiRunSummary& s) {
       "communication     {:.1f} % of the time inside MPI (mean over ranks; max {:.1f} %), "
       "{} exchanges, {} re-balances\n",
       100.0 * s.comm_share_mean, 100.0 * s.comm_share_max, s.exchanges, s.rebalances);
+  fmt::print("ghosts            at the exchanges {} sent in full (new), {} kept (motion only)\n",
+             s.ghosts_new, s.ghosts_kept);
   const double rate =
       s.turn_seconds > 0 ? static_cast<double>(s.particles * s.turn_steps) / s.turn_seconds : 0.0;
   fmt::print(

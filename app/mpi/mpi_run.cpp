@@ -176,6 +176,8 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
   s.comm_share_mean = domain.sum(share) / ranks;
   s.exchanges = b.exchanges;
   s.rebalances = b.rebalances;
+  s.ghosts_new = b.ghosts_new;
+  s.ghosts_kept = b.ghosts_kept;
   return s;
 }
 

@@ -42,7 +42,8 @@ struct MpiRunSummary {
   double comm_share_max = 0.0;  ///< largest share of a rank's time inside MPI
   double comm_share_mean = 0.0;
   std::uint64_t exchanges = 0, rebalances = 0;
-  std::string search_reason;  ///< auto's reason, if it chose
+  std::uint64_t ghosts_new = 0, ghosts_kept = 0;  ///< ghost records at exchanges, all ranks
+  std::string search_reason;                      ///< auto's reason, if it chose
 };
 
 /// Runs the scene; throws InputError / UnstableError as `drumlab run` does (on every rank).

@@ -24,6 +24,24 @@ std::uint64_t unpack_particle(std::span<const std::byte> in, std::size_t& pos, P
   return slot;
 }
 
+std::size_t packed_size(const Particles& p) {
+  std::size_t n = sizeof(std::uint64_t) + kWallParts * sizeof(Vec3);
+  p.for_each_array([&](std::string_view, const auto& values) {
+    n += sizeof(typename std::decay_t<decltype(values)>::value_type);
+  });
+  return n;
+}
+
+std::uint64_t packed_slot(std::span<const std::byte> record) {
+  std::size_t pos = record.size() - sizeof(std::uint64_t) - kWallParts * sizeof(Vec3);
+  return get_bytes<std::uint64_t>(record, pos);
+}
+
+Vec3 packed_position(std::span<const std::byte> record) {
+  std::size_t pos = 0;  // for_each_array visits `position` first
+  return get_bytes<Vec3>(record, pos);
+}
+
 Particles empty_like(const Particles& p) {
   Particles q;
   for (const ParticleArray& a : p.extra) q.extra.push_back({a.name, {}, a.initial});

@@ -38,6 +38,17 @@ void pack_particle(const Particles& p, std::size_t i, std::uint64_t slot,
 std::uint64_t unpack_particle(std::span<const std::byte> in, std::size_t& pos, Particles& p,
                               WallHistory& wall);
 
+/// The first bytes of a packed particle: its position, velocity and angular velocity (the first
+/// three arrays of for_each_array), what the ghost refresh sends every step.
+inline constexpr std::size_t kPackedMotionBytes = 3 * sizeof(Vec3);
+
+/// Bytes of one particle of p packed (every particle of p packs to this size).
+std::size_t packed_size(const Particles& p);
+/// The serial slot of the particle packed at `record` (packed_size bytes).
+std::uint64_t packed_slot(std::span<const std::byte> record);
+/// The position of the particle packed at `record` (its first array).
+Vec3 packed_position(std::span<const std::byte> record);
+
 /// An empty Particles with the same extra arrays registered as p.
 Particles empty_like(const Particles& p);
 

@@ -114,6 +114,7 @@ class MpiRun : public ::testing::Test {
     EXPECT_EQ(r.exit_code, 0) << r.output;
     if (ranks > 1) {  // particles did migrate
       EXPECT_EQ(r.output.find(" 0 exchanges"), std::string::npos) << r.output;
+      EXPECT_EQ(r.output.find(", 0 kept (motion only)"), std::string::npos) << r.output;
     }
     EXPECT_NE(r.output.find("ranks             " + std::to_string(ranks) + " x " + t),
               std::string::npos)

@@ -3,6 +3,8 @@
 // list, and keyed rows form the serial run's blocks cut to the subset.
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include "engine/contact/contact_history.hpp"
 #include "engine/parallel/particle_pack.hpp"
 #include "tests/same_bits.hpp"
@@ -33,6 +35,15 @@ TEST(ParticlePack, RoundTripKeepsEveryArrayAndTheWallHistory) {
   EXPECT_EQ(q.size_class[0], 0);
   EXPECT_EQ(q.extra[0].values[0], 0.25);
   EXPECT_TRUE(w[0][2] == wall[2]);
+  // A fixed-size record: its slot and position read in place, its motion first.
+  EXPECT_EQ(bytes.size(), packed_size(p));
+  EXPECT_EQ(packed_slot(bytes), 42u);
+  EXPECT_TRUE(packed_position(bytes) == p.position[1]);
+  double motion[9];
+  ASSERT_EQ(sizeof(motion), kPackedMotionBytes);
+  std::memcpy(motion, bytes.data(), kPackedMotionBytes);
+  EXPECT_EQ(motion[3], 1.0);  // velocity after position
+  EXPECT_EQ(motion[5], 3.0);
 }
 
 TEST(ParticlePack, RecordsRebuildTheContactListOfASubset) {
@@ -42,6 +53,8 @@ TEST(ParticlePack, RecordsRebuildTheContactListOfASubset) {
   r.add(1, 3, Vec3(2, 0, 0), {});  // a second copy (two ranks sent it): kept once
   r.add(5, 7, Vec3(3, 0, 0), {});  // 7 absent
   r.add(1, 5, Vec3(4, 0, 0), {});
+  r.add(0, 3, Vec3(5, 0, 0), {});   // 0 below the slots' range: absent
+  r.add(9, 12, Vec3(6, 0, 0), {});  // 12 above it: absent
   const std::vector<std::uint64_t> slot = {1, 3, 5, 9};
   SimulationState s;
   assign_records(

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <functional>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
 
 #include "engine/parallel/ghost_layer.hpp"
 #include "engine/periodic.hpp"
@@ -20,24 +23,27 @@ struct OwnedSet {
   std::vector<std::uint64_t> slot;
 };
 
-/// Unpacks `count` particles from `bytes` and sorts them by serial slot.
-OwnedSet unpack_owned(const Particles& like, std::span<const std::byte> bytes, std::size_t count) {
-  OwnedSet raw{empty_like(like), {}, {}};
-  std::size_t pos = 0;
+/// The `count` records packed in `bytes`, sorted by serial slot.
+std::vector<PackedPiece> sorted_pieces(std::span<const std::byte> bytes, std::size_t count,
+                                       std::size_t size) {
+  std::vector<PackedPiece> out(count);
   for (std::size_t k = 0; k < count; ++k) {
-    raw.slot.push_back(unpack_particle(bytes, pos, raw.p, raw.wall));
+    const std::byte* at = bytes.data() + k * size;
+    out[k] = {packed_slot({at, size}), at, -1};
   }
-  std::vector<Index> order(count);
-  std::iota(order.begin(), order.end(), Index{0});
-  std::sort(order.begin(), order.end(),
-            [&](Index a, Index b) { return raw.slot[a] < raw.slot[b]; });
+  std::sort(out.begin(), out.end(),
+            [](const PackedPiece& a, const PackedPiece& b) { return a.slot < b.slot; });
+  return out;
+}
+
+/// Unpacks `count` particles from `bytes` in the order of their serial slots.
+OwnedSet unpack_owned(const Particles& like, std::span<const std::byte> bytes, std::size_t count) {
+  const std::size_t size = packed_size(like);
   OwnedSet o{empty_like(like), {}, {}};
-  std::vector<std::byte> one;
-  for (const Index k : order) {
-    one.clear();
-    pack_particle(raw.p, k, raw.slot[k], raw.wall[k], one);
-    std::size_t q = 0;
-    o.slot.push_back(unpack_particle(one, q, o.p, o.wall));
+  o.p.reserve(count);
+  for (const PackedPiece& piece : sorted_pieces(bytes, count, size)) {
+    std::size_t pos = 0;
+    o.slot.push_back(unpack_particle({piece.at, size}, pos, o.p, o.wall));
   }
   return o;
 }
@@ -54,9 +60,7 @@ std::size_t read_message(std::span<const std::byte> msg, const Particles& like,
   std::size_t pos = 0;
   const auto n = get_bytes<std::uint64_t>(msg, pos);
   const std::size_t begin = pos;
-  WallHistory w;
-  Particles scratch = empty_like(like);  // walks the particles to find where they end
-  for (std::uint64_t k = 0; k < n; ++k) unpack_particle(msg, pos, scratch, w);
+  pos += static_cast<std::size_t>(n) * packed_size(like);
   owned.insert(owned.end(), msg.begin() + static_cast<std::ptrdiff_t>(begin),
                msg.begin() + static_cast<std::ptrdiff_t>(pos));
   const auto m = get_bytes<std::uint64_t>(msg, pos);
@@ -75,75 +79,132 @@ MpiDomain::MpiDomain(MPI_Comm comm, MpiDomainOptions options)
   recv_buf_.assign(r, {});
 }
 
-std::vector<std::vector<std::byte>> MpiDomain::ghost_packs(const Particles& p,
-                                                           const std::vector<std::uint64_t>& slot,
-                                                           const WallHistory& wall) {
+std::vector<std::vector<std::byte>> MpiDomain::ghost_packs(
+    std::span<const PackedPiece> owned, std::size_t size,
+    const std::vector<std::vector<std::uint64_t>>& sent) {
   const auto r = static_cast<std::size_t>(comm_.size());
-  std::vector<std::vector<std::byte>> out(r);
+  std::vector<std::vector<std::byte>> full(r), motion(r);
+  std::vector<std::vector<Index>> kept(r);
   for (auto& s : send_) s.clear();
   std::vector<int> near;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    ranks_within(decomposition_, p.position[i], options_.reach, options_.period_z, near);
+  for (std::size_t k = 0; k < owned.size(); ++k) {
+    const std::byte* at = owned[k].at;
+    ranks_within(decomposition_, packed_position({at, size}), options_.reach, options_.period_z,
+                 near);
     for (const int q : near) {
       if (q == comm_.rank()) continue;
       const auto uq = static_cast<std::size_t>(q);
-      pack_particle(p, i, slot[i], wall[i], out[uq]);
-      send_[uq].push_back(static_cast<Index>(i));  // owned-set index; made local in assemble
+      // Owned-set indices, made local in assemble.
+      if (!sent.empty() && std::binary_search(sent[uq].begin(), sent[uq].end(), owned[k].slot)) {
+        put_bytes(motion[uq], owned[k].slot);  // q holds it as a ghost already: its motion only
+        motion[uq].insert(motion[uq].end(), at, at + kPackedMotionBytes);
+        kept[uq].push_back(static_cast<Index>(k));
+      } else {
+        full[uq].insert(full[uq].end(), at, at + size);
+        send_[uq].push_back(static_cast<Index>(k));
+      }
     }
+  }
+  // To q: the count of new ghosts, their records, then the kept ghosts' slots and motion.
+  std::vector<std::vector<std::byte>> out(r);
+  for (std::size_t q = 0; q < r; ++q) {
+    put_count(out[q], send_[q].size());
+    out[q].insert(out[q].end(), full[q].begin(), full[q].end());
+    out[q].insert(out[q].end(), motion[q].begin(), motion[q].end());
+    if (!sent.empty()) {
+      ghosts_new_ += send_[q].size();
+      ghosts_kept_ += kept[q].size();
+    }
+    send_[q].insert(send_[q].end(), kept[q].begin(), kept[q].end());
   }
   return out;
 }
 
-void MpiDomain::assemble(Simulation& sim, const std::vector<std::byte>& owned,
-                         std::size_t owned_count, const std::vector<std::vector<std::byte>>& ghosts,
-                         ContactRecords records) {
-  const Particles& like = sim.particles();
-  OwnedSet o = unpack_owned(like, owned, owned_count);
-  // Ghosts for the others first (send_ in owned-set indices), then ours from them.
-  const auto out = ghost_packs(o.p, o.slot, o.wall);
-  const auto in = ghosts.empty() ? comm_.all_to_all(out) : ghosts;
-  OwnedSet g{empty_like(like), {}, {}};
-  std::vector<int> source;
-  for (std::size_t q = 0; q < in.size(); ++q) {
+void MpiDomain::received_ghosts(const std::vector<std::vector<std::byte>>& in, std::size_t size,
+                                const SimulationState* old, std::vector<std::byte>& rebuilt,
+                                std::vector<PackedPiece>& all) {
+  constexpr std::size_t kKept = sizeof(std::uint64_t) + kPackedMotionBytes;
+  std::size_t kept = 0;
+  for (const auto& msg : in) {
     std::size_t pos = 0;
-    while (pos < in[q].size()) {
-      g.slot.push_back(unpack_particle(in[q], pos, g.p, g.wall));
-      source.push_back(static_cast<int>(q));
+    const auto n = get_bytes<std::uint64_t>(msg, pos);
+    kept += (msg.size() - pos - static_cast<std::size_t>(n) * size) / kKept;
+  }
+  rebuilt.reserve(kept * size);  // no reallocation: `all` points into it
+  for (std::size_t q = 0; q < in.size(); ++q) {
+    const std::vector<std::byte>& msg = in[q];
+    std::size_t pos = 0;
+    const auto n = get_bytes<std::uint64_t>(msg, pos);
+    for (std::uint64_t m = 0; m < n; ++m, pos += size) {
+      all.push_back({packed_slot({msg.data() + pos, size}), msg.data() + pos, static_cast<int>(q)});
+    }
+    while (pos < msg.size()) {
+      const auto slot = get_bytes<std::uint64_t>(msg, pos);
+      const auto it = std::lower_bound(slot_.begin(), slot_.end(), slot);
+      if (old == nullptr || it == slot_.end() || *it != slot) {
+        throw std::logic_error("MpiDomain: a kept ghost that this rank does not hold");
+      }
+      const auto i = static_cast<std::size_t>(it - slot_.begin());
+      const std::size_t start = rebuilt.size();
+      pack_particle(old->particles, i, slot, old->wall_history[i], rebuilt);
+      std::memcpy(rebuilt.data() + start, msg.data() + pos, kPackedMotionBytes);
+      pos += kPackedMotionBytes;
+      all.push_back({slot, rebuilt.data() + start, static_cast<int>(q)});
     }
   }
-  // Merge by serial slot.
-  const std::size_t n = o.slot.size() + g.slot.size();
+}
+
+void MpiDomain::assemble(Simulation& sim, const std::vector<std::byte>& owned,
+                         std::size_t owned_count, const std::vector<std::vector<std::byte>>& ghosts,
+                         ContactRecords records, const SimulationState* old) {
+  const Particles& like = sim.particles();
+  const std::size_t size = packed_size(like);
+  // Every record is unpacked once, straight into its place in the serial order.
+  std::vector<PackedPiece> all = sorted_pieces(owned, owned_count, size);
+  // The ghosts each rank holds of ours (serial slots, ascending): they get their motion only.
+  std::vector<std::vector<std::uint64_t>> sent(old != nullptr ? send_.size() : 0);
+  for (std::size_t q = 0; q < sent.size(); ++q) {
+    for (const Index i : send_[q]) sent[q].push_back(slot_[i]);
+    std::sort(sent[q].begin(), sent[q].end());
+  }
+  // Ghosts for the others first (send_ in owned-set indices), then ours from them.
+  const auto out = ghost_packs(all, size, sent);
+  std::vector<std::byte> rebuilt;          // our kept ghosts: our copy with the owner's motion
+  std::vector<std::vector<std::byte>> in;  // `all` points into it and into `rebuilt`
+  if (ghosts.empty()) {
+    in = comm_.all_to_all(out);
+    received_ghosts(in, size, old, rebuilt, all);
+  } else {
+    for (std::size_t q = 0; q < ghosts.size(); ++q) {
+      for (std::size_t pos = 0; pos < ghosts[q].size(); pos += size) {
+        const std::byte* at = ghosts[q].data() + pos;
+        all.push_back({packed_slot({at, size}), at, static_cast<int>(q)});
+      }
+    }
+  }
+  std::vector<Index> order(all.size()), local_of(all.size());
+  std::iota(order.begin(), order.end(), Index{0});
+  std::sort(order.begin(), order.end(),
+            [&](Index a, Index b) { return all[a].slot < all[b].slot; });
   SimulationState s;
   s.particles = empty_like(like);
-  std::vector<std::uint8_t> ghost(n, 0);
-  std::vector<Index> owned_local(o.slot.size());
-  for (auto& r : recv_) r.clear();
+  s.particles.reserve(all.size());
+  s.wall_history.reserve(all.size());
+  std::vector<std::uint8_t> ghost(all.size(), 0);
   slot_.clear();
-  std::vector<std::byte> one;
-  std::vector<Index> ghost_order(g.slot.size());
-  std::iota(ghost_order.begin(), ghost_order.end(), Index{0});
-  std::sort(ghost_order.begin(), ghost_order.end(),
-            [&](Index a, Index b) { return g.slot[a] < g.slot[b]; });
-  std::vector<Index> ghost_local(g.slot.size());
-  std::size_t a = 0, b = 0;
-  while (a < o.slot.size() || b < g.slot.size()) {
-    const bool take_owned =
-        b == g.slot.size() || (a < o.slot.size() && o.slot[a] < g.slot[ghost_order[b]]);
-    const OwnedSet& from = take_owned ? o : g;
-    const std::size_t k = take_owned ? a++ : ghost_order[b++];
+  for (const Index k : order) {
     const auto local = static_cast<Index>(slot_.size());
-    (take_owned ? owned_local[k] : ghost_local[k]) = local;
-    ghost[local] = take_owned ? 0 : 1;
-    one.clear();
-    pack_particle(from.p, k, from.slot[k], from.wall[k], one);
+    local_of[k] = local;
+    ghost[local] = all[k].source < 0 ? 0 : 1;
     std::size_t pos = 0;
-    slot_.push_back(unpack_particle(one, pos, s.particles, s.wall_history));
+    slot_.push_back(unpack_particle({all[k].at, size}, pos, s.particles, s.wall_history));
   }
   for (auto& list : send_) {
-    for (Index& i : list) i = owned_local[i];
+    for (Index& i : list) i = local_of[i];
   }
-  for (std::size_t k = 0; k < g.slot.size(); ++k) {
-    recv_[static_cast<std::size_t>(source[k])].push_back(ghost_local[k]);
+  for (auto& r : recv_) r.clear();
+  for (std::size_t k = owned_count; k < all.size(); ++k) {  // in message order
+    recv_[static_cast<std::size_t>(all[k].source)].push_back(local_of[k]);
   }
   assign_records(
       std::move(records), slot_,
@@ -198,14 +259,23 @@ std::unique_ptr<Simulation> MpiDomain::distribute(const SceneConfig& scene,
 }
 
 void MpiDomain::refresh_ghosts(Simulation& sim, double moved) {
+  // One rank has no ghosts and nothing to migrate: its Simulation is the serial one.
+  if (comm_.size() == 1) return;
   // `moved` is already every rank's bound: all ranks take the same branch.
   moved_ += moved;
   // The bound only grows; once it passes half the skin, the real displacements decide (one more
-  // reduction), as the serial Verlet list checks its particles only when its bound says so.
-  if (!(2.0 * moved_ <= options_.skin)) moved_ = measured_displacement(sim);
+  // reduction), as the serial Verlet list checks its particles only when its bound says so. A
+  // pair (owned, not here) was more than the reach, cut-off plus skin, apart at the exchange: it
+  // can interact only once the two largest displacements sum to more than the skin.
+  bool due = !(2.0 * moved_ <= options_.skin);
+  if (due) {
+    const auto [first, second] = measured_displacement(sim);
+    due = !(first + second <= options_.skin);
+    moved_ = first;
+  }
   const bool rebalance_due =
       options_.rebalance_every > 0 && sim.steps() + 1 - last_balance_ >= options_.rebalance_every;
-  if (!(2.0 * moved_ <= options_.skin) || rebalance_due) {
+  if (due || rebalance_due) {
     if (rebalance_due) rebalance(sim);
     exchange(sim);
   } else {
@@ -213,26 +283,35 @@ void MpiDomain::refresh_ghosts(Simulation& sim, double moved) {
   }
 }
 
-double MpiDomain::measured_displacement(const Simulation& sim) {
+std::pair<double, double> MpiDomain::measured_displacement(const Simulation& sim) {
   const Particles& p = sim.particles();
   const double period = options_.period_z.value_or(0.0);
-  double d2 = 0.0;
+  double top[2] = {0.0, 0.0};  // the two largest squared displacements here
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (sim.is_ghost(i)) continue;
-    d2 = std::max(d2, nearest_image(p.position[i], reference_[i], period).squaredNorm());
+    const double d2 = nearest_image(p.position[i], reference_[i], period).squaredNorm();
+    if (!(d2 <= top[1])) {  // NaN: an infinite displacement
+      top[1] = std::isnan(d2) ? std::numeric_limits<double>::infinity() : d2;
+      if (top[1] > top[0]) std::swap(top[0], top[1]);
+    }
   }
-  return comm_.max(std::sqrt(d2));
+  const std::vector<double> all = comm_.all_gather(std::span<const double>(top, 2));
+  std::vector<double> sorted(all);
+  std::partial_sort(sorted.begin(), sorted.begin() + 2, sorted.end(), std::greater<>());
+  return {std::sqrt(sorted[0]), std::sqrt(sorted[1])};
 }
 
 void MpiDomain::forward(Simulation& sim) {
   Particles& p = sim.local_particles();
   for (std::size_t q = 0; q < send_.size(); ++q) {
-    std::vector<double>& b = send_buf_[q];
-    b.clear();
+    // 72 bytes a ghost into a buffer that keeps its size between exchanges.
+    send_buf_[q].resize(9 * send_[q].size());
+    double* b = send_buf_[q].data();
     for (const Index i : send_[q]) {
-      for (const Vec3* v : {&p.position[i], &p.velocity[i], &p.omega[i]}) {
-        b.insert(b.end(), v->data(), v->data() + 3);
-      }
+      std::memcpy(b, p.position[i].data(), 3 * sizeof(double));
+      std::memcpy(b + 3, p.velocity[i].data(), 3 * sizeof(double));
+      std::memcpy(b + 6, p.omega[i].data(), 3 * sizeof(double));
+      b += 9;
     }
     recv_buf_[q].resize(9 * recv_[q].size());
   }
@@ -289,17 +368,19 @@ void MpiDomain::exchange(Simulation& sim) {
   }
   // Contact records: ours where one particle was owned here, and a copy to each migrant's rank.
   ContactRecords records;
-  collect_records(
-      old, slot_, [&](std::size_t i, std::size_t j) { return !ghost[i] || !ghost[j]; }, records);
-  for (std::size_t k = 0; k < records.size(); ++k) {
-    const auto i = static_cast<std::size_t>(
-        std::lower_bound(slot_.begin(), slot_.end(), records.a[k]) - slot_.begin());
-    const auto j = static_cast<std::size_t>(
-        std::lower_bound(slot_.begin(), slot_.end(), records.b[k]) - slot_.begin());
-    for (const int q : {dest[i], dest[j] != dest[i] ? dest[j] : -1}) {
-      if (q < 0) continue;
-      records.pack(k, recs[static_cast<std::size_t>(q)]);
-      ++records_to[static_cast<std::size_t>(q)];
+  records.state_size = old.contact_state_size;
+  const std::size_t rows = old.contact_row_start.empty() ? 0 : old.contact_row_start.size() - 1;
+  for (std::size_t i = 0; i < rows; ++i) {
+    for (std::size_t k = old.contact_row_start[i]; k < old.contact_row_start[i + 1]; ++k) {
+      const Index j = old.contact_col[k];
+      if (ghost[i] != 0 && ghost[j] != 0) continue;
+      records.add(slot_[i], slot_[j], old.contact_history[k],
+                  std::span(old.contact_state).subspan(k * records.state_size, records.state_size));
+      for (const int q : {dest[i], dest[j] != dest[i] ? dest[j] : -1}) {
+        if (q < 0) continue;
+        records.pack(records.size() - 1, recs[static_cast<std::size_t>(q)]);
+        ++records_to[static_cast<std::size_t>(q)];
+      }
     }
   }
   std::vector<std::vector<std::byte>> out(r);
@@ -313,7 +394,7 @@ void MpiDomain::exchange(Simulation& sim) {
   for (const auto& msg : in) {
     if (!msg.empty()) owned_count += read_message(msg, p, owned, records);
   }
-  assemble(sim, owned, owned_count, {}, std::move(records));
+  assemble(sim, owned, owned_count, {}, std::move(records), &old);
   ++exchanges_;
 }
 
@@ -407,6 +488,8 @@ MpiBalance MpiDomain::balance(const Simulation& sim) {
                  static_cast<double>(all.size());
   b.exchanges = exchanges_;
   b.rebalances = rebalances_;
+  b.ghosts_new = comm_.sum(ghosts_new_);
+  b.ghosts_kept = comm_.sum(ghosts_kept_);
   b.comm_seconds = comm_.seconds();
   return b;
 }

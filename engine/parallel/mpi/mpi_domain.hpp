@@ -7,15 +7,17 @@
 // (ContactList::set_row_keys) and the trajectory is the serial one, bit for bit.
 //
 // Every step (refresh_ghosts, between drift and search) the owners send their ghosts' position,
-// velocity and angular velocity to the neighbouring ranks. When the largest displacement since the
-// last exchange (bounded by the drifts' bounds, measured when the bound exceeds) exceeds half the
-// skin,
-// or a re-balance is due, particles migrate to the rank whose box holds them with their arrays,
-// wall history and contact records, and the ghost layer is rebuilt. At a re-ordering step the ranks
-// agree on the serial run's new order (same Morton keys and ties as Simulation::reorder_particles).
+// velocity and angular velocity to the neighbouring ranks. When the two largest displacements since
+// the last exchange (bounded by the drifts' bounds, measured once the bound passes half the skin)
+// sum to more than the skin, or a re-balance is due, particles migrate to the rank whose box holds
+// them with their arrays, wall history and contact records, and the ghost layer is rebuilt (kept
+// ghosts get their motion only). One rank does none of this. At a re-ordering step the ranks agree
+// on the serial run's new order (same Morton keys and ties as Simulation::reorder_particles).
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
+#include <utility>
 #include <vector>
 
 #include "engine/parallel/domain_hooks.hpp"
@@ -34,10 +36,20 @@ struct MpiDomainOptions {
   std::uint64_t rebalance_every = 0;  ///< steps between RCB re-balances (0: never)
 };
 
+/// A packed particle in a message (packed_size bytes at `at`), its serial slot and the rank that
+/// sent it (-1: owned here).
+struct PackedPiece {
+  std::uint64_t slot;
+  const std::byte* at;
+  int source;
+};
+
 struct MpiBalance {
   std::size_t owned_min = 0, owned_max = 0;
   double owned_mean = 0.0;
   std::uint64_t exchanges = 0, rebalances = 0;
+  /// Ghost records sent at exchanges over all ranks: in full (new ghosts) and motion only (kept).
+  std::uint64_t ghosts_new = 0, ghosts_kept = 0;
   double comm_seconds = 0.0;  ///< this rank's seconds inside MPI
 };
 
@@ -69,17 +81,29 @@ class MpiDomain final : public DomainHooks {
   /// Migration, optional re-balance and a new ghost layer; replaces sim's particles.
   void exchange(Simulation& sim);
   void forward(Simulation& sim);
-  /// The largest displacement of any rank's particles since the last exchange (m). Collective.
-  double measured_displacement(const Simulation& sim);
+  /// The two largest displacements of all ranks' particles since the last exchange (m), largest
+  /// first. Collective.
+  std::pair<double, double> measured_displacement(const Simulation& sim);
   void rebalance(const Simulation& sim);
-  /// The local set from the owned particles' bytes `owned` and the ghosts' bytes by source rank:
-  /// particles sorted by serial slot, send and receive lists, reference positions.
+  /// The local set from the owned particles' bytes `owned` and the ghosts' bytes by source rank
+  /// (records; empty: exchanged here): particles sorted by serial slot, send and receive lists,
+  /// reference positions. `old`: the local state before an exchange (its slots still in slot_),
+  /// whose ghosts that stay ghosts get only their motion from their owners.
   void assemble(Simulation& sim, const std::vector<std::byte>& owned, std::size_t owned_count,
-                const std::vector<std::vector<std::byte>>& ghosts, ContactRecords records);
-  /// Bytes of the ghosts of each other rank among the owned particles packed in `owned`.
-  std::vector<std::vector<std::byte>> ghost_packs(const Particles& p,
-                                                  const std::vector<std::uint64_t>& slot,
-                                                  const WallHistory& wall);
+                const std::vector<std::vector<std::byte>>& ghosts, ContactRecords records,
+                const SimulationState* old = nullptr);
+  /// The messages of the other ranks for ghost_packs (to send) and the owned particles' records
+  /// `owned` (sorted by serial slot, `size` bytes each): to each rank the records of its new
+  /// ghosts, then the slots and motion of the ghosts it keeps (those in `sent`, by rank); send_
+  /// lists them in that order, by their index in `owned`.
+  std::vector<std::vector<std::byte>> ghost_packs(
+      std::span<const PackedPiece> owned, std::size_t size,
+      const std::vector<std::vector<std::uint64_t>>& sent);
+  /// Appends the ghosts of the messages `in` (by source rank) to `all`: new ones as received, kept
+  /// ones rebuilt into `rebuilt` from `old` with their owner's motion.
+  void received_ghosts(const std::vector<std::vector<std::byte>>& in, std::size_t size,
+                       const SimulationState* old, std::vector<std::byte>& rebuilt,
+                       std::vector<PackedPiece>& all);
 
   MpiComm comm_;
   MpiDomainOptions options_;
@@ -92,6 +116,7 @@ class MpiDomain final : public DomainHooks {
   double cell_ = 0.0;            ///< Morton cell, 2 r_max over all ranks
   std::uint64_t last_balance_ = 0;
   std::uint64_t exchanges_ = 0, rebalances_ = 0;
+  std::uint64_t ghosts_new_ = 0, ghosts_kept_ = 0;  ///< this rank's, at exchanges
 };
 
 }  // namespace drumlab
