@@ -14,6 +14,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/mpi/mpi_run.hpp"
+#include "engine/openmp_waiting.hpp"
 #include "engine/search/search_methods.hpp"
 #include "engine/types.hpp"
 
@@ -53,7 +54,8 @@ void print_summary(const drumlab::mpi::MpiRunSummary& s) {
   fmt::print("scene             {} ({} particles, search {})\n", s.scene, s.particles, s.method);
   if (!s.search_reason.empty())
     fmt::print("search auto       -> {}: {}\n", s.method, s.search_reason);
-  fmt::print("ranks             {} x {} thread(s)\n", s.ranks, s.threads);
+  fmt::print("ranks             {} x {} thread(s); waiting threads: {}\n", s.ranks, s.threads,
+             drumlab::openmp_waiting_description());
   fmt::print("owned per rank    min {} / mean {:.1f} / max {} (max/mean {:.3f})\n", s.owned_min,
              s.owned_mean, s.owned_max, s.owned_mean > 0 ? s.owned_max / s.owned_mean : 0.0);
   fmt::print(
@@ -80,6 +82,7 @@ int fail(int code, const char* kind, const std::string& what, int rank) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  drumlab::choose_openmp_waiting(argc, argv);  // before MPI_Init; may execute us again
   std::signal(SIGXFSZ, SIG_IGN);
   MPI_Init(&argc, &argv);
   int rank = 0;
