@@ -11,8 +11,8 @@
 
 #include "engine/analysis/agglomerates.hpp"
 #include "engine/contact/contact_model.hpp"
-#include "engine/io/checkpoint.hpp"
-#include "engine/io/h5_series.hpp"
+#include "engine/io/mpi/checkpoint_mpi.hpp"
+#include "engine/io/mpi/h5_series_mpi.hpp"
 #include "engine/parallel/ghost_layer.hpp"
 #include "engine/parallel/mpi/mpi_domain.hpp"
 #include "engine/threads.hpp"
@@ -56,40 +56,16 @@ MpiDomainOptions domain_options(const SceneConfig& scene, const MpiRunOptions& o
   return d;
 }
 
-/// Runs `write` on rank 0 and tells every rank how it went: a failed write (InputError: an
-/// unwritable path, a full disk) is thrown on every rank alike, so that no rank is left waiting in
-/// a collective and every rank exits 2 with rank 0's one line.
-void on_root(MPI_Comm comm, const std::function<void()>& write) {
-  int rank = 0;
-  MPI_Comm_rank(comm, &rank);
-  std::string error;
-  if (rank == 0) {
-    try {
-      write();
-    } catch (const InputError& e) {
-      error = e.what();
-    }
-  }
-  int length = static_cast<int>(error.size());
-  MPI_Bcast(&length, 1, MPI_INT, 0, comm);
-  error.resize(static_cast<std::size_t>(length));
-  MPI_Bcast(error.data(), length, MPI_CHAR, 0, comm);
-  if (length > 0) throw InputError(error);
-}
-
-void write_gathered(MpiDomain& domain, const Simulation& sim, const std::string& file) {
-  const auto state = domain.gather(sim);
-  // on_root's broadcast also tells every rank the file is complete before any goes on.
-  on_root(domain.comm().comm(), [&] { write_checkpoint(file, *state, sim.scene().name); });
+/// The checkpoint, written by every rank into one file (parallel HDF5, the serial layout).
+void write_parallel(MpiDomain& domain, const Simulation& sim, const std::string& file) {
+  write_checkpoint_mpi(domain.comm(), sim, domain.slots(), file, sim.scene().name);
 }
 
 /// One frame of the series, as `drumlab run --h5` takes it: only of a state that has just passed
-/// the stability check (collective), gathered in the serial order.
+/// the stability check (collective), written by every rank (parallel HDF5, the serial layout).
 void write_series_frame(MpiDomain& domain, Simulation& sim, std::optional<H5Series>& series) {
   sim.check_stability();
-  const auto state = domain.gather(sim);
-  on_root(domain.comm().comm(),
-          [&] { series->write_frame(state->particles, state->time, state->steps); });
+  write_frame_mpi(*series, domain.comm(), sim, domain.slots());
 }
 
 /// The turn: `steps` steps with the scheduled series frames (frame 0 first) and checkpoints.
@@ -110,7 +86,7 @@ void turn_drum(MpiDomain& domain, Simulation& sim, std::uint64_t steps, const Mp
     if (every > 0 && done % every == 0) write_series_frame(domain, sim, series);
     if (!o.checkpoint.empty() && o.checkpoint_every > 0 && done % o.checkpoint_every == 0 &&
         done < steps) {
-      write_gathered(domain, sim, o.checkpoint);
+      write_parallel(domain, sim, o.checkpoint);
     }
   }
 }
@@ -133,8 +109,9 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
       std::filesystem::weakly_canonical(o.h5) == std::filesystem::weakly_canonical(o.checkpoint)) {
     throw InputError(fmt::format("--h5 and --checkpoint both name {}", o.h5));
   }
-  std::optional<H5Series> series;  // rank 0's; checked before the fill, written from the turn
-  if (!o.h5.empty()) on_root(comm, [&] { series.emplace(o.h5); });
+  std::optional<H5Series> series;  // every rank's; checked before the fill, written from the turn
+  MpiComm io_comm(comm);
+  if (!o.h5.empty()) series.emplace(o.h5, mpi_series_access(io_comm, o.h5));
   MpiRunSummary s;
   auto session = make_session(comm, rank, scene, o.session, s.search_reason);
   const SessionPlan plan = session->plan();
@@ -157,8 +134,8 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
   const double t1 = MPI_Wtime();
   turn_drum(domain, *sim, plan.turn_steps, o, series);
   const double t2 = MPI_Wtime();
-  if (!o.checkpoint.empty()) write_gathered(domain, *sim, o.checkpoint);
-  if (!o.h5.empty()) on_root(comm, [&] { series->finish(); });
+  if (!o.checkpoint.empty()) write_parallel(domain, *sim, o.checkpoint);
+  if (!o.h5.empty()) series->finish();
   const MpiBalance b = domain.balance(*sim);
   const double share = (t2 - t0) > 0.0 ? b.comm_seconds / (t2 - t0) : 0.0;
   s.scene = run_scene.name;
