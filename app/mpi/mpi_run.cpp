@@ -11,7 +11,9 @@
 
 #include "engine/analysis/agglomerates.hpp"
 #include "engine/contact/contact_model.hpp"
+#include "engine/io/checkpoint.hpp"
 #include "engine/io/mpi/checkpoint_mpi.hpp"
+#include "engine/io/mpi/h5_mpi.hpp"
 #include "engine/io/mpi/h5_series_mpi.hpp"
 #include "engine/parallel/ghost_layer.hpp"
 #include "engine/parallel/mpi/mpi_domain.hpp"
@@ -56,25 +58,52 @@ MpiDomainOptions domain_options(const SceneConfig& scene, const MpiRunOptions& o
   return d;
 }
 
-/// The checkpoint, written by every rank into one file (parallel HDF5, the serial layout).
-void write_parallel(MpiDomain& domain, const Simulation& sim, const std::string& file) {
-  write_checkpoint_mpi(domain.comm(), sim, domain.slots(), file, sim.scene().name);
+/// Checkpoints and the series: written by every rank into one file (parallel HDF5, the serial
+/// layout), or with --gather-output gathered on rank 0 and written there by the serial writer;
+/// each write timed on this rank.
+struct Output {
+  const MpiRunOptions& o;
+  std::optional<H5Series> series;
+  std::uint64_t checkpoints = 0, frames = 0;
+  double checkpoint_seconds = 0.0, frame_seconds = 0.0;
+};
+
+void write_checkpoint_now(MpiDomain& domain, const Simulation& sim, Output& out) {
+  const double t0 = MPI_Wtime();
+  if (out.o.gather_output) {
+    const auto state = domain.gather(sim);
+    h5::on_root(domain.comm().comm(),
+                [&] { write_checkpoint(out.o.checkpoint, *state, sim.scene().name); });
+  } else {
+    write_checkpoint_mpi(domain.comm(), sim, domain.slots(), out.o.checkpoint, sim.scene().name);
+  }
+  out.checkpoint_seconds += MPI_Wtime() - t0;
+  ++out.checkpoints;
 }
 
 /// One frame of the series, as `drumlab run --h5` takes it: only of a state that has just passed
-/// the stability check (collective), written by every rank (parallel HDF5, the serial layout).
-void write_series_frame(MpiDomain& domain, Simulation& sim, std::optional<H5Series>& series) {
+/// the stability check (collective).
+void write_series_frame(MpiDomain& domain, Simulation& sim, Output& out) {
   sim.check_stability();
-  write_frame_mpi(*series, domain.comm(), sim, domain.slots());
+  const double t0 = MPI_Wtime();
+  if (out.o.gather_output) {
+    const auto state = domain.gather(sim);
+    h5::on_root(domain.comm().comm(),
+                [&] { out.series->write_frame(state->particles, state->time, state->steps); });
+  } else {
+    write_frame_mpi(*out.series, domain.comm(), sim, domain.slots());
+  }
+  out.frame_seconds += MPI_Wtime() - t0;
+  ++out.frames;
 }
 
 /// The turn: `steps` steps with the scheduled series frames (frame 0 first) and checkpoints.
-void turn_drum(MpiDomain& domain, Simulation& sim, std::uint64_t steps, const MpiRunOptions& o,
-               std::optional<H5Series>& series) {
+void turn_drum(MpiDomain& domain, Simulation& sim, std::uint64_t steps, Output& out) {
+  const MpiRunOptions& o = out.o;
   std::uint64_t every = 0;
   if (!o.h5.empty()) {
     every = o.every > 0 ? o.every : std::max<std::uint64_t>(1, steps / 100);
-    write_series_frame(domain, sim, series);
+    write_series_frame(domain, sim, out);
   }
   std::uint64_t done = 0;
   while (done < steps) {
@@ -83,10 +112,10 @@ void turn_drum(MpiDomain& domain, Simulation& sim, std::uint64_t steps, const Mp
     if (every > 0) k = std::min(k, every - done % every);
     sim.advance(k);
     done += k;
-    if (every > 0 && done % every == 0) write_series_frame(domain, sim, series);
+    if (every > 0 && done % every == 0) write_series_frame(domain, sim, out);
     if (!o.checkpoint.empty() && o.checkpoint_every > 0 && done % o.checkpoint_every == 0 &&
         done < steps) {
-      write_parallel(domain, sim, o.checkpoint);
+      write_checkpoint_now(domain, sim, out);
     }
   }
 }
@@ -109,9 +138,10 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
       std::filesystem::weakly_canonical(o.h5) == std::filesystem::weakly_canonical(o.checkpoint)) {
     throw InputError(fmt::format("--h5 and --checkpoint both name {}", o.h5));
   }
-  std::optional<H5Series> series;  // every rank's; checked before the fill, written from the turn
+  Output out{o, {}};  // the series is checked before the fill, written from the turn
   MpiComm io_comm(comm);
-  if (!o.h5.empty()) series.emplace(o.h5, mpi_series_access(io_comm, o.h5));
+  if (!o.h5.empty() && o.gather_output) h5::on_root(comm, [&] { out.series.emplace(o.h5); });
+  if (!o.h5.empty() && !o.gather_output) out.series.emplace(o.h5, mpi_series_access(io_comm, o.h5));
   MpiRunSummary s;
   auto session = make_session(comm, rank, scene, o.session, s.search_reason);
   const SessionPlan plan = session->plan();
@@ -132,10 +162,11 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
     sim->set_drum_omega(run_scene.drum.omega);
   }
   const double t1 = MPI_Wtime();
-  turn_drum(domain, *sim, plan.turn_steps, o, series);
+  turn_drum(domain, *sim, plan.turn_steps, out);
   const double t2 = MPI_Wtime();
-  if (!o.checkpoint.empty()) write_parallel(domain, *sim, o.checkpoint);
-  if (!o.h5.empty()) series->finish();
+  if (!o.checkpoint.empty()) write_checkpoint_now(domain, *sim, out);
+  if (!o.h5.empty() && o.gather_output) h5::on_root(comm, [&] { out.series->finish(); });
+  if (!o.h5.empty() && !o.gather_output) out.series->finish();
   const MpiBalance b = domain.balance(*sim);
   const double share = (t2 - t0) > 0.0 ? b.comm_seconds / (t2 - t0) : 0.0;
   s.scene = run_scene.name;
@@ -153,6 +184,10 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
   s.comm_share_mean = domain.sum(share) / ranks;
   s.exchanges = b.exchanges;
   s.rebalances = b.rebalances;
+  s.checkpoints = out.checkpoints;
+  s.frames = out.frames;
+  s.checkpoint_seconds = domain.max(out.checkpoint_seconds);
+  s.frame_seconds = domain.max(out.frame_seconds);
   return s;
 }
 

@@ -274,12 +274,15 @@ void expect_same_datasets(const std::string& a, const std::string& b) {
 // rows and their contact records) holds the serial run's checkpoint at the same step, dataset for
 // dataset, bit for bit (a cell-grid search: its contact list holds the same pairs however the run
 // is cut; a Verlet list's extra pairs depend on when it was rebuilt), and restarts serially as the
-// uninterrupted run (CheckpointsRestartAcrossRankCounts restarts one from 3 ranks on 2 and 1).
+// uninterrupted run (CheckpointsRestartAcrossRankCounts restarts one from 3 ranks on 2 and 1);
+// --gather-output (gathered on rank 0, the serial writer) writes the same datasets.
 TEST_F(MpiRun, ParallelCheckpointHoldsTheSerialRunsDatasets) {
   const std::string scene = dir.write("scene.toml", scene_text("m5", "", ""));
   serial(scene, "--steps 60", "serial.h5");
   parallel(3, scene, "--steps 60", "mpi.h5");
   expect_same_datasets(dir.file("serial.h5"), dir.file("mpi.h5"));
+  parallel(2, scene, "--steps 60 --gather-output", "gathered.h5");  // rank 0, serial writer
+  expect_same_datasets(dir.file("serial.h5"), dir.file("gathered.h5"));
   const SimulationState whole = serial(scene, "--steps 90", "whole.h5");
   expect_same_state(whole, serial(scene, "--steps 30 --restart " + dir.file("mpi.h5"), "r.h5"),
                     "3 ranks -> serial");

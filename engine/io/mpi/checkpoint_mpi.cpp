@@ -133,17 +133,14 @@ void write_checkpoint_mpi(MpiComm& comm, const Simulation& sim,
     error = e.what();  // named by the file, not its temporary name
     if (error.rfind(tmp.string(), 0) == 0) error.replace(0, tmp.string().size(), file.string());
   }
-  if (comm.rank() == 0) {
+  h5::on_root(c, [&] {  // every rank has the same `error`; rank 0 renames or cleans up
     std::error_code ec;
     if (error.empty()) std::filesystem::rename(tmp, file, ec);
     if (ec) error = fmt::format("{}: cannot rename into place: {}", file.string(), ec.message());
-    if (!error.empty()) std::filesystem::remove(tmp, ec);
-  }
-  int length = static_cast<int>(error.size());
-  MPI_Bcast(&length, 1, MPI_INT, 0, c);
-  error.resize(static_cast<std::size_t>(length));
-  MPI_Bcast(error.data(), length, MPI_CHAR, 0, c);
-  if (length > 0) throw InputError(error);
+    if (error.empty()) return;
+    std::filesystem::remove(tmp, ec);
+    throw InputError(error);
+  });
 }
 
 }  // namespace drumlab

@@ -14,6 +14,24 @@ bool all_ok(MPI_Comm comm, bool ok) {
   return v != 0;
 }
 
+void on_root(MPI_Comm comm, const std::function<void()>& work) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  std::string error;
+  if (rank == 0) {
+    try {
+      work();
+    } catch (const InputError& e) {
+      error = e.what();
+    }
+  }
+  int length = static_cast<int>(error.size());
+  MPI_Bcast(&length, 1, MPI_INT, 0, comm);
+  error.resize(static_cast<std::size_t>(length));
+  MPI_Bcast(error.data(), length, MPI_CHAR, 0, comm);
+  if (length > 0) throw InputError(error);
+}
+
 namespace {
 
 Handle mpi_access(MPI_Comm comm, const std::filesystem::path& path) {

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <span>
 #include <string>
 
@@ -20,6 +21,11 @@ namespace drumlab::h5 {
 /// True on every rank if `ok` on every rank (MPI_Allreduce): the collective check after each
 /// step of a parallel write, so that a failure on one rank throws on all of them.
 bool all_ok(MPI_Comm comm, bool ok);
+
+/// Runs `work` on rank 0 and tells every rank how it went: an InputError there (an unwritable
+/// path, a full disk) is thrown on every rank alike, so that no rank is left waiting in a
+/// collective and every rank exits 2 with rank 0's one line. Collective.
+void on_root(MPI_Comm comm, const std::function<void()>& work);
 
 /// Creates (truncates) or opens `path` on every rank of `comm` through MPI-IO (no file lock, as
 /// the serial series). Collective; throws InputError naming the path on every rank alike.

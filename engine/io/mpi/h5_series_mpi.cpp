@@ -6,19 +6,7 @@ namespace drumlab {
 
 H5Series::Access mpi_series_access(MpiComm& comm, const std::filesystem::path& file) {
   const MPI_Comm c = comm.comm();
-  std::string error;
-  if (comm.rank() == 0) {
-    try {
-      h5::check_writable(file);
-    } catch (const InputError& e) {
-      error = e.what();
-    }
-  }
-  int length = static_cast<int>(error.size());
-  MPI_Bcast(&length, 1, MPI_INT, 0, c);
-  error.resize(static_cast<std::size_t>(length));
-  MPI_Bcast(error.data(), length, MPI_CHAR, 0, c);
-  if (length > 0) throw InputError(error);
+  h5::on_root(c, [&] { h5::check_writable(file); });
   H5Series::Access a;
   a.create = [c](const std::filesystem::path& f) { return h5::create_mpi_file(c, f); };
   a.open = [c](const std::filesystem::path& f) { return h5::open_mpi_file_rw(c, f); };
