@@ -97,6 +97,28 @@ void write_series_frame(MpiDomain& domain, Simulation& sim, Output& out) {
   ++out.frames;
 }
 
+/// The series (every rank's, or rank 0's with --gather-output), its path checked now.
+void open_series(MpiComm& comm, Output& out) {
+  const MpiRunOptions& o = out.o;
+  if (o.h5.empty()) return;
+  if (o.gather_output) {
+    h5::on_root(comm.comm(), [&] { out.series.emplace(o.h5); });
+  } else {
+    out.series.emplace(o.h5, mpi_series_access(comm, o.h5));
+  }
+}
+
+/// The final checkpoint and the series' end.
+void finish_output(MpiDomain& domain, const Simulation& sim, Output& out) {
+  if (!out.o.checkpoint.empty()) write_checkpoint_now(domain, sim, out);
+  if (out.o.h5.empty()) return;
+  if (out.o.gather_output) {
+    h5::on_root(domain.comm().comm(), [&] { out.series->finish(); });
+  } else {
+    out.series->finish();
+  }
+}
+
 /// The turn: `steps` steps with the scheduled series frames (frame 0 first) and checkpoints.
 void turn_drum(MpiDomain& domain, Simulation& sim, std::uint64_t steps, Output& out) {
   const MpiRunOptions& o = out.o;
@@ -138,10 +160,9 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
       std::filesystem::weakly_canonical(o.h5) == std::filesystem::weakly_canonical(o.checkpoint)) {
     throw InputError(fmt::format("--h5 and --checkpoint both name {}", o.h5));
   }
-  Output out{o, {}};  // the series is checked before the fill, written from the turn
+  Output out{o, {}};
   MpiComm io_comm(comm);
-  if (!o.h5.empty() && o.gather_output) h5::on_root(comm, [&] { out.series.emplace(o.h5); });
-  if (!o.h5.empty() && !o.gather_output) out.series.emplace(o.h5, mpi_series_access(io_comm, o.h5));
+  open_series(io_comm, out);  // checked before the fill, written from the turn
   MpiRunSummary s;
   auto session = make_session(comm, rank, scene, o.session, s.search_reason);
   const SessionPlan plan = session->plan();
@@ -164,9 +185,7 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
   const double t1 = MPI_Wtime();
   turn_drum(domain, *sim, plan.turn_steps, out);
   const double t2 = MPI_Wtime();
-  if (!o.checkpoint.empty()) write_checkpoint_now(domain, *sim, out);
-  if (!o.h5.empty() && o.gather_output) h5::on_root(comm, [&] { out.series->finish(); });
-  if (!o.h5.empty() && !o.gather_output) out.series->finish();
+  finish_output(domain, *sim, out);
   const MpiBalance b = domain.balance(*sim);
   const double share = (t2 - t0) > 0.0 ? b.comm_seconds / (t2 - t0) : 0.0;
   s.scene = run_scene.name;
