@@ -40,10 +40,13 @@ void add_run(CLI::App& app, MpiRunOptions& o, std::optional<std::uint64_t>& step
   run->add_option("--skin", o.session.skin, "Verlet skin in smallest radii")
       ->check(CLI::Range(1e-6, 10.0));
   run->add_option("--threads", o.threads, "OpenMP threads per rank")->check(CLI::Range(1, 1024));
-  run->add_option("--checkpoint", o.checkpoint, "write a checkpoint (serial layout) at the end");
+  run->add_option("--checkpoint", o.checkpoint,
+                  "write a checkpoint (serial layout, parallel HDF5) at the end");
   run->add_option("--checkpoint-every", o.checkpoint_every, "also every K turning steps")
       ->check(CLI::PositiveNumber);
-  run->add_option("--h5", o.h5, "HDF5 series (+ XDMF), gathered on rank 0 in the serial layout");
+  run->add_option("--h5", o.h5, "HDF5 series (+ XDMF) in the serial layout, parallel HDF5");
+  run->add_flag("--gather-output", o.gather_output,
+                "gather checkpoints and series on rank 0 and write them there (no MPI-IO)");
   run->add_option("--every", o.every, "steps between series frames (default: 1/100 of the turn)");
   run->add_option("--restart", o.session.restart, "continue from a checkpoint (any rank count)");
   run->add_option("--rebalance-every", o.rebalance_every,
@@ -70,6 +73,10 @@ void print_summary(const drumlab::mpi::MpiRunSummary& s) {
       "steps             {} settling + {} turning in {:.3f} s ({:.3g} particle-steps/s "
       "turning)\n",
       s.settle_steps, s.turn_steps, s.seconds, rate);
+  if (s.checkpoints + s.frames > 0) {
+    fmt::print("output            {} checkpoint(s) in {:.3f} s, {} series frame(s) in {:.3f} s\n",
+               s.checkpoints, s.checkpoint_seconds, s.frames, s.frame_seconds);
+  }
 }
 
 /// Prints the error: bad input (exit 2) is met by every rank alike and printed by rank 0; any

@@ -12,7 +12,9 @@
 #include "engine/analysis/agglomerates.hpp"
 #include "engine/contact/contact_model.hpp"
 #include "engine/io/checkpoint.hpp"
-#include "engine/io/h5_series.hpp"
+#include "engine/io/mpi/checkpoint_mpi.hpp"
+#include "engine/io/mpi/h5_mpi.hpp"
+#include "engine/io/mpi/h5_series_mpi.hpp"
 #include "engine/parallel/ghost_layer.hpp"
 #include "engine/parallel/mpi/mpi_domain.hpp"
 #include "engine/threads.hpp"
@@ -56,49 +58,74 @@ MpiDomainOptions domain_options(const SceneConfig& scene, const MpiRunOptions& o
   return d;
 }
 
-/// Runs `write` on rank 0 and tells every rank how it went: a failed write (InputError: an
-/// unwritable path, a full disk) is thrown on every rank alike, so that no rank is left waiting in
-/// a collective and every rank exits 2 with rank 0's one line.
-void on_root(MPI_Comm comm, const std::function<void()>& write) {
-  int rank = 0;
-  MPI_Comm_rank(comm, &rank);
-  std::string error;
-  if (rank == 0) {
-    try {
-      write();
-    } catch (const InputError& e) {
-      error = e.what();
-    }
-  }
-  int length = static_cast<int>(error.size());
-  MPI_Bcast(&length, 1, MPI_INT, 0, comm);
-  error.resize(static_cast<std::size_t>(length));
-  MPI_Bcast(error.data(), length, MPI_CHAR, 0, comm);
-  if (length > 0) throw InputError(error);
-}
+/// Checkpoints and the series: written by every rank into one file (parallel HDF5, the serial
+/// layout), or with --gather-output gathered on rank 0 and written there by the serial writer;
+/// each write timed on this rank.
+struct Output {
+  const MpiRunOptions& o;
+  std::optional<H5Series> series;
+  std::uint64_t checkpoints = 0, frames = 0;
+  double checkpoint_seconds = 0.0, frame_seconds = 0.0;
+};
 
-void write_gathered(MpiDomain& domain, const Simulation& sim, const std::string& file) {
-  const auto state = domain.gather(sim);
-  // on_root's broadcast also tells every rank the file is complete before any goes on.
-  on_root(domain.comm().comm(), [&] { write_checkpoint(file, *state, sim.scene().name); });
+void write_checkpoint_now(MpiDomain& domain, const Simulation& sim, Output& out) {
+  const double t0 = MPI_Wtime();
+  if (out.o.gather_output) {
+    const auto state = domain.gather(sim);
+    h5::on_root(domain.comm().comm(),
+                [&] { write_checkpoint(out.o.checkpoint, *state, sim.scene().name); });
+  } else {
+    write_checkpoint_mpi(domain.comm(), sim, domain.slots(), out.o.checkpoint, sim.scene().name);
+  }
+  out.checkpoint_seconds += MPI_Wtime() - t0;
+  ++out.checkpoints;
 }
 
 /// One frame of the series, as `drumlab run --h5` takes it: only of a state that has just passed
-/// the stability check (collective), gathered in the serial order.
-void write_series_frame(MpiDomain& domain, Simulation& sim, std::optional<H5Series>& series) {
+/// the stability check (collective).
+void write_series_frame(MpiDomain& domain, Simulation& sim, Output& out) {
   sim.check_stability();
-  const auto state = domain.gather(sim);
-  on_root(domain.comm().comm(),
-          [&] { series->write_frame(state->particles, state->time, state->steps); });
+  const double t0 = MPI_Wtime();
+  if (out.o.gather_output) {
+    const auto state = domain.gather(sim);
+    h5::on_root(domain.comm().comm(),
+                [&] { out.series->write_frame(state->particles, state->time, state->steps); });
+  } else {
+    write_frame_mpi(*out.series, domain.comm(), sim, domain.slots());
+  }
+  out.frame_seconds += MPI_Wtime() - t0;
+  ++out.frames;
+}
+
+/// The series (every rank's, or rank 0's with --gather-output), its path checked now.
+void open_series(MpiComm& comm, Output& out) {
+  const MpiRunOptions& o = out.o;
+  if (o.h5.empty()) return;
+  if (o.gather_output) {
+    h5::on_root(comm.comm(), [&] { out.series.emplace(o.h5); });
+  } else {
+    out.series.emplace(o.h5, mpi_series_access(comm, o.h5));
+  }
+}
+
+/// The final checkpoint and the series' end.
+void finish_output(MpiDomain& domain, const Simulation& sim, Output& out) {
+  if (!out.o.checkpoint.empty()) write_checkpoint_now(domain, sim, out);
+  if (out.o.h5.empty()) return;
+  if (out.o.gather_output) {
+    h5::on_root(domain.comm().comm(), [&] { out.series->finish(); });
+  } else {
+    out.series->finish();
+  }
 }
 
 /// The turn: `steps` steps with the scheduled series frames (frame 0 first) and checkpoints.
-void turn_drum(MpiDomain& domain, Simulation& sim, std::uint64_t steps, const MpiRunOptions& o,
-               std::optional<H5Series>& series) {
+void turn_drum(MpiDomain& domain, Simulation& sim, std::uint64_t steps, Output& out) {
+  const MpiRunOptions& o = out.o;
   std::uint64_t every = 0;
   if (!o.h5.empty()) {
     every = o.every > 0 ? o.every : std::max<std::uint64_t>(1, steps / 100);
-    write_series_frame(domain, sim, series);
+    write_series_frame(domain, sim, out);
   }
   std::uint64_t done = 0;
   while (done < steps) {
@@ -107,10 +134,10 @@ void turn_drum(MpiDomain& domain, Simulation& sim, std::uint64_t steps, const Mp
     if (every > 0) k = std::min(k, every - done % every);
     sim.advance(k);
     done += k;
-    if (every > 0 && done % every == 0) write_series_frame(domain, sim, series);
+    if (every > 0 && done % every == 0) write_series_frame(domain, sim, out);
     if (!o.checkpoint.empty() && o.checkpoint_every > 0 && done % o.checkpoint_every == 0 &&
         done < steps) {
-      write_gathered(domain, sim, o.checkpoint);
+      write_checkpoint_now(domain, sim, out);
     }
   }
 }
@@ -133,8 +160,9 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
       std::filesystem::weakly_canonical(o.h5) == std::filesystem::weakly_canonical(o.checkpoint)) {
     throw InputError(fmt::format("--h5 and --checkpoint both name {}", o.h5));
   }
-  std::optional<H5Series> series;  // rank 0's; checked before the fill, written from the turn
-  if (!o.h5.empty()) on_root(comm, [&] { series.emplace(o.h5); });
+  Output out{o, {}};
+  MpiComm io_comm(comm);
+  open_series(io_comm, out);  // checked before the fill, written from the turn
   MpiRunSummary s;
   auto session = make_session(comm, rank, scene, o.session, s.search_reason);
   const SessionPlan plan = session->plan();
@@ -155,10 +183,9 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
     sim->set_drum_omega(run_scene.drum.omega);
   }
   const double t1 = MPI_Wtime();
-  turn_drum(domain, *sim, plan.turn_steps, o, series);
+  turn_drum(domain, *sim, plan.turn_steps, out);
   const double t2 = MPI_Wtime();
-  if (!o.checkpoint.empty()) write_gathered(domain, *sim, o.checkpoint);
-  if (!o.h5.empty()) on_root(comm, [&] { series->finish(); });
+  finish_output(domain, *sim, out);
   const MpiBalance b = domain.balance(*sim);
   const double share = (t2 - t0) > 0.0 ? b.comm_seconds / (t2 - t0) : 0.0;
   s.scene = run_scene.name;
@@ -178,6 +205,10 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
   s.rebalances = b.rebalances;
   s.ghosts_new = b.ghosts_new;
   s.ghosts_kept = b.ghosts_kept;
+  s.checkpoints = out.checkpoints;
+  s.frames = out.frames;
+  s.checkpoint_seconds = domain.max(out.checkpoint_seconds);
+  s.frame_seconds = domain.max(out.frame_seconds);
   return s;
 }
 

@@ -2,10 +2,11 @@
 // `drumlab-mpi run`: one scene on the ranks of MPI_COMM_WORLD (engine/parallel/mpi/mpi_domain.hpp).
 // Every rank fills the scene with the same seed (or reads the same checkpoint), rank 0 resolves
 // search "auto" and tells the others, the particles are cut by RCB, then the ranks settle and turn
-// the drum together. Checkpoints are gathered on rank 0 and written in the serial layout
-// (engine/io/checkpoint.hpp), so `drumlab run --restart` and `drumlab-mpi run --restart` on any
-// rank count continue from them; an HDF5 series (--h5) is gathered and written the same way, so
-// `drumlab analyze` and `drumlab convert` read it.
+// the drum together. Checkpoints are written by every rank into one file (parallel HDF5,
+// engine/io/mpi/) in the serial layout (engine/io/checkpoint.hpp), so `drumlab run --restart` and
+// `drumlab-mpi run --restart` on any rank count continue from them; an HDF5 series (--h5) is
+// written the same way, so `drumlab analyze` and `drumlab convert` read it. --gather-output
+// gathers both on rank 0 and writes them with the serial writers instead.
 #include <cstdint>
 #include <string>
 
@@ -26,6 +27,9 @@ struct MpiRunOptions {
   /// as `drumlab run --h5` writes it.
   std::string h5;
   std::uint64_t every = 0;
+  /// Gather checkpoints and series on rank 0 and write them there with the serial writer instead
+  /// of every rank writing its share (parallel HDF5): for file systems without working MPI-IO.
+  bool gather_output = false;
 };
 
 struct MpiRunSummary {
@@ -42,8 +46,10 @@ struct MpiRunSummary {
   double comm_share_max = 0.0;  ///< largest share of a rank's time inside MPI
   double comm_share_mean = 0.0;
   std::uint64_t exchanges = 0, rebalances = 0;
-  std::uint64_t ghosts_new = 0, ghosts_kept = 0;  ///< ghost records at exchanges, all ranks
-  std::string search_reason;                      ///< auto's reason, if it chose
+  std::uint64_t ghosts_new = 0, ghosts_kept = 0;         ///< ghost records at exchanges, all ranks
+  std::uint64_t checkpoints = 0, frames = 0;             ///< written
+  double checkpoint_seconds = 0.0, frame_seconds = 0.0;  ///< writing them, slowest rank
+  std::string search_reason;                             ///< auto's reason, if it chose
 };
 
 /// Runs the scene; throws InputError / UnstableError as `drumlab run` does (on every rank).

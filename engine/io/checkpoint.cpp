@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "engine/io/checkpoint_layout.hpp"
 #include "engine/io/h5_file.hpp"
 
 namespace drumlab {
@@ -10,27 +11,27 @@ namespace {
 constexpr const char* kFormat = "drumlab-checkpoint";
 constexpr std::uint64_t kVersion = 1;
 
-void write_particles(hid_t file, const Particles& p) {
+void write_particles(hid_t file, const Particles& p, const h5::Rows& rows) {
   h5::Handle g = h5::create_group(file, "particles");
   const std::size_t n = p.size();
-  h5::write_vec3(g.get(), "position", p.position);
-  h5::write_vec3(g.get(), "velocity", p.velocity);
-  h5::write_vec3(g.get(), "omega", p.omega);
-  h5::write_vec3(g.get(), "force", p.force);
-  h5::write_vec3(g.get(), "torque", p.torque);
-  h5::write(g.get(), "radius", p.radius, {n});
-  h5::write(g.get(), "mass", p.mass, {n});
-  h5::write(g.get(), "inv_mass", p.inv_mass, {n});
-  h5::write(g.get(), "inv_inertia", p.inv_inertia, {n});
-  h5::write(g.get(), "size_class", std::span<const std::uint8_t>(p.size_class));
-  h5::write(g.get(), "id", std::span<const std::uint32_t>(p.id));
+  h5::write_vec3(g.get(), "position", p.position, rows);
+  h5::write_vec3(g.get(), "velocity", p.velocity, rows);
+  h5::write_vec3(g.get(), "omega", p.omega, rows);
+  h5::write_vec3(g.get(), "force", p.force, rows);
+  h5::write_vec3(g.get(), "torque", p.torque, rows);
+  h5::write(g.get(), "radius", p.radius, {n}, rows);
+  h5::write(g.get(), "mass", p.mass, {n}, rows);
+  h5::write(g.get(), "inv_mass", p.inv_mass, {n}, rows);
+  h5::write(g.get(), "inv_inertia", p.inv_inertia, {n}, rows);
+  h5::write(g.get(), "size_class", std::span<const std::uint8_t>(p.size_class), rows);
+  h5::write(g.get(), "id", std::span<const std::uint32_t>(p.id), rows);
   // The registered extra arrays (Particles::extra), by name; a dry scene has none and writes
   // nothing more, so its checkpoint is the one from before.
   if (p.extra.empty()) return;
   std::string names;
   for (const ParticleArray& a : p.extra) {
     names += (names.empty() ? "" : ",") + a.name;
-    h5::write(g.get(), "extra_" + a.name, a.values, {n});
+    h5::write(g.get(), "extra_" + a.name, a.values, {n}, rows);
     h5::write_attribute(g.get(), "extra_initial_" + a.name, a.initial);
   }
   h5::write_attribute(g.get(), "extra_arrays", names);
@@ -68,21 +69,22 @@ Particles read_particles(hid_t file) {
 
 static_assert(sizeof(std::array<Vec3, kWallParts>) == 3 * kWallParts * sizeof(double));
 
-void write_contacts(hid_t file, const SimulationState& s) {
+void write_contacts(hid_t file, const SimulationState& s, const CheckpointRows& rows) {
   h5::Handle g = h5::create_group(file, "contacts");
-  std::vector<std::uint64_t> rows(s.contact_row_start.begin(), s.contact_row_start.end());
-  h5::write(g.get(), "row_start", std::span<const std::uint64_t>(rows));
-  h5::write(g.get(), "col", std::span<const std::uint32_t>(s.contact_col));
-  h5::write_vec3(g.get(), "history", s.contact_history);
+  std::vector<std::uint64_t> starts(s.contact_row_start.begin(), s.contact_row_start.end());
+  h5::write(g.get(), "row_start", std::span<const std::uint64_t>(starts), rows.row_start);
+  h5::write(g.get(), "col", std::span<const std::uint32_t>(s.contact_col), rows.records);
+  h5::write_vec3(g.get(), "history", s.contact_history, rows.records);
   // The law parts' per-contact scalars, only if the law keeps any (a dry checkpoint is unchanged).
   if (s.contact_state_size > 0) {
     h5::write_attribute(g.get(), "state_size", std::uint64_t{s.contact_state_size});
-    h5::write(g.get(), "state", s.contact_state, {s.contact_col.size(), s.contact_state_size});
+    h5::write(g.get(), "state", s.contact_state, {s.contact_col.size(), s.contact_state_size},
+              rows.records);
   }
   h5::Handle w = h5::create_group(file, "walls");
   const double* raw = s.wall_history.empty() ? nullptr : s.wall_history.front().front().data();
   h5::write(w.get(), "history", std::span<const double>(raw, 9 * s.wall_history.size()),
-            {s.wall_history.size(), kWallParts, 3});
+            {s.wall_history.size(), kWallParts, 3}, rows.particles);
 }
 
 void read_contacts(hid_t file, SimulationState& s) {
@@ -110,20 +112,25 @@ void read_contacts(hid_t file, SimulationState& s) {
 
 }  // namespace
 
+void write_checkpoint_datasets(hid_t f, const SimulationState& state, const std::string& scene_name,
+                               const CheckpointRows& rows) {
+  h5::write_attribute(f, "format", std::string(kFormat));
+  h5::write_attribute(f, "version", kVersion);
+  h5::write_attribute(f, "scene", scene_name);
+  h5::write_attribute(f, "search_method", state.search_method);
+  h5::write_attribute(f, "time", state.time);
+  h5::write_attribute(f, "dt", state.dt);
+  h5::write_attribute(f, "drum_omega", state.drum_omega);
+  h5::write_attribute(f, "drum_angle", state.drum_angle);
+  h5::write_attribute(f, "steps", state.steps);
+  write_particles(f, state.particles, rows.particles);
+  write_contacts(f, state, rows);
+}
+
 void write_checkpoint(const std::filesystem::path& file, const SimulationState& state,
                       const std::string& scene_name) {
   h5::Handle f = h5::create_memory_file(file.string());
-  h5::write_attribute(f.get(), "format", std::string(kFormat));
-  h5::write_attribute(f.get(), "version", kVersion);
-  h5::write_attribute(f.get(), "scene", scene_name);
-  h5::write_attribute(f.get(), "search_method", state.search_method);
-  h5::write_attribute(f.get(), "time", state.time);
-  h5::write_attribute(f.get(), "dt", state.dt);
-  h5::write_attribute(f.get(), "drum_omega", state.drum_omega);
-  h5::write_attribute(f.get(), "drum_angle", state.drum_angle);
-  h5::write_attribute(f.get(), "steps", state.steps);
-  write_particles(f.get(), state.particles);
-  write_contacts(f.get(), state);
+  write_checkpoint_datasets(f.get(), state, scene_name);
   h5::save_memory_file(f, file);
 }
 

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <fstream>
 #include <system_error>
 
@@ -10,7 +11,6 @@
 #include "engine/io/atomic_file.hpp"
 
 namespace drumlab::h5 {
-namespace {
 
 /// Switches off HDF5's automatic error printing once; our messages say what failed. First of all
 /// (before HDF5 initializes) it asks HDF5 not to close its files at exit: Debian's HDF5 1.10
@@ -24,6 +24,19 @@ void quiet() {
   }();
   (void)done;
 }
+
+hsize_t Rows::count() const {
+  hsize_t n = 0;
+  for (const auto& r : runs) n += r[1];
+  return n;
+}
+
+const Rows& all_rows() {
+  static const Rows all;
+  return all;
+}
+
+namespace {
 
 std::string file_of(hid_t loc) {
   char buf[1024] = {0};
@@ -41,19 +54,52 @@ hsize_t product(const std::vector<hsize_t>& dims) {
   return n;
 }
 
+/// A parallel writer's check that every rank got here with ok (serial: ok itself).
+bool agreed(const Rows& rows, bool ok) {
+  return rows.agree ? rows.agree(ok) : ok;
+}
+
+/// Selects `rows`' runs (whole rows) in the file space and a memory space of their count.
+bool select_rows(hid_t file_space, hid_t mem_space, const Rows& rows, std::size_t rank,
+                 const std::vector<hsize_t>& dims) {
+  if (rows.runs.empty()) return H5Sselect_none(file_space) >= 0 && H5Sselect_none(mem_space) >= 0;
+  std::vector<hsize_t> start(rank, 0), count = dims;
+  bool ok = true;
+  for (std::size_t k = 0; k < rows.runs.size(); ++k) {
+    start[0] = rows.runs[k][0];
+    count[0] = rows.runs[k][1];
+    ok = ok && H5Sselect_hyperslab(file_space, k == 0 ? H5S_SELECT_SET : H5S_SELECT_OR,
+                                   start.data(), nullptr, count.data(), nullptr) >= 0;
+  }
+  return ok;
+}
+
+/// Writes dataset `name`: all of it (serial), or this rank's rows of it (parallel, collective).
 void write_raw(hid_t loc, const std::string& name, hid_t file_type, hid_t mem_type,
-               const void* data, const std::vector<hsize_t>& dims) {
+               const void* data, std::vector<hsize_t> dims, const Rows& rows) {
+  const std::vector<hsize_t> local = dims;
+  if (!rows.all) dims[0] = rows.total;
+  if (!rows.all && rows.count() != local[0]) fail(loc, name, "row selection does not match");
   Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
-  if (space.get() < 0) fail(loc, name, "cannot create dataspace for");
   Handle set(
       H5Dcreate2(loc, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
       H5Dclose);
-  if (set.get() < 0) fail(loc, name, "cannot create dataset");
+  if (!agreed(rows, space.get() >= 0 && set.get() >= 0)) fail(loc, name, "cannot create dataset");
   static const double dummy = 0.0;  // HDF5 wants a buffer even for zero elements
-  if (H5Dwrite(set.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data ? data : &dummy) < 0) {
-    fail(loc, name, "cannot write dataset (disk full?)");
+  bool ok = true;
+  if (rows.all) {
+    ok = H5Dwrite(set.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data ? data : &dummy) >= 0;
+  } else {
+    std::vector<hsize_t> mem_dims = local;
+    mem_dims[0] = std::max<hsize_t>(local[0], 1);  // a selection of none in a space of one row
+    Handle mem(H5Screate_simple(static_cast<int>(dims.size()), mem_dims.data(), nullptr), H5Sclose);
+    Handle file_space(H5Dget_space(set.get()), H5Sclose);
+    ok = select_rows(file_space.get(), mem.get(), rows, dims.size(), local) &&
+         H5Dwrite(set.get(), mem_type, mem.get(), file_space.get(), rows.transfer,
+                  data && local[0] > 0 ? data : &dummy) >= 0;
   }
-  if (!set.reset()) fail(loc, name, "cannot close dataset");
+  const bool closed = set.reset();
+  if (!agreed(rows, ok && closed)) fail(loc, name, "cannot write dataset (disk full?)");
 }
 
 template <class T>
@@ -242,27 +288,30 @@ std::size_t element_count(hid_t loc, const std::string& name) {
 }
 
 void write(hid_t loc, const std::string& name, std::span<const double> data,
-           std::vector<hsize_t> dims) {
+           std::vector<hsize_t> dims, const Rows& rows) {
   if (product(dims) != data.size()) fail(loc, name, "shape does not match data for");
-  write_raw(loc, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, data.data(), dims);
+  write_raw(loc, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, data.data(), std::move(dims), rows);
 }
 
-void write(hid_t loc, const std::string& name, std::span<const std::uint64_t> data) {
-  write_raw(loc, name, H5T_STD_U64LE, H5T_NATIVE_UINT64, data.data(), {data.size()});
+void write(hid_t loc, const std::string& name, std::span<const std::uint64_t> data,
+           const Rows& rows) {
+  write_raw(loc, name, H5T_STD_U64LE, H5T_NATIVE_UINT64, data.data(), {data.size()}, rows);
 }
 
-void write(hid_t loc, const std::string& name, std::span<const std::uint32_t> data) {
-  write_raw(loc, name, H5T_STD_U32LE, H5T_NATIVE_UINT32, data.data(), {data.size()});
+void write(hid_t loc, const std::string& name, std::span<const std::uint32_t> data,
+           const Rows& rows) {
+  write_raw(loc, name, H5T_STD_U32LE, H5T_NATIVE_UINT32, data.data(), {data.size()}, rows);
 }
 
-void write(hid_t loc, const std::string& name, std::span<const std::uint8_t> data) {
-  write_raw(loc, name, H5T_STD_U8LE, H5T_NATIVE_UINT8, data.data(), {data.size()});
+void write(hid_t loc, const std::string& name, std::span<const std::uint8_t> data,
+           const Rows& rows) {
+  write_raw(loc, name, H5T_STD_U8LE, H5T_NATIVE_UINT8, data.data(), {data.size()}, rows);
 }
 
-void write_vec3(hid_t loc, const std::string& name, std::span<const Vec3> data) {
+void write_vec3(hid_t loc, const std::string& name, std::span<const Vec3> data, const Rows& rows) {
   static_assert(sizeof(Vec3) == 3 * sizeof(double));
   const double* raw = data.empty() ? nullptr : data.front().data();
-  write(loc, name, std::span<const double>(raw, 3 * data.size()), {data.size(), 3});
+  write(loc, name, std::span<const double>(raw, 3 * data.size()), {data.size(), 3}, rows);
 }
 
 namespace {
@@ -281,20 +330,24 @@ Handle create_growing(hid_t loc, const std::string& name, hid_t file_type) {
   return set;
 }
 
-void append_raw(hid_t set, hid_t mem_type, const void* value) {
+void append_raw(hid_t set, hid_t mem_type, const void* value, const Rows& rows) {
   Handle space(H5Dget_space(set), H5Sclose);
   hsize_t n = 0;
   if (space.get() < 0 || H5Sget_simple_extent_dims(space.get(), &n, nullptr) != 1) {
     fail(set, "growing dataset", "cannot read the size of");
   }
   const hsize_t grown = n + 1, one = 1;
-  if (H5Dset_extent(set, &grown) < 0) fail(set, "growing dataset", "cannot extend");
+  if (!agreed(rows, H5Dset_extent(set, &grown) >= 0)) fail(set, "growing dataset", "cannot extend");
   Handle file_space(H5Dget_space(set), H5Sclose);
   Handle mem_space(H5Screate_simple(1, &one, nullptr), H5Sclose);
-  if (H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, &n, nullptr, &one, nullptr) < 0 ||
-      H5Dwrite(set, mem_type, mem_space.get(), file_space.get(), H5P_DEFAULT, value) < 0) {
-    fail(set, "growing dataset", "cannot write (disk full?)");
-  }
+  const bool writes = rows.all || !rows.runs.empty();
+  const bool selected =
+      writes
+          ? H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, &n, nullptr, &one, nullptr) >= 0
+          : H5Sselect_none(file_space.get()) >= 0 && H5Sselect_none(mem_space.get()) >= 0;
+  const bool ok = selected && H5Dwrite(set, mem_type, mem_space.get(), file_space.get(),
+                                       rows.transfer, value) >= 0;
+  if (!agreed(rows, ok)) fail(set, "growing dataset", "cannot write (disk full?)");
 }
 
 }  // namespace
@@ -305,11 +358,11 @@ Handle create_growing_doubles(hid_t loc, const std::string& name) {
 Handle create_growing_u64(hid_t loc, const std::string& name) {
   return create_growing(loc, name, H5T_STD_U64LE);
 }
-void append(hid_t set, double value) {
-  append_raw(set, H5T_NATIVE_DOUBLE, &value);
+void append(hid_t set, double value, const Rows& rows) {
+  append_raw(set, H5T_NATIVE_DOUBLE, &value, rows);
 }
-void append(hid_t set, std::uint64_t value) {
-  append_raw(set, H5T_NATIVE_UINT64, &value);
+void append(hid_t set, std::uint64_t value, const Rows& rows) {
+  append_raw(set, H5T_NATIVE_UINT64, &value, rows);
 }
 
 std::vector<double> read_doubles(hid_t loc, const std::string& name, std::size_t expected) {

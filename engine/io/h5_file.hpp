@@ -5,8 +5,10 @@
 // off.
 #include <hdf5.h>
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -33,6 +35,27 @@ class Handle {
   hid_t id_ = H5I_INVALID_HID;
   herr_t (*closer_)(hid_t) = nullptr;
 };
+
+/// Which rows (first dimension) of a dataset this process writes. Serial (the default): all of
+/// them, from data that holds the whole dataset. Parallel (one file that every MPI rank writes its
+/// share of, engine/io/mpi/): the dataset has `total` rows and this process writes the rows of
+/// `runs` ((first row, count), increasing) from data that holds those rows in that order, with
+/// the transfer list `transfer` (collective MPI-IO); `agree(ok)` returns whether every rank
+/// succeeded, so that a failure on one rank throws on all of them alike.
+struct Rows {
+  bool all = true;
+  hsize_t total = 0;
+  std::vector<std::array<hsize_t, 2>> runs;
+  hid_t transfer = H5P_DEFAULT;
+  std::function<bool(bool)> agree;
+  /// Rows this process writes.
+  hsize_t count() const;
+};
+/// All rows (serial).
+const Rows& all_rows();
+
+/// Switches off HDF5's error printing and its exit handler (once); every create/open calls it.
+void quiet();
 
 /// Creates an HDF5 file in memory (core driver, no backing store); `label` names it in messages.
 /// Checkpoints are built in memory and saved with save_memory_file (temporary name, rename).
@@ -68,19 +91,25 @@ bool exists(hid_t loc, const std::string& name);
 std::size_t element_count(hid_t loc, const std::string& name);
 
 /// Writes a dataset of shape dims (row-major). data.size() must equal the product of dims.
+/// With `rows` (a parallel writer's share), dims[0] is the number of rows this process writes.
 void write(hid_t loc, const std::string& name, std::span<const double> data,
-           std::vector<hsize_t> dims);
-void write(hid_t loc, const std::string& name, std::span<const std::uint64_t> data);
-void write(hid_t loc, const std::string& name, std::span<const std::uint32_t> data);
-void write(hid_t loc, const std::string& name, std::span<const std::uint8_t> data);
-void write_vec3(hid_t loc, const std::string& name, std::span<const Vec3> data);
+           std::vector<hsize_t> dims, const Rows& rows = all_rows());
+void write(hid_t loc, const std::string& name, std::span<const std::uint64_t> data,
+           const Rows& rows = all_rows());
+void write(hid_t loc, const std::string& name, std::span<const std::uint32_t> data,
+           const Rows& rows = all_rows());
+void write(hid_t loc, const std::string& name, std::span<const std::uint8_t> data,
+           const Rows& rows = all_rows());
+void write_vec3(hid_t loc, const std::string& name, std::span<const Vec3> data,
+                const Rows& rows = all_rows());
 
 /// A 1D chunked dataset of unlimited length (double or u64 elements) that grows by one value at
-/// a time (append).
+/// a time (append). In a parallel file every rank appends (collective) and the ranks whose
+/// `rows` list any run write the value (the others select none).
 Handle create_growing_doubles(hid_t loc, const std::string& name);
 Handle create_growing_u64(hid_t loc, const std::string& name);
-void append(hid_t set, double value);
-void append(hid_t set, std::uint64_t value);
+void append(hid_t set, double value, const Rows& rows = all_rows());
+void append(hid_t set, std::uint64_t value, const Rows& rows = all_rows());
 
 /// Reads a whole dataset; throws InputError if it is missing, of another element class or its
 /// total size differs from `expected` (unless expected is kAnySize).

@@ -72,15 +72,32 @@ std::string xdmf_frame_grid(const std::string& h5_name, std::size_t k, double ti
 struct H5Series::Impl {
   h5::Handle file;  ///< open only while a frame is written
   bool created = false;
+  Access access;
 };
+
+H5Series::Access H5Series::serial_access() {
+  Access a;
+  a.create = [](const std::filesystem::path& f) { return h5::create_disk_file(f); };
+  a.open = [](const std::filesystem::path& f) { return h5::open_file_rw(f); };
+  a.close = [](h5::Handle& h, const std::filesystem::path& f) {
+    h5::flush(h.get());
+    if (!h.reset()) throw InputError(fmt::format("{}: write failed (disk full?)", f.string()));
+  };
+  return a;
+}
+
+void H5Series::set_rows(h5::Rows rows) {
+  impl_->access.rows = std::move(rows);
+}
 
 std::string h5_frame_group(std::size_t k) {
   return fmt::format("frame_{:06d}", k);
 }
 
-H5Series::H5Series(std::filesystem::path file)
+H5Series::H5Series(std::filesystem::path file, Access access)
     : file_(std::move(file)), impl_(std::make_unique<Impl>()) {
-  h5::check_writable(file_);  // fail before the run, not at its first frame
+  impl_->access = std::move(access);
+  if (impl_->access.root) h5::check_writable(file_);  // fail before the run, not at its first frame
 }
 
 H5Series::~H5Series() = default;
@@ -93,31 +110,31 @@ std::filesystem::path H5Series::xdmf_file() const {
 
 void H5Series::discard() noexcept {
   impl_->file.reset();
-  std::error_code ignored;
-  std::filesystem::remove(file_, ignored);
-  std::filesystem::remove(xdmf_file(), ignored);
+  if (impl_->access.root) {
+    std::error_code ignored;
+    std::filesystem::remove(file_, ignored);
+    std::filesystem::remove(xdmf_file(), ignored);
+  }
   finished_ = true;  // nothing more is written
 }
 
 void H5Series::open_for_writing() {
   if (impl_->created) {
-    impl_->file = h5::open_file_rw(file_);
+    impl_->file = impl_->access.open(file_);
     return;
   }
-  impl_->file = h5::create_disk_file(file_);
+  impl_->file = impl_->access.create(file_);
   h5::create_growing_doubles(impl_->file.get(), "time");
   h5::create_growing_u64(impl_->file.get(), "step");
   impl_->created = true;
 }
 
 void H5Series::close_after_writing() {
-  h5::flush(impl_->file.get());
-  if (!impl_->file.reset()) {
-    throw InputError(fmt::format("{}: write failed (disk full?)", file_.string()));
-  }
+  impl_->access.close(impl_->file, file_);
 }
 
 void H5Series::write_sidecar() const {
+  if (!impl_->access.root) return;
   write_file_atomically(xdmf_file(),
                         [&](std::ostream& out) { out << kXdmfHead << xdmf_grids_ << kXdmfTail; });
 }
@@ -162,24 +179,27 @@ void H5Series::write_frame(const Particles& p, double time, std::uint64_t step,
   try {
     open_for_writing();
     const hid_t f = impl_->file.get();
+    const h5::Rows& rows = impl_->access.rows;
     {
       h5::Handle g = h5::create_group(f, h5_frame_group(times_.size()));
       h5::write_attribute(g.get(), "time", time);
       h5::write_attribute(g.get(), "step", step);
-      h5::write_vec3(g.get(), "position", p.position);
-      h5::write_vec3(g.get(), "velocity", p.velocity);
-      h5::write_vec3(g.get(), "omega", p.omega);
-      h5::write(g.get(), "radius", p.radius, {p.size()});
-      h5::write(g.get(), "id", std::span<const std::uint32_t>(p.id));
-      h5::write(g.get(), "size_class", std::span<const std::uint8_t>(p.size_class));
+      h5::write_vec3(g.get(), "position", p.position, rows);
+      h5::write_vec3(g.get(), "velocity", p.velocity, rows);
+      h5::write_vec3(g.get(), "omega", p.omega, rows);
+      h5::write(g.get(), "radius", p.radius, {p.size()}, rows);
+      h5::write(g.get(), "id", std::span<const std::uint32_t>(p.id), rows);
+      h5::write(g.get(), "size_class", std::span<const std::uint8_t>(p.size_class), rows);
+      if (bonds && !rows.all) throw std::logic_error("H5Series: bonds in a parallel series");
       if (bonds) write_bond_frame(g.get(), p, *bonds);
     }
     // The frame counts once its time is listed; then it goes to disk.
-    h5::append(h5::open_dataset(f, "time").get(), time);
-    h5::append(h5::open_dataset(f, "step").get(), step);
+    h5::append(h5::open_dataset(f, "time").get(), time, impl_->access.scalar);
+    h5::append(h5::open_dataset(f, "step").get(), step, impl_->access.scalar);
     close_after_writing();
+    const std::size_t n = rows.all ? p.size() : rows.total;
     xdmf_grids_ +=
-        xdmf_frame_grid(file_.filename().string(), times_.size(), time, p.size(), bonds != nullptr);
+        xdmf_frame_grid(file_.filename().string(), times_.size(), time, n, bonds != nullptr);
     times_.push_back(time);
     // The sidecar lists every frame of a short series; past kSidecarEveryFrame frames it is
     // rewritten at most every kSidecarInterval of wall time (its size grows with the frames, so

@@ -21,12 +21,14 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "engine/contact/bond.hpp"
+#include "engine/io/h5_file.hpp"
 #include "engine/particles.hpp"
 
 namespace drumlab {
@@ -46,9 +48,25 @@ class H5Series {
   static constexpr std::size_t kSidecarEveryFrame = 200;
   static constexpr std::chrono::milliseconds kSidecarInterval{500};
 
-  /// Checks that `file` can be written (throws InputError if not); the file is created at the
-  /// first frame.
-  explicit H5Series(std::filesystem::path file);
+  /// How the series reaches its file. Serial (the default): this process writes all of it.
+  /// Parallel (engine/io/mpi/h5_series_mpi.hpp): every rank of a decomposed run opens the file
+  /// through MPI-IO (`create`, `open`, `close`, collective) and writes the rows of its particles
+  /// (`rows`, set before each frame by set_rows); `scalar` says who writes the appended /time
+  /// and /step values; the `root` rank alone checks the path, writes the sidecar and removes the
+  /// files after a failed write (which every rank meets alike).
+  struct Access {
+    std::function<h5::Handle(const std::filesystem::path&)> create, open;
+    std::function<void(h5::Handle&, const std::filesystem::path&)> close;
+    h5::Rows rows, scalar;
+    bool root = true;
+  };
+  static Access serial_access();
+
+  /// Checks that `file` can be written (throws InputError if not; on the root only); the file is
+  /// created at the first frame.
+  explicit H5Series(std::filesystem::path file, Access access = serial_access());
+  /// The rows of the next frame's particles in a parallel series (see Access).
+  void set_rows(h5::Rows rows);
   /// An unfinished series keeps its complete frames (no `complete` attribute).
   ~H5Series();
   H5Series(const H5Series&) = delete;

@@ -6,9 +6,13 @@
 // layout, engine/io/checkpoint.hpp).
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "engine/io/h5_file.hpp"
 #include "engine/io/h5_series.hpp"
 #include "engine/periodic.hpp"
 #include "tests/mpi/mpi_runner.hpp"
@@ -18,6 +22,13 @@
 
 namespace drumlab::test {
 namespace {
+
+std::string read_text(const std::string& file) {
+  std::ifstream in(file);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
 
 /// 700 particles (two of the pair loop's blocks of 512 rows), settling 0.004 s (41 steps),
 /// re-ordered every 30 steps, a small Verlet skin so that particles migrate often. (Short: ranks
@@ -190,6 +201,12 @@ TEST_F(MpiRun, SeriesIsTheSerialRunsSeriesFrameByFrame) {
     EXPECT_TRUE(same_bits(a.velocity, b.velocity)) << "frame " << k;
     EXPECT_TRUE(same_bits(a.omega, b.omega)) << "frame " << k;
   }
+  // The sidecar rank 0 writes is the serial run's, but for the file name it refers to.
+  std::string xdmf = read_text(dir.file("mpi_series.xdmf"));
+  for (std::size_t at; (at = xdmf.find("mpi_series.h5")) != std::string::npos;) {
+    xdmf.replace(at, 13, "serial_series.h5");
+  }
+  EXPECT_EQ(xdmf, read_text(dir.file("serial_series.xdmf")));
   const Ran convert = shell(std::string(DRUMLAB_CLI) + " convert " + dir.file("mpi_series.h5") +
                             " --vtu " + dir.file("vtu"));
   EXPECT_EQ(convert.exit_code, 0) << convert.output;
@@ -225,6 +242,71 @@ TEST_F(MpiRun, KilledRankStopsEveryRankAndLeavesARestartableCheckpoint) {
   const Ran again = shell(std::string(DRUMLAB_CLI) + " run " + scene + " --threads 1 --steps 10 " +
                           "--restart " + ck);
   EXPECT_EQ(again.exit_code, 0) << again.output;
+}
+
+/// Every dataset and root attribute of two checkpoints, value for value (bits for doubles).
+void expect_same_datasets(const std::string& a, const std::string& b) {
+  const h5::Handle fa = h5::open_file(a), fb = h5::open_file(b);
+  const hid_t x = fa.get(), y = fb.get();
+  constexpr std::size_t any = h5::kAnySize;
+  for (const char* name :
+       {"particles/position", "particles/velocity", "particles/omega", "particles/force",
+        "particles/torque", "particles/radius", "particles/mass", "particles/inv_mass",
+        "particles/inv_inertia", "contacts/history", "walls/history"}) {
+    EXPECT_TRUE(same_bits(h5::read_doubles(x, name, any), h5::read_doubles(y, name, any))) << name;
+  }
+  EXPECT_EQ(h5::read_u32(x, "particles/id", any), h5::read_u32(y, "particles/id", any));
+  EXPECT_EQ(h5::read_u8(x, "particles/size_class", any),
+            h5::read_u8(y, "particles/size_class", any));
+  EXPECT_EQ(h5::read_u64(x, "contacts/row_start", any), h5::read_u64(y, "contacts/row_start", any));
+  EXPECT_EQ(h5::read_u32(x, "contacts/col", any), h5::read_u32(y, "contacts/col", any));
+  EXPECT_GT(h5::element_count(x, "contacts/col"), 200u);  // a bed in contact
+  for (const char* name : {"time", "dt", "drum_omega", "drum_angle"}) {
+    EXPECT_TRUE(same_bits(h5::read_double_attribute(x, name), h5::read_double_attribute(y, name)))
+        << name;
+  }
+  EXPECT_EQ(h5::read_u64_attribute(x, "steps"), h5::read_u64_attribute(y, "steps"));
+  for (const char* name : {"format", "scene", "search_method"}) {
+    EXPECT_EQ(h5::read_string_attribute(x, name), h5::read_string_attribute(y, name)) << name;
+  }
+}
+
+// The checkpoint 3 ranks write in parallel into one file (parallel HDF5, each rank its particles'
+// rows and their contact records) holds the serial run's checkpoint at the same step, dataset for
+// dataset, bit for bit (a cell-grid search: its contact list holds the same pairs however the run
+// is cut; a Verlet list's extra pairs depend on when it was rebuilt), and restarts serially as the
+// uninterrupted run (CheckpointsRestartAcrossRankCounts restarts one from 3 ranks on 2 and 1);
+// --gather-output (gathered on rank 0, the serial writer) writes the same datasets.
+TEST_F(MpiRun, ParallelCheckpointHoldsTheSerialRunsDatasets) {
+  const std::string scene = dir.write("scene.toml", scene_text("m5", "", ""));
+  serial(scene, "--steps 60", "serial.h5");
+  parallel(3, scene, "--steps 60", "mpi.h5");
+  expect_same_datasets(dir.file("serial.h5"), dir.file("mpi.h5"));
+  parallel(2, scene, "--steps 60 --gather-output", "gathered.h5");  // rank 0, serial writer
+  expect_same_datasets(dir.file("serial.h5"), dir.file("gathered.h5"));
+  const SimulationState whole = serial(scene, "--steps 90", "whole.h5");
+  expect_same_state(whole, serial(scene, "--steps 30 --restart " + dir.file("mpi.h5"), "r.h5"),
+                    "3 ranks -> serial");
+}
+
+// A write that fails on one rank only (rank 1, not the one that writes the metadata: a file size
+// limit as a full disk, on that process alone; shared memory off, which the limit would break)
+// stops every rank with exit 2 and one line naming the file, and leaves no checkpoint and no
+// temporary file.
+TEST_F(MpiRun, WriteFailingOnOneRankExitsTwoOnEveryRankAndLeavesNoFile) {
+  const std::string scene = dir.write("scene.toml", scene_text("m5", "", ""));
+  const std::string ck = dir.file("ck.h5");
+  const Ran r = shell(mpirun(2) +
+                      "--mca btl self,tcp sh -c 'if [ $OMPI_COMM_WORLD_RANK = 1 ]; then ulimit -f "
+                      "64; fi; exec " +
+                      DRUMLAB_MPI_CLI + " run " + scene + " --steps 10 --checkpoint " + ck + "'");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("drumlab-mpi: error: " + ck + ": cannot write dataset (disk full?)"),
+            std::string::npos)
+      << r.output;
+  for (const auto& e : std::filesystem::directory_iterator(tmp.path())) {
+    EXPECT_EQ(e.path().filename().string().rfind("ck.h5", 0), std::string::npos) << e.path();
+  }
 }
 
 TEST_F(MpiRun, WetSceneIsRefusedWithOneLine) {
