@@ -63,6 +63,8 @@ class MpiDomain final : public DomainHooks {
   /// The whole state on rank 0, particles in the serial run's order (nothing elsewhere): what a
   /// serial run at this step would export. Collective.
   std::optional<SimulationState> gather(const Simulation& sim);
+  /// This rank's seconds inside MPI so far (distribution, exchanges, reductions).
+  double comm_seconds() const { return comm_.seconds(); }
   /// Owned counts over ranks and this rank's communication time. Collective.
   MpiBalance balance(const Simulation& sim);
 
