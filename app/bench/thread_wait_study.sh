@@ -15,8 +15,9 @@ bin=${1:-build/bin/drumlab}
 steps=${2:-300}
 scene=${3:-scenes/drum_demo.toml}
 cache=${CACHE:-out/bench}
-settings=("DRUMLAB_OMP_DEFAULT=off" "DRUMLAB_OMP_DEFAULT=on" "OMP_WAIT_POLICY=passive"
-  "GOMP_SPINCOUNT=10000" "GOMP_SPINCOUNT=1000" "OMP_WAIT_POLICY=active")
+# SETTINGS="A=1 B=2 ..." replaces the list; REPEATS=R keeps the fastest of R runs per row.
+read -r -a settings <<<"${SETTINGS:-DRUMLAB_OMP_DEFAULT=off DRUMLAB_OMP_DEFAULT=on OMP_WAIT_POLICY=passive GOMP_SPINCOUNT=10000 GOMP_SPINCOUNT=1000 OMP_WAIT_POLICY=active}"
+repeats=${REPEATS:-1}
 busy=()
 stop_busy() { for p in "${busy[@]}"; do kill "$p" 2>/dev/null || true; done; busy=(); }
 trap stop_busy EXIT
@@ -29,7 +30,7 @@ for n in 0 1 2; do
   done
   for s in "${settings[@]}"; do
     out=$(env "$s" "$bin" bench throughput --scene "$scene" --methods verlet:m2 --threads 2 \
-      --steps "$steps" --warmup 20 --repeats 1 --cache "$cache" --out /tmp/thread_wait_study)
+      --steps "$steps" --warmup 20 --repeats "$repeats" --cache "$cache" --out /tmp/thread_wait_study)
     one=$(awk '$1 == "verlet:m2" && $2 == 1 {print $4}' <<<"$out" | tail -1)
     two=$(awk '$1 == "verlet:m2" && $2 == 2 {print $4}' <<<"$out" | tail -1)
     printf '%-6s %-26s %12s %12s %7.2f  %s\n' "$n" "$s" "$one" "$two" \
