@@ -3,6 +3,8 @@
 // a 64-bit FNV-1a hash of the positions, velocities and angular velocities (and the liquid films,
 // if the particles carry them) in id order, and a few particles' values in hexadecimal floating
 // point. Used by the reference tests in tests/validation/ (bit-identical, no tolerance).
+#include <gtest/gtest.h>
+
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -80,6 +82,23 @@ inline bool write_reference(const std::string& file, const std::string& what,
       << "\n";
   for (const auto& [key, value] : now) out << key << " " << value << "\n";
   return out.good();
+}
+
+/// The test's verdict on `now` against the reference in `file`: each stored key equal (no
+/// tolerance). With DRUMLAB_WRITE_REFERENCE set, writes `now` there instead (header `what`) and
+/// skips. Call it last in a test.
+inline void expect_reference(const std::string& file, const std::string& what,
+                             const std::map<std::string, std::string>& now) {
+  if (std::getenv("DRUMLAB_WRITE_REFERENCE") != nullptr) {
+    ASSERT_TRUE(write_reference(file, what, now)) << "cannot write " << file;
+    GTEST_SKIP() << "reference written to " << file;
+  }
+  const auto expected = read_reference(file);
+  ASSERT_FALSE(expected.empty()) << "no reference at " << file;
+  for (const auto& [key, value] : expected) {
+    ASSERT_TRUE(now.count(key)) << key;
+    EXPECT_EQ(now.at(key), value) << key << " differs from the reference";
+  }
 }
 
 }  // namespace drumlab::test

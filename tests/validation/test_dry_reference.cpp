@@ -13,7 +13,6 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
-#include <cstdlib>
 #include <string>
 
 #include "engine/fill/random_fill.hpp"
@@ -38,22 +37,11 @@ TEST(DryReference, DemoDrumTrajectoryIsBitIdenticalToTheStoredReference) {
   const SceneConfig scene = load_scene(std::string(DRUMLAB_SCENES_DIR) + "/drum_demo.toml");
   Simulation sim(scene, random_fill(scene));
   sim.advance(kSteps);
-  const auto now = test::fingerprint(sim.particles(), kSampleCount);
-  if (std::getenv("DRUMLAB_WRITE_REFERENCE") != nullptr) {
-    ASSERT_TRUE(test::write_reference(reference_path(),
-                                      "tests/validation/test_dry_reference.cpp: "
-                                      "scenes/drum_demo.toml, random fill, " +
-                                          std::to_string(kSteps) + " steps, drum turning",
-                                      now))
-        << "cannot write " << reference_path();
-    GTEST_SKIP() << "reference written to " << reference_path();
-  }
-  const auto expected = test::read_reference(reference_path());
-  ASSERT_FALSE(expected.empty()) << "no reference at " << reference_path();
-  for (const auto& [key, value] : expected) {
-    ASSERT_TRUE(now.count(key)) << key;
-    EXPECT_EQ(now.at(key), value) << key << " differs from the reference";
-  }
+  test::expect_reference(
+      reference_path(),
+      "tests/validation/test_dry_reference.cpp: scenes/drum_demo.toml, random fill, " +
+          std::to_string(kSteps) + " steps, drum turning",
+      test::fingerprint(sim.particles(), kSampleCount));
 }
 
 }  // namespace

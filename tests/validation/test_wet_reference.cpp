@@ -9,7 +9,6 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
-#include <cstdlib>
 #include <string>
 
 #include "engine/fill/random_fill.hpp"
@@ -36,22 +35,11 @@ TEST(WetReference, GranulationDrumTrajectoryIsBitIdenticalToTheStoredReference) 
   sim.advance(kSteps);
   ASSERT_GT(sim.liquid().bridge_count, 50u);
   ASSERT_GT(sim.liquid().wall_bridge_count, 0u);
-  const auto now = test::fingerprint(sim.particles(), kSampleCount);
-  if (std::getenv("DRUMLAB_WRITE_REFERENCE") != nullptr) {
-    ASSERT_TRUE(test::write_reference(reference_path(),
-                                      "tests/validation/test_wet_reference.cpp: "
-                                      "scenes/granulation_small.toml, random fill, " +
-                                          std::to_string(kSteps) + " steps, drum turning",
-                                      now))
-        << "cannot write " << reference_path();
-    GTEST_SKIP() << "reference written to " << reference_path();
-  }
-  const auto expected = test::read_reference(reference_path());
-  ASSERT_FALSE(expected.empty()) << "no reference at " << reference_path();
-  for (const auto& [key, value] : expected) {
-    ASSERT_TRUE(now.count(key)) << key;
-    EXPECT_EQ(now.at(key), value) << key << " differs from the reference";
-  }
+  test::expect_reference(
+      reference_path(),
+      "tests/validation/test_wet_reference.cpp: scenes/granulation_small.toml, random fill, " +
+          std::to_string(kSteps) + " steps, drum turning",
+      test::fingerprint(sim.particles(), kSampleCount));
 }
 
 }  // namespace
