@@ -9,9 +9,9 @@
 //
 // What the batch decides for each pair (the scene's bridge alone: no viscous term, no sjkr):
 //   event:  the bridge may rupture (its gap is within 1e-6 of s_rup or beyond, as
-//           BridgeLiquid::ruptured's first two tests say) or a pair without one touches (it forms):
-//           the films change, pass 2 does it in the serial order and settles the borderline ones
-//           exactly (a live bridge that turns out not to rupture gets there the same force);
+//           BridgeLiquid::ruptured's first two tests say; the caller settles these few with
+//           ruptured() itself, from `gaps`) or a pair without one touches (it forms): the films
+//           change, pass 2 does it in the serial order;
 //   live:   the bridge holds: its force, attractive along the line of centres;
 //   else:   nothing acts.
 #include <algorithm>
@@ -41,6 +41,7 @@ struct BridgeBatch {
   alignas(64) double r_j[kSize];
   alignas(64) double volume[kSize];  ///< the bridge's volume (0: none)
   Lanes3<kSize> force;               ///< after evaluate: the force on j of a live bridge
+  alignas(64) double gaps[kSize];    ///< after evaluate: the surface gap
   alignas(64) double kind[kSize];
   alignas(64) double xx[kSize];  ///< scratch of evaluate
   alignas(64) double yy[kSize];
@@ -89,6 +90,7 @@ struct BridgeBatch {
       const double s = std::max(gap, 0.0) * std::sqrt(r_eff / (live ? v : 1.0));
       const double pull = liquid.touching_force(r_eff) / (1.0 + (1.05 + 2.5 * s) * s);
       force.set(l, (pull / dist) * dl);
+      gaps[l] = gap;
       const double held = live ? kLive : kNothing;
       kind[l] = event ? kEvent : held;
     }

@@ -170,7 +170,10 @@ bool bridge_event(const CohesiveParts& parts, const double* state, double gap) {
     batch.evaluate(bridge.pair);
     for (std::size_t l = 0; l < batch.count; ++l) {
       if (batch.kind[l] == BridgeBatch::kNothing) continue;
-      const bool event = batch.kind[l] == BridgeBatch::kEvent;
+      bool event = batch.kind[l] == BridgeBatch::kEvent;
+      if (event && batch.volume[l] > 0.0) {
+        event = bridge.pair.ruptured(batch.gaps[l], batch.volume[l]);  // within 1e-6 of s_rup
+      }
       if (!event) state[batch.k[l] * stride + bo + 1] += dt;  // the bridge ages
       out[n++] = {batch.i[l], batch.j[l], batch.k[l], event ? 1u : 0u,
                   event ? Vec3::Zero() : batch.force.vec3(l)};
