@@ -1,11 +1,11 @@
 // drumlab-mpi on wet and cohesive scenes against drumlab run: a small drum with liquid migration,
 // wall bridges, a viscous term and half its liquid seeded in bridges at the start, on 1, 2 and 3
-// ranks, and one with sjkr adhesion on 2 and 3 ranks, give the serial run's state bit for bit
-// (positions, velocities, forces, films, wall bridges, every touching or bridged pair with its
-// history and its state), with the scene's liquid conserved to round-off; a wet checkpoint written
-// on 3 ranks (periodic ends, grid search m5) continues on 2 as the uninterrupted run. The bridge
-// events cross ranks every step (engine/parallel/bridge_events.hpp), so the films agree only if
-// every rank replays them in the serial order.
+// ranks (and 2 ranks x 2 threads), and one with sjkr adhesion on 2 and 3 ranks, give the serial
+// run's state bit for bit (positions, velocities, forces, films, wall bridges, every touching or
+// bridged pair with its history and its state), with the scene's liquid conserved to round-off; a
+// wet checkpoint written on 3 ranks (periodic ends, grid search m5) continues on 2 as the
+// uninterrupted run. The bridge events cross ranks every step (engine/parallel/bridge_events.hpp),
+// so the films agree only if every rank replays them in the serial order.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -159,6 +159,12 @@ TEST_F(MpiWet, LiquidMigrationIsBitIdenticalOnOneToThreeRanks) {
       EXPECT_NE(last_output.find("bridge events"), std::string::npos) << last_output;
     }
   }
+}
+
+TEST_F(MpiWet, LiquidMigrationOnTwoRanksTimesTwoThreadsIsBitIdentical) {
+  const std::string scene = dir.write("wet.toml", scene_text(wet_law()));
+  const SimulationState want = serial(scene, "--steps 60", "serial.h5");
+  expect_same_state(want, parallel(2, scene, "--steps 60", "mpi.h5", 2), "2 ranks x 2 threads");
 }
 
 TEST_F(MpiWet, AdhesionIsBitIdenticalOnTwoAndThreeRanks) {
