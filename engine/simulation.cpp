@@ -188,7 +188,7 @@ void Simulation::bonds(std::vector<Bond>& out) const {
 }
 
 LiquidTotals Simulation::liquid() const {
-  return liquid_totals(impl_->model.cohesive_parts(), particles_, impl_->contacts);
+  return liquid_totals(impl_->model.cohesive_parts(), particles_, impl_->contacts, ghost_);
 }
 
 void Simulation::register_liquid_arrays(bool fresh) {
@@ -523,6 +523,11 @@ void Simulation::replace_local(SimulationState state, std::vector<std::uint8_t> 
   impl_->walls.invalidate();
   impl_->moved = std::numeric_limits<double>::infinity();
   impl_->forces_cleared = false;
+}
+
+void Simulation::set_domain(DomainHooks* domain) {
+  domain_ = domain;
+  impl_->pair_buffers.cohesion.hooks = domain != nullptr ? domain->bridge_events() : nullptr;
 }
 
 void Simulation::set_drum_omega(double omega) {

@@ -91,8 +91,9 @@ class Simulation {
   void set_drum_omega(double omega);
 
   /// Makes this simulation one rank's part of a decomposed run (engine/parallel/domain_hooks.hpp):
-  /// global decisions through `domain`'s reductions, ghosts refreshed between drift and search.
-  void set_domain(DomainHooks* domain) { domain_ = domain; }
+  /// global decisions through `domain`'s reductions, ghosts refreshed between drift and search,
+  /// the liquid's bridge events through its bridge_events() (parallel/bridge_events.hpp).
+  void set_domain(DomainHooks* domain);
   /// 1 for a ghost (another rank's particle), 0 for an owned one; empty: all owned (serial).
   /// Ghosts are neither integrated nor checked; their forces are computed and discarded.
   const std::vector<std::uint8_t>& ghost_mask() const { return ghost_; }

@@ -67,6 +67,10 @@ void print_summary(const drumlab::mpi::MpiRunSummary& s) {
       100.0 * s.comm_share_mean, 100.0 * s.comm_share_max, s.exchanges, s.rebalances);
   fmt::print("ghosts            at the exchanges {} sent in full (new), {} kept (motion only)\n",
              s.ghosts_new, s.ghosts_kept);
+  if (s.wet && s.ranks > 1) {
+    fmt::print("bridge events     {} (liquid bridges formed or ruptured), replayed on every rank\n",
+               s.bridge_events);
+  }
   const double rate =
       s.turn_seconds > 0 ? static_cast<double>(s.particles * s.turn_steps) / s.turn_seconds : 0.0;
   fmt::print(

@@ -150,10 +150,10 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
   MPI_Comm_size(comm, &ranks);
   set_thread_count(o.threads);
   SceneConfig scene = load_dynamic_scene(o.session.scene_file);
-  if (scene_has_bonds(scene)) {
+  if (scene_has_bonds(scene) && !o.h5.empty()) {
     throw InputError(fmt::format(
-        "{}: drumlab-mpi runs dry scenes only so far ([liquid] and [cohesion] keep per-contact "
-        "state that does not migrate yet); use drumlab run",
+        "{}: drumlab-mpi writes no --h5 series for a scene with [liquid] or [cohesion] yet (its "
+        "frames carry the bond graph); use --checkpoint-every, or drumlab run --h5",
         o.session.scene_file));
   }
   if (!o.h5.empty() && !o.checkpoint.empty() &&
@@ -207,6 +207,8 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
   s.rebalances = b.rebalances;
   s.ghosts_new = b.ghosts_new;
   s.ghosts_kept = b.ghosts_kept;
+  s.wet = scene.liquid.enabled && scene.liquid.migration;
+  s.bridge_events = b.bridge_events;
   s.checkpoints = out.checkpoints;
   s.frames = out.frames;
   s.checkpoint_seconds = domain.max(out.checkpoint_seconds);

@@ -46,7 +46,9 @@ struct MpiRunSummary {
   double comm_share_max = 0.0;  ///< largest share of a rank's time inside MPI
   double comm_share_mean = 0.0;
   std::uint64_t exchanges = 0, rebalances = 0;
-  std::uint64_t ghosts_new = 0, ghosts_kept = 0;         ///< ghost records at exchanges, all ranks
+  std::uint64_t ghosts_new = 0, ghosts_kept = 0;  ///< ghost records at exchanges, all ranks
+  bool wet = false;                 ///< liquid migration: films change at bridge events
+  std::uint64_t bridge_events = 0;  ///< of all ranks, replayed in the serial order (2+ ranks)
   std::uint64_t checkpoints = 0, frames = 0;             ///< written
   double checkpoint_seconds = 0.0, frame_seconds = 0.0;  ///< writing them, slowest rank
   std::string search_reason;                             ///< auto's reason, if it chose

@@ -206,6 +206,28 @@ bool bridge_event(const CohesiveParts& parts, const double* state, double gap) {
   buffers.count[block] = n;
 }
 
+// This step's bridge events, for a decomposed run's hooks: the marked listed pairs and the
+// dropped pairs with a bridge, each with the volume that ruptures (0: a bridge forms).
+void list_bridge_events(const CohesiveParts& parts, const ContactList& contacts, std::size_t blocks,
+                        CohesionBuffers& buffers) {
+  buffers.events.clear();
+  const auto row = contacts.row_start();
+  const auto state = contacts.state();
+  const std::size_t stride = contacts.state_size();
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const CohesionBuffers::Entry* e = &buffers.entries[row[b * kCohesionBlockRows]];
+    for (const CohesionBuffers::Entry* last = e + buffers.count[b]; e != last; ++e) {
+      if (e->event == 0) continue;
+      buffers.events.push_back({e->i, e->j, state[e->k * stride + parts.bridge_offset]});
+    }
+  }
+  const auto dropped = contacts.dropped();
+  for (std::size_t q = 0; q < dropped.size(); ++q) {
+    const double v = contacts.dropped_state()[q * stride + parts.bridge_offset];
+    if (v > 0.0) buffers.events.push_back({dropped[q].i, dropped[q].j, v});
+  }
+}
+
 }  // namespace
 
 WallGap wall_gap(const Drum& drum, WallPart part, const Vec3& x, double r) {
@@ -235,6 +257,14 @@ void cohesion_pair_loop(const CohesiveParts& parts, Particles& p, ContactList& c
     }
   }
   double* film = film_of(parts, p);
+  // A decomposed run: each event below starts from the films the serial pass would give it (every
+  // rank takes part, with or without particles).
+  BridgeEventHooks* hooks =
+      parts.bridge != nullptr && parts.bridge->migration ? buffers.hooks : nullptr;
+  if (hooks != nullptr) {
+    list_bridge_events(parts, contacts, blocks, buffers);
+    hooks->begin(*parts.bridge, buffers.events, film);
+  }
   const auto dropped = contacts.dropped();
   const auto dropped_state = contacts.dropped_state();
   const auto state = contacts.state();
@@ -245,7 +275,10 @@ void cohesion_pair_loop(const CohesiveParts& parts, Particles& p, ContactList& c
     for (; q < dropped.size() && dropped[q] < until; ++q) {
       if (parts.bridge == nullptr) continue;
       double s[LiquidBridge::kStateSize] = {dropped_state[q * stride + parts.bridge_offset], 0.0};
-      if (s[0] > 0.0) rupture(s, film, dropped[q].i, dropped[q].j);
+      if (!(s[0] > 0.0)) continue;
+      if (hooks == nullptr || hooks->before(dropped[q].i, dropped[q].j, film)) {
+        rupture(s, film, dropped[q].i, dropped[q].j);
+      }
     }
   };
   for (std::size_t b = 0; b < blocks; ++b) {
@@ -254,6 +287,7 @@ void cohesion_pair_loop(const CohesiveParts& parts, Particles& p, ContactList& c
       settle_dropped({e->i, e->j});
       Vec3 f = e->force;
       if (e->event != 0) {
+        if (hooks != nullptr && !hooks->before(e->i, e->j, film)) continue;
         const Vec3 d = nearest_image(p.position[e->i], p.position[e->j], period);
         const double dist = d.norm();
         const double pull =
@@ -268,6 +302,7 @@ void cohesion_pair_loop(const CohesiveParts& parts, Particles& p, ContactList& c
   constexpr Index kLast = std::numeric_limits<Index>::max();
   settle_dropped({kLast, kLast});
   contacts.clear_dropped();
+  if (hooks != nullptr) hooks->end(film);
 }
 
 void cohesion_wall_loop(const CohesiveParts& parts, Particles& p, std::span<const Index> candidates,
@@ -437,34 +472,43 @@ void fill_films(const LiquidConfig& liquid, Particles& p, std::vector<double>& r
 }
 
 LiquidTotals liquid_totals(const CohesiveParts& parts, const Particles& p,
-                           const ContactList& contacts) {
+                           const ContactList& contacts, std::span<const std::uint8_t> ghost) {
   LiquidTotals t;
   if (parts.bridge == nullptr) return t;
+  const auto skip = [&](std::size_t i) { return !ghost.empty() && ghost[i] != 0; };
   if (const std::vector<double>* film = p.find_array(kLiquidFilmArray)) {
-    for (double v : *film) t.films += v;
+    for (std::size_t i = 0; i < film->size(); ++i) {
+      if (!skip(i)) t.films += (*film)[i];
+    }
   }
+  const auto row = contacts.row_start();
   const auto state = contacts.state();
   const std::size_t stride = contacts.state_size();
-  for (std::size_t k = 0; k < contacts.size(); ++k) {
-    const double v = state[k * stride + parts.bridge_offset];
-    t.bridges += v;
-    t.bridge_count += v > 0.0;
+  for (std::size_t i = 0; i < contacts.rows(); ++i) {
+    if (skip(i)) continue;
+    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
+      const double v = state[k * stride + parts.bridge_offset];
+      t.bridges += v;
+      t.bridge_count += v > 0.0;
+    }
   }
   for (std::size_t w = 0; w < kWallParts; ++w) {
     const std::vector<double>* v = p.find_array(kWallBridgeVolumeArrays[w]);
     if (v == nullptr) continue;
-    for (double x : *v) t.wall_bridge_count += x > 0.0;
+    for (std::size_t i = 0; i < v->size(); ++i) t.wall_bridge_count += !skip(i) && (*v)[i] > 0.0;
   }
-  t.wall_bridges = wall_bridge_liquid(p);
+  t.wall_bridges = wall_bridge_liquid(p, ghost);
   return t;
 }
 
-double wall_bridge_liquid(const Particles& p) {
+double wall_bridge_liquid(const Particles& p, std::span<const std::uint8_t> ghost) {
   double sum = 0.0;
   for (std::size_t w = 0; w < kWallParts; ++w) {
     const std::vector<double>* v = p.find_array(kWallBridgeVolumeArrays[w]);
     if (v == nullptr) continue;
-    for (double x : *v) sum += x;
+    for (std::size_t i = 0; i < v->size(); ++i) {
+      if (ghost.empty() || ghost[i] == 0) sum += (*v)[i];
+    }
   }
   return sum;
 }

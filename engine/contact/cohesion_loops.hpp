@@ -20,6 +20,7 @@
 #include "engine/contact/liquid_bridge.hpp"
 #include "engine/contact/sjkr_cohesion.hpp"
 #include "engine/drum.hpp"
+#include "engine/parallel/bridge_events.hpp"
 #include "engine/particles.hpp"
 #include "engine/scene/scene_config.hpp"
 
@@ -51,6 +52,10 @@ struct CohesionBuffers {
   /// touch_mark of every listed pair at this step, written by the contact pair loop (which
   /// computes each listed pair's distance anyway) and read by the cohesive pass.
   std::vector<std::uint8_t> mark;
+  /// A decomposed run's ordered pass with liquid migration (engine/parallel/bridge_events.hpp):
+  /// nullptr serially. `events`: its scratch, this step's bridge events.
+  BridgeEventHooks* hooks = nullptr;
+  std::vector<BridgeEventHooks::Event> events;
 };
 
 /// A listed pair's touch mark at squared centre distance dist2, radii summing to sum_r:
@@ -112,10 +117,11 @@ struct LiquidTotals {
   std::size_t wall_bridge_count = 0;
   double total() const { return films + bridges + wall_bridges; }
 };
+/// `ghost` (a decomposed run's mask, empty: none): particles, and pairs in their rows, skipped.
 LiquidTotals liquid_totals(const CohesiveParts& parts, const Particles& p,
-                           const ContactList& contacts);
+                           const ContactList& contacts, std::span<const std::uint8_t> ghost = {});
 /// Liquid held in wall bridges (m^3): the sum of p's kWallBridgeVolumeArrays (0 without them).
-double wall_bridge_liquid(const Particles& p);
+double wall_bridge_liquid(const Particles& p, std::span<const std::uint8_t> ghost = {});
 
 /// Gap (m, negative: overlap) and unit normal (from the wall into the particle) of a sphere
 /// against one wall part, also when apart (Drum::contact reports only overlaps).

@@ -8,6 +8,7 @@
 
 namespace drumlab {
 
+class BridgeEventHooks;
 class Simulation;
 
 class DomainHooks {
@@ -26,6 +27,9 @@ class DomainHooks {
   /// angular velocities from their owners (and migration with a new ghost layer when due).
   /// `moved`: a bound on how far any particle of any rank moved in this drift (m).
   virtual void refresh_ghosts(Simulation& sim, double moved) = 0;
+  /// The ordered pass of the liquid's migration across ranks (parallel/bridge_events.hpp), or
+  /// nullptr where the ranks' own films suffice (one rank).
+  virtual BridgeEventHooks* bridge_events() { return nullptr; }
 };
 
 }  // namespace drumlab

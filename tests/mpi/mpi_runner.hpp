@@ -2,6 +2,8 @@
 // Runs `drumlab run` and `mpirun -np N drumlab-mpi run` on a small scene and reads back their
 // checkpoints, for the mpi tests.
 
+#include <gtest/gtest.h>
+
 #include <string>
 
 #include "engine/io/checkpoint.hpp"
@@ -25,5 +27,49 @@ inline std::string mpirun(int ranks) {
          "OMPI_MCA_mpi_yield_when_idle=1 " +
          launcher + " --oversubscribe -np " + std::to_string(ranks) + " ";
 }
+
+/// A test that runs `drumlab run` and `drumlab-mpi run` in its own temporary directory and reads
+/// back their final checkpoints.
+class MpiCase : public ::testing::Test {
+ protected:
+  TempDir tmp{std::string("mpi-") +
+              ::testing::UnitTest::GetInstance()->current_test_info()->name()};
+  struct Files {
+    const TempDir& d;
+    std::string file(const std::string& name) const { return (d.path() / name).string(); }
+    std::string write(const std::string& name, const std::string& text) const {
+      return d.write(name, text).string();
+    }
+  } dir{tmp};
+  std::string last_output;  ///< of the latest parallel()
+
+  void SetUp() override {
+    if (mpirun(1).empty()) FAIL() << "mpirun not found at configure time (Debian: openmpi-bin)";
+  }
+  SimulationState serial(const std::string& scene, const std::string& args,
+                         const std::string& out) {
+    const Ran r = shell(std::string(DRUMLAB_CLI) + " run " + scene + " --threads 1 " + args +
+                        " --checkpoint " + dir.file(out));
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    return read_checkpoint(dir.file(out)).state;
+  }
+  SimulationState parallel(int ranks, const std::string& scene, const std::string& args,
+                           const std::string& out, int threads = 1) {
+    const std::string t = std::to_string(threads);
+    const Ran r =
+        shell(mpirun(ranks) + "-x OMP_NUM_THREADS=" + t + " " + DRUMLAB_MPI_CLI + " run " + scene +
+              " --threads " + t + " " + args + " --checkpoint " + dir.file(out));
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    if (ranks > 1) {  // particles did migrate
+      EXPECT_EQ(r.output.find(" 0 exchanges"), std::string::npos) << r.output;
+      EXPECT_EQ(r.output.find(", 0 kept (motion only)"), std::string::npos) << r.output;
+    }
+    EXPECT_NE(r.output.find("ranks             " + std::to_string(ranks) + " x " + t),
+              std::string::npos)
+        << r.output;
+    last_output = r.output;
+    return read_checkpoint(dir.file(out)).state;
+  }
+};
 
 }  // namespace drumlab::test

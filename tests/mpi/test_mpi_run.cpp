@@ -94,44 +94,8 @@ void expect_same_state(const SimulationState& a, const SimulationState& b, const
   EXPECT_EQ(a.steps, b.steps);
 }
 
-class MpiRun : public ::testing::Test {
+class MpiRun : public MpiCase {
  protected:
-  TempDir tmp{std::string("mpi-") +
-              ::testing::UnitTest::GetInstance()->current_test_info()->name()};
-  struct Files {
-    const TempDir& d;
-    std::string file(const std::string& name) const { return (d.path() / name).string(); }
-    std::string write(const std::string& name, const std::string& text) const {
-      return d.write(name, text).string();
-    }
-  } dir{tmp};
-
-  void SetUp() override {
-    if (mpirun(1).empty()) FAIL() << "mpirun not found at configure time (Debian: openmpi-bin)";
-  }
-  SimulationState serial(const std::string& scene, const std::string& args,
-                         const std::string& out) {
-    const Ran r = shell(std::string(DRUMLAB_CLI) + " run " + scene + " --threads 1 " + args +
-                        " --checkpoint " + dir.file(out));
-    EXPECT_EQ(r.exit_code, 0) << r.output;
-    return read_checkpoint(dir.file(out)).state;
-  }
-  SimulationState parallel(int ranks, const std::string& scene, const std::string& args,
-                           const std::string& out, int threads = 1) {
-    const std::string t = std::to_string(threads);
-    const Ran r =
-        shell(mpirun(ranks) + "-x OMP_NUM_THREADS=" + t + " " + DRUMLAB_MPI_CLI + " run " + scene +
-              " --threads " + t + " " + args + " --checkpoint " + dir.file(out));
-    EXPECT_EQ(r.exit_code, 0) << r.output;
-    if (ranks > 1) {  // particles did migrate
-      EXPECT_EQ(r.output.find(" 0 exchanges"), std::string::npos) << r.output;
-      EXPECT_EQ(r.output.find(", 0 kept (motion only)"), std::string::npos) << r.output;
-    }
-    EXPECT_NE(r.output.find("ranks             " + std::to_string(ranks) + " x " + t),
-              std::string::npos)
-        << r.output;
-    return read_checkpoint(dir.file(out)).state;
-  }
   void same_on_ranks(const std::string& text, std::initializer_list<int> ranks,
                      double period = 0.0) {
     const std::string scene = dir.write("scene.toml", text);
@@ -307,16 +271,6 @@ TEST_F(MpiRun, WriteFailingOnOneRankExitsTwoOnEveryRankAndLeavesNoFile) {
   for (const auto& e : std::filesystem::directory_iterator(tmp.path())) {
     EXPECT_EQ(e.path().filename().string().rfind("ck.h5", 0), std::string::npos) << e.path();
   }
-}
-
-TEST_F(MpiRun, WetSceneIsRefusedWithOneLine) {
-  SmallDrumText t;
-  t.fill = "count = 50\nsettle_time = 0.0";
-  const std::string scene =
-      dir.write("wet.toml", t.text() + "[liquid]\nbridge_volume = 1e-9\nsurface_tension = 0.07\n");
-  const Ran r = shell(mpirun(2) + DRUMLAB_MPI_CLI + " run " + scene + " --steps 1");
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("dry scenes only"), std::string::npos) << r.output;
 }
 
 }  // namespace

@@ -118,6 +118,11 @@ std::vector<double> MpiComm::all_gather(std::span<const double> mine) {
   return gather_all(mine, MPI_DOUBLE, comm_, size_);
 }
 
+std::vector<std::byte> MpiComm::all_gather(std::span<const std::byte> mine) {
+  Timed t(seconds_);
+  return gather_all(mine, MPI_BYTE, comm_, size_);
+}
+
 std::vector<std::vector<std::byte>> MpiComm::gather(std::span<const std::byte> mine) {
   Timed t(seconds_);
   const int n = static_cast<int>(mine.size());

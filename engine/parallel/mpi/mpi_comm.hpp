@@ -27,6 +27,7 @@ class MpiComm {
   /// Every rank's `mine`, concatenated in rank order, on every rank.
   std::vector<std::uint64_t> all_gather(std::span<const std::uint64_t> mine);
   std::vector<double> all_gather(std::span<const double> mine);
+  std::vector<std::byte> all_gather(std::span<const std::byte> mine);
   /// Every rank's bytes on rank 0, by rank (empty elsewhere).
   std::vector<std::vector<std::byte>> gather(std::span<const std::byte> mine);
   /// Point-to-point doubles: send[q] to q and recv[q].size() doubles from q, for every q with a

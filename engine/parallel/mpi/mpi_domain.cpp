@@ -254,6 +254,7 @@ std::unique_ptr<Simulation> MpiDomain::distribute(const SceneConfig& scene,
   start.contact_state_size = full.contact_state_size;
   auto sim = std::make_unique<Simulation>(scene, std::move(start));
   assemble(*sim, owned, owned_count, ghosts, std::move(records));
+  events_.set_ghosts(&sim->ghost_mask());
   sim->set_domain(this);
   return sim;
 }
@@ -490,6 +491,7 @@ MpiBalance MpiDomain::balance(const Simulation& sim) {
   b.rebalances = rebalances_;
   b.ghosts_new = comm_.sum(ghosts_new_);
   b.ghosts_kept = comm_.sum(ghosts_kept_);
+  b.bridge_events = events_.replayed();
   b.comm_seconds = comm_.seconds();
   return b;
 }

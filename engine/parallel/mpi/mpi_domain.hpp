@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "engine/parallel/domain_hooks.hpp"
+#include "engine/parallel/mpi/mpi_bridge_events.hpp"
 #include "engine/parallel/mpi/mpi_comm.hpp"
 #include "engine/parallel/particle_pack.hpp"
 #include "engine/parallel/rcb.hpp"
@@ -50,7 +51,8 @@ struct MpiBalance {
   std::uint64_t exchanges = 0, rebalances = 0;
   /// Ghost records sent at exchanges over all ranks: in full (new ghosts) and motion only (kept).
   std::uint64_t ghosts_new = 0, ghosts_kept = 0;
-  double comm_seconds = 0.0;  ///< this rank's seconds inside MPI
+  std::uint64_t bridge_events = 0;  ///< liquid bridge events replayed (the same on every rank)
+  double comm_seconds = 0.0;        ///< this rank's seconds inside MPI
 };
 
 class MpiDomain final : public DomainHooks {
@@ -75,6 +77,8 @@ class MpiDomain final : public DomainHooks {
   std::uint64_t sum(std::uint64_t v) override { return comm_.sum(v); }
   void reorder(Simulation& sim) override;
   void refresh_ghosts(Simulation& sim, double moved) override;
+  /// The liquid's ordered pass over all ranks (none on one rank: its films are all its own).
+  BridgeEventHooks* bridge_events() override { return comm_.size() > 1 ? &events_ : nullptr; }
 
   MpiComm& comm() { return comm_; }
   const std::vector<std::uint64_t>& slots() const { return slot_; }
@@ -119,6 +123,7 @@ class MpiDomain final : public DomainHooks {
   std::uint64_t last_balance_ = 0;
   std::uint64_t exchanges_ = 0, rebalances_ = 0;
   std::uint64_t ghosts_new_ = 0, ghosts_kept_ = 0;  ///< this rank's, at exchanges
+  MpiBridgeEvents events_{comm_, slot_};
 };
 
 }  // namespace drumlab

@@ -1,0 +1,205 @@
+// drumlab-mpi on wet and cohesive scenes against drumlab run: a small drum with liquid migration,
+// wall bridges, a viscous term and half its liquid seeded in bridges at the start, on 1, 2 and 3
+// ranks (and 2 ranks x 2 threads), and one with sjkr adhesion on 2 and 3 ranks, give the serial
+// run's state bit for bit (positions, velocities, forces, films, wall bridges, every touching or
+// bridged pair with its history and its state), with the scene's liquid conserved to round-off; a
+// wet checkpoint written on 3 ranks (periodic ends, grid search m5) continues on 2 as the
+// uninterrupted run. The bridge events cross ranks every step (engine/parallel/bridge_events.hpp),
+// so the films agree only if every rank replays them in the serial order.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "engine/periodic.hpp"
+#include "tests/mpi/mpi_runner.hpp"
+#include "tests/same_bits.hpp"
+#include "tests/small_drum_text.hpp"
+
+namespace drumlab::test {
+namespace {
+
+constexpr double kLiquidContent = 0.02;
+
+/// 700 particles (two of the pair loop's blocks of 512 rows) packed by strong gravity in a few
+/// steps, re-ordered every 30 steps, a small Verlet skin so that particles migrate often; `law`:
+/// the [liquid] or [cohesion] table; `ends`: "" (caps) or "periodic".
+std::string scene_text(const std::string& law, const std::string& ends = "") {
+  SmallDrumText t;
+  t.ends = ends;
+  t.search = "verlet:m2";
+  t.omega = "6.0";
+  t.time = "dt_factor = 0.2\nduration = 0.01";
+  t.output = "diagnostics_every = 50";
+  t.depth = "0.1";
+  t.fill = "count = 700\nsettle_time = 0.004\nseed = 3";
+  t.gravity = "[0.0, -150.0, 0.0]";
+  return t.text() + "[performance]\nsort_every = 30\nverlet_skin = 0.1\n" + law;
+}
+
+/// Migration (films), wall bridges (on by default), a viscous term, half the liquid seeded in
+/// the bridges of the first contacts; bridges of at most 2e-9 m^3 rupture beyond ~1.3 mm.
+std::string wet_law() {
+  return "[liquid]\nsurface_tension = 0.072\ncontact_angle_deg = 20\nliquid_content = " +
+         std::to_string(kLiquidContent) +
+         "\nmax_bridge_volume = 2e-9\nfilm_share = 0.5\nviscosity = 0.001\nmin_gap = 1e-5\n";
+}
+
+/// A pair that matters: touching, or with any law state (a bridge, an adhesive contact). A Verlet
+/// list also lists pairs apart within its skin with zero state, depending on when it was rebuilt.
+struct Pair {
+  Index a, b;
+  Vec3 history;
+  std::vector<double> state;
+};
+std::vector<Pair> live_pairs(const SimulationState& s) {
+  std::vector<Pair> out;
+  const Particles& p = s.particles;
+  const std::size_t ss = s.contact_state_size;
+  for (std::size_t i = 0; i + 1 < s.contact_row_start.size(); ++i) {
+    for (std::size_t k = s.contact_row_start[i]; k < s.contact_row_start[i + 1]; ++k) {
+      const Index j = s.contact_col[k];
+      const std::vector<double> st(
+          s.contact_state.begin() + static_cast<std::ptrdiff_t>(k * ss),
+          s.contact_state.begin() + static_cast<std::ptrdiff_t>((k + 1) * ss));
+      const double r = p.radius[i] + p.radius[j];
+      const bool touching = (p.position[i] - p.position[j]).squaredNorm() < r * r;
+      bool state = false;
+      for (const double v : st) state = state || v != 0.0;
+      if (touching || state) out.push_back({p.id[i], p.id[j], s.contact_history[k], st});
+    }
+  }
+  return out;
+}
+
+/// The scene's liquid held in films, pair bridges (state [0] of a liquid-only law) and wall
+/// bridges (m^3), and the number of live pair bridges.
+struct Liquid {
+  double total = 0.0;
+  std::size_t bridges = 0;
+};
+Liquid liquid_held(const SimulationState& s) {
+  Liquid l;
+  for (const ParticleArray& a : s.particles.extra) {
+    if (a.name != "liquid_film" && a.name.rfind("wall_bridge_volume", 0) != 0) continue;
+    for (const double v : a.values) l.total += v;
+  }
+  for (std::size_t k = 0; k < s.contact_col.size(); ++k) {
+    const double v = s.contact_state[k * s.contact_state_size];
+    l.total += v;
+    l.bridges += v > 0.0;
+  }
+  return l;
+}
+
+/// Equal bit for bit: every particle array (films and wall bridges included), the live pairs with
+/// their history and state, the wall history, the clock.
+void expect_same_state(const SimulationState& a, const SimulationState& b,
+                       const std::string& what) {
+  SCOPED_TRACE(what);
+  ASSERT_EQ(a.particles.size(), b.particles.size());
+  EXPECT_EQ(a.particles.id, b.particles.id);
+  EXPECT_TRUE(same_bits(a.particles.position, b.particles.position));
+  EXPECT_TRUE(same_bits(a.particles.velocity, b.particles.velocity));
+  EXPECT_TRUE(same_bits(a.particles.omega, b.particles.omega));
+  EXPECT_TRUE(same_bits(a.particles.force, b.particles.force));
+  EXPECT_TRUE(same_bits(a.particles.torque, b.particles.torque));
+  ASSERT_EQ(a.particles.extra.size(), b.particles.extra.size());
+  for (std::size_t k = 0; k < a.particles.extra.size(); ++k) {
+    EXPECT_EQ(a.particles.extra[k].name, b.particles.extra[k].name);
+    EXPECT_TRUE(same_bits(a.particles.extra[k].values, b.particles.extra[k].values))
+        << a.particles.extra[k].name;
+  }
+  const auto pa = live_pairs(a), pb = live_pairs(b);
+  EXPECT_GT(pa.size(), 200u);  // a bed in contact
+  ASSERT_EQ(pa.size(), pb.size());
+  for (std::size_t k = 0; k < pa.size(); ++k) {
+    EXPECT_TRUE(pa[k].a == pb[k].a && pa[k].b == pb[k].b) << "pair " << k;
+    EXPECT_TRUE(same_bits(std::vector{pa[k].history}, std::vector{pb[k].history})) << k;
+    EXPECT_TRUE(same_bits(pa[k].state, pb[k].state)) << "pair " << k;
+  }
+  EXPECT_TRUE(same_bits(a.wall_history, b.wall_history));
+  EXPECT_TRUE(same_bits(a.time, b.time));
+  EXPECT_EQ(a.steps, b.steps);
+}
+
+/// The liquid the scene gave its particles: liquid_content x each one's solid volume.
+double scene_liquid(const SimulationState& s) {
+  double v = 0.0;
+  for (const double r : s.particles.radius)
+    v += kLiquidContent * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  return v;
+}
+
+class MpiWet : public MpiCase {};
+
+TEST_F(MpiWet, LiquidMigrationIsBitIdenticalOnOneToThreeRanks) {
+  const std::string scene = dir.write("wet.toml", scene_text(wet_law()));
+  const std::string args = "--steps 120 --rebalance-every 50";
+  const SimulationState want = serial(scene, "--steps 120", "serial.h5");
+  ASSERT_EQ(want.contact_state_size, 2u);  // [liquid] alone: bridge volume, age
+  const Liquid held = liquid_held(want);
+  EXPECT_GT(held.bridges, 100u);
+  EXPECT_NEAR(held.total, scene_liquid(want), 1e-12 * scene_liquid(want));
+  double wall = 0.0;  // the wall bridges take part
+  for (const ParticleArray& a : want.particles.extra) {
+    if (a.name.rfind("wall_bridge_volume", 0) == 0) {
+      for (const double v : a.values) wall += v;
+    }
+  }
+  EXPECT_GT(wall, 0.0);
+  for (const int r : {1, 2, 3}) {
+    const SimulationState got = parallel(r, scene, args, "mpi.h5");
+    expect_same_state(want, got, std::to_string(r) + " ranks");
+    EXPECT_NEAR(liquid_held(got).total, scene_liquid(got), 1e-12 * scene_liquid(got));
+    if (r > 1) {  // events were replayed across ranks
+      EXPECT_EQ(last_output.find("bridge events     0 "), std::string::npos) << last_output;
+      EXPECT_NE(last_output.find("bridge events"), std::string::npos) << last_output;
+    }
+  }
+}
+
+TEST_F(MpiWet, LiquidMigrationOnTwoRanksTimesTwoThreadsIsBitIdentical) {
+  const std::string scene = dir.write("wet.toml", scene_text(wet_law()));
+  const SimulationState want = serial(scene, "--steps 60", "serial.h5");
+  expect_same_state(want, parallel(2, scene, "--steps 60", "mpi.h5", 2), "2 ranks x 2 threads");
+}
+
+TEST_F(MpiWet, AdhesionIsBitIdenticalOnTwoAndThreeRanks) {
+  const std::string scene =
+      dir.write("sjkr.toml", scene_text("[cohesion]\nmodel = \"sjkr\"\nenergy_density = 2e5\n"));
+  const SimulationState want = serial(scene, "--steps 120", "serial.h5");
+  for (const int r : {2, 3}) {
+    expect_same_state(want, parallel(r, scene, "--steps 120 --rebalance-every 50", "mpi.h5"),
+                      std::to_string(r) + " ranks");
+  }
+}
+
+// Periodic ends (wall bridges with the mantle only) and a grid search (the contact list is
+// rebuilt every step, so ruptures of dropped pairs happen every step).
+TEST_F(MpiWet, WetCheckpointRestartsFromThreeOnTwoRanks) {
+  const std::string scene = dir.write("wet.toml", scene_text(wet_law(), "periodic"));
+  const SimulationState whole = serial(scene, "--method m5 --steps 120", "whole.h5");
+  parallel(3, scene, "--method m5 --steps 60", "half3.h5");
+  expect_same_state(
+      whole, parallel(2, scene, "--method m5 --steps 60 --restart " + dir.file("half3.h5"), "a.h5"),
+      "3 -> 2 ranks");
+  EXPECT_NEAR(liquid_held(whole).total, scene_liquid(whole), 1e-12 * scene_liquid(whole));
+}
+
+TEST_F(MpiWet, SeriesOfAWetSceneIsRefusedWithOneLine) {
+  SmallDrumText t;
+  t.fill = "count = 50\nsettle_time = 0.0";
+  const std::string scene =
+      dir.write("wet.toml", t.text() + "[liquid]\nbridge_volume = 1e-9\nsurface_tension = 0.07\n");
+  const Ran r =
+      shell(mpirun(2) + DRUMLAB_MPI_CLI + " run " + scene + " --steps 1 --h5 " + dir.file("s.h5"));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("writes no --h5 series for a scene with [liquid]"), std::string::npos)
+      << r.output;
+}
+
+}  // namespace
+}  // namespace drumlab::test
