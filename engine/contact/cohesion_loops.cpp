@@ -6,6 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "engine/contact/bridge_batch.hpp"
 #include "engine/periodic.hpp"
 
 namespace drumlab {
@@ -16,6 +17,13 @@ double* film_of(const CohesiveParts& parts, Particles& p) {
   std::vector<double>* film = p.find_array(kLiquidFilmArray);
   if (film == nullptr) throw std::logic_error("liquid migration without a film array");
   return film->data();
+}
+
+// 1 if a cohesive part may act on a listed pair with touch mark `mark` (touch_mark): touching,
+// or `live` (a bridge or an adhesive contact holds), and with distinct centres.
+[[gnu::always_inline]] inline std::size_t take(std::uint8_t mark, bool live) {
+  const unsigned m = mark;
+  return ((m & kTouchOrEqual) | static_cast<unsigned>(live)) & (m >> 1);
 }
 
 // A bridge between i and j ends: its liquid goes back, half to each film (migration).
@@ -99,8 +107,9 @@ bool bridge_event(const CohesiveParts& parts, const double* state, double gap) {
 
 // Pass 1 of cohesion_pair_loop over the rows of block `block`. Most listed pairs are apart, with
 // no bridge and no adhesive contact: nothing acts (a bridge forms only on contact; sjkr acts only
-// while overlapping). Each chunk of a row is first sifted by a loop without branches (as the pair
-// loop's split_row does), then the few pairs that remain are evaluated, by increasing k.
+// while overlapping). Each chunk of a row is first sifted by a loop without branches on the touch
+// marks the contact pair loop left (no partner is gathered for it), then the pairs that remain
+// are evaluated, by increasing k.
 [[gnu::noinline]] void cohesion_block(const CohesiveParts& parts, Particles& p,
                                       ContactList& contacts, double period, double dt,
                                       std::size_t block, CohesionBuffers& buffers) {
@@ -113,24 +122,21 @@ bool bridge_event(const CohesiveParts& parts, const double* state, double gap) {
   const bool bridges = parts.bridge != nullptr;
   const bool sjkr = parts.sjkr != nullptr;
   const std::size_t bo = parts.bridge_offset, so = parts.sjkr_offset;  // < stride
+  const std::uint8_t* mark = buffers.mark.data();
   const std::size_t begin = block * kCohesionBlockRows;
   const std::size_t end = std::min(contacts.rows(), begin + kCohesionBlockRows);
   CohesionBuffers::Entry* out = &buffers.entries[row[begin]];
   std::size_t n = 0;
   for (std::size_t i = begin; i < end; ++i) {
     const Vec3 x = p.position[i];
-    const double r_i = p.radius[i];
     for (std::size_t k0 = row[i]; k0 < row[i + 1]; k0 += kChunk) {
       const std::size_t k1 = std::min(row[i + 1], k0 + kChunk);
       std::size_t m = 0;
       for (std::size_t k = k0; k < k1; ++k) {
-        const Index j = col[k];
-        const double dist2 = nearest_image(x, p.position[j], period).squaredNorm();
-        const double sum_r = r_i + p.radius[j];
         const double* st = &state[k * stride];
         const bool live = (bridges & (st[bo] > 0.0)) | (sjkr & (st[so] > 0.0));
         sel[m] = static_cast<std::uint32_t>(k - k0);
-        m += static_cast<std::size_t>((!(dist2 > sum_r * sum_r) | live) & (dist2 != 0.0));
+        m += take(mark[k], live);
       }
       for (std::size_t q = 0; q < m; ++q) {
         const std::size_t k = k0 + sel[q];
@@ -140,6 +146,63 @@ bool bridge_event(const CohesiveParts& parts, const double* state, double gap) {
       }
     }
   }
+  buffers.count[block] = n;
+}
+
+// Pass 1 over block `block` for a scene whose only cohesive part is the plain bridge (no viscous
+// term, no sjkr): the same entries as cohesion_block, in the same order, sifted the same way; the
+// pairs that may act (touching, or bridged) are evaluated in a BridgeBatch's SIMD lanes
+// (bridge_batch.hpp).
+[[gnu::noinline]] void bridge_block(const LiquidBridge& bridge, std::size_t bo, Particles& p,
+                                    ContactList& contacts, double period, double dt,
+                                    std::size_t block, CohesionBuffers& buffers) {
+  const auto row = contacts.row_start();
+  const auto col = contacts.col();
+  const auto state = contacts.state();
+  const std::size_t stride = contacts.state_size();
+  const std::size_t begin = block * kCohesionBlockRows;
+  const std::size_t end = std::min(contacts.rows(), begin + kCohesionBlockRows);
+  const std::uint8_t* mark = buffers.mark.data();
+  CohesionBuffers::Entry* out = &buffers.entries[row[begin]];
+  std::size_t n = 0;
+  BridgeBatch batch;
+  const auto flush = [&] {
+    batch.evaluate(bridge.pair);
+    for (std::size_t l = 0; l < batch.count; ++l) {
+      if (batch.kind[l] == BridgeBatch::kNothing) continue;
+      bool event = batch.kind[l] == BridgeBatch::kEvent;
+      if (event && batch.volume[l] > 0.0) {
+        event = bridge.pair.ruptured(batch.gaps[l], batch.volume[l]);  // within 1e-6 of s_rup
+      }
+      if (!event) state[batch.k[l] * stride + bo + 1] += dt;  // the bridge ages
+      out[n++] = {batch.i[l], batch.j[l], batch.k[l], event ? 1u : 0u,
+                  event ? Vec3::Zero() : batch.force.vec3(l)};
+    }
+    batch.count = 0;
+  };
+  constexpr std::size_t kChunk = 64;
+  std::uint32_t sel[kChunk];
+  for (std::size_t i = begin; i < end; ++i) {
+    const Vec3 x = p.position[i];
+    const double r_i = p.radius[i];
+    for (std::size_t k0 = row[i]; k0 < row[i + 1]; k0 += kChunk) {
+      const std::size_t k1 = std::min(row[i + 1], k0 + kChunk);
+      std::size_t m = 0;
+      for (std::size_t k = k0; k < k1; ++k) {
+        sel[m] = static_cast<std::uint32_t>(k - k0);
+        m += take(mark[k], state[k * stride + bo] > 0.0);
+      }
+      for (std::size_t q = 0; q < m; ++q) {
+        const std::size_t k = k0 + sel[q];
+        const Index j = col[k];
+        batch.add(static_cast<Index>(i), j, static_cast<std::uint32_t>(k),
+                  nearest_image(x, p.position[j], period), r_i, p.radius[j],
+                  state[k * stride + bo]);
+        if (batch.full()) flush();
+      }
+    }
+  }
+  flush();
   buffers.count[block] = n;
 }
 
@@ -182,9 +245,16 @@ void cohesion_pair_loop(const CohesiveParts& parts, Particles& p, ContactList& c
   if (buffers.entries.size() < contacts.size()) buffers.entries.resize(contacts.size());
   if (buffers.count.size() < blocks) buffers.count.resize(blocks);
   const auto n = static_cast<std::int64_t>(blocks);
+  const bool plain_bridge =
+      parts.bridge != nullptr && parts.sjkr == nullptr && parts.bridge->viscosity == 0.0;
 #pragma omp parallel for schedule(static)
   for (std::int64_t b = 0; b < n; ++b) {
-    cohesion_block(parts, p, contacts, period, dt, static_cast<std::size_t>(b), buffers);
+    const auto block = static_cast<std::size_t>(b);
+    if (plain_bridge) {
+      bridge_block(*parts.bridge, parts.bridge_offset, p, contacts, period, dt, block, buffers);
+    } else {
+      cohesion_block(parts, p, contacts, period, dt, block, buffers);
+    }
   }
   double* film = film_of(parts, p);
   // A decomposed run: each event below starts from the films the serial pass would give it (every

@@ -49,11 +49,24 @@ struct CohesionBuffers {
   };
   std::vector<Entry> entries;
   std::vector<std::size_t> count;
+  /// touch_mark of every listed pair at this step, written by the contact pair loop (which
+  /// computes each listed pair's distance anyway) and read by the cohesive pass.
+  std::vector<std::uint8_t> mark;
   /// A decomposed run's ordered pass with liquid migration (engine/parallel/bridge_events.hpp):
   /// nullptr serially. `events`: its scratch, this step's bridge events.
   BridgeEventHooks* hooks = nullptr;
   std::vector<BridgeEventHooks::Event> events;
 };
+
+/// A listed pair's touch mark at squared centre distance dist2, radii summing to sum_r:
+/// kTouchOrEqual if |d| <= r_i + r_j (a bridge may form, an sjkr contact acts), kApartCentres if
+/// the centres differ (|d| > 0: the pair has a direction).
+inline constexpr std::uint8_t kTouchOrEqual = 1;
+inline constexpr std::uint8_t kApartCentres = 2;
+[[gnu::always_inline]] inline std::uint8_t touch_mark(double dist2, double sum_r) {
+  return static_cast<std::uint8_t>(static_cast<unsigned>(!(dist2 > sum_r * sum_r)) |
+                                   (static_cast<unsigned>(dist2 != 0.0) << 1));
+}
 inline constexpr std::size_t kCohesionBlockRows = 256;
 
 /// Advances every listed pair's cohesive state by dt (bridges form, age, rupture; films give and
@@ -63,6 +76,8 @@ inline constexpr std::size_t kCohesionBlockRows = 256;
 /// (2) one thread, by increasing (i, j) with the dropped pairs merged in, does the marked pairs'
 /// bridge events (liquid migration) and adds every force. The films and the sums of p.force are
 /// then made in the same order as by one pass over the pairs, for any thread count.
+/// buffers.mark must hold every listed pair's touch_mark at the current positions (the contact
+/// pair loop, ContactModel::add_pair_forces, writes it just before).
 void cohesion_pair_loop(const CohesiveParts& parts, Particles& p, ContactList& contacts,
                         double period, double dt, CohesionBuffers& buffers);
 

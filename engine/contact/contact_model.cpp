@@ -35,11 +35,13 @@ void check_material(const Material& m, const char* what) {
 // the overlapping entries from the front of `sel`, the others from its back, and the force
 // kernel then runs without a mispredicted branch per entry (measured +10 % p-steps/s).
 // `touching` counts the entries within the touching tolerance (what a search with margin 0 finds).
-template <class Overlap, class Apart>
+// kMark (a scene with cohesive parts): also writes each entry's touch mark (cohesion_loops.hpp)
+// to mark[k], so the cohesive pass need not gather the partners again.
+template <bool kMark, class Overlap, class Apart>
 [[gnu::always_inline]] inline void split_row(const Particles& p, std::span<const Index> col,
                                              std::size_t i, std::size_t begin, std::size_t end,
                                              double period, std::size_t& touching,
-                                             Overlap&& overlap, Apart&& apart) {
+                                             std::uint8_t* mark, Overlap&& overlap, Apart&& apart) {
   constexpr std::size_t kChunk = 64;
   std::uint32_t sel[kChunk];
   const double r_i = p.radius[i];
@@ -54,6 +56,7 @@ template <class Overlap, class Apart>
       const double cut = sum_r + kTouchTolerance;
       const auto overlapping = static_cast<std::size_t>((dist2 < sum_r * sum_r) & (dist2 != 0.0));
       touching += static_cast<std::size_t>(dist2 <= cut * cut);
+      if constexpr (kMark) mark[k] = touch_mark(dist2, sum_r);
       const auto entry = static_cast<std::uint32_t>(k - k0);
       sel[front] = entry;
       sel[back - 1] = entry;  // if overlapping, a free slot, claimed later from either end
@@ -69,12 +72,13 @@ template <class Overlap, class Apart>
 // stores its advanced history and calls sink(batch, l) with its force and torques in lane l.
 // Resets the history of the entries that do not overlap. Returns the entries within the touching
 // tolerance.
-template <class Normal, bool Tangential, bool Rolling, class Sink>
+template <class Normal, bool Tangential, bool Rolling, bool kMark, class Sink>
 [[gnu::always_inline]] inline std::size_t batched_rows(const ContactLaw<Normal>& law,
                                                        const Particles& p, ContactList& contacts,
                                                        std::size_t begin, std::size_t end,
                                                        double period, double dt, double history_dt,
-                                                       PairBatch& batch, Sink&& sink) {
+                                                       std::uint8_t* mark, PairBatch& batch,
+                                                       Sink&& sink) {
   const auto row = contacts.row_start();
   const auto col = contacts.col();
   const auto hist = contacts.history();
@@ -88,8 +92,8 @@ template <class Normal, bool Tangential, bool Rolling, class Sink>
   };
   std::size_t touching = 0;
   for (std::size_t i = begin; i < end; ++i) {
-    split_row(
-        p, col, i, row[i], row[i + 1], period, touching,
+    split_row<kMark>(
+        p, col, i, row[i], row[i + 1], period, touching, mark,
         [&](std::size_t k) {
           batch.add(p, i, col[k], separation(p, i, col[k], period), hist[k], k);
           if (batch.full()) flush();
@@ -138,7 +142,7 @@ constexpr std::size_t kBlockRows = kPairBlockRows;
 
 // One thread: the rows in order; the cross-block shares summed per partner in cross_force /
 // cross_torque (by k, as the rows come in order) and added at the end.
-template <class Normal, bool Tangential, bool Rolling>
+template <class Normal, bool Tangential, bool Rolling, bool kMark>
 std::size_t pair_loop_serial(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts,
                              PairForceBuffers& buf, double period, double dt, double history_dt) {
   constexpr bool kTorque = Tangential || Rolling;
@@ -153,8 +157,8 @@ std::size_t pair_loop_serial(const ContactLaw<Normal>& law, Particles& p, Contac
   }
   PairBatch batch;
   RowSum<kTorque> own;
-  const std::size_t touching = batched_rows<Normal, Tangential, Rolling>(
-      law, p, contacts, 0, contacts.rows(), period, dt, history_dt, batch,
+  const std::size_t touching = batched_rows<Normal, Tangential, Rolling, kMark>(
+      law, p, contacts, 0, contacts.rows(), period, dt, history_dt, buf.cohesion.mark.data(), batch,
       [&](const PairBatch& b, std::size_t l) {
         const Index i = b.i[l];
         const Index j = b.j[l];
@@ -181,7 +185,7 @@ std::size_t pair_loop_serial(const ContactLaw<Normal>& law, Particles& p, Contac
 // of slots [row[begin], row[end]), with each listed pair's slot in buf.slot (`zero` for the
 // others). Not inlined into the OpenMP region, where the shared variables would be read through
 // pointers.
-template <class Normal, bool Tangential, bool Rolling>
+template <class Normal, bool Tangential, bool Rolling, bool kMark>
 [[gnu::noinline]] std::size_t block_rows(const ContactLaw<Normal>& law, Particles& p,
                                          ContactList& contacts, PairForceBuffers& buf,
                                          std::size_t block, double period, double dt,
@@ -196,8 +200,8 @@ template <class Normal, bool Tangential, bool Rolling>
   auto next = static_cast<std::uint32_t>(row[begin]);
   PairBatch batch;
   RowSum<kTorque> own;
-  const std::size_t touching = batched_rows<Normal, Tangential, Rolling>(
-      law, p, contacts, begin, end, period, dt, history_dt, batch,
+  const std::size_t touching = batched_rows<Normal, Tangential, Rolling, kMark>(
+      law, p, contacts, begin, end, period, dt, history_dt, buf.cohesion.mark.data(), batch,
       [&](const PairBatch& b, std::size_t l) {
         const Index j = b.j[l];
         own.add(p, b.i[l], b, l);
@@ -216,16 +220,18 @@ template <class Normal, bool Tangential, bool Rolling>
 }
 
 // Several threads: (1) whole blocks, each by one thread (contacts are independent; each owns its
-// history); (2) each particle adds its cross-block shares, by k.
-template <class Normal, bool Tangential, bool Rolling>
+// history); (2) each particle adds its cross-block shares, by k. kMark: see split_row (the
+// buffer buf.cohesion.mark is sized here).
+template <class Normal, bool Tangential, bool Rolling, bool kMark>
 std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts,
                       PairForceBuffers& buf, double period, double dt, double history_dt) {
+  if constexpr (kMark) buf.cohesion.mark.resize(contacts.size());
 #ifdef _OPENMP
   if (omp_get_max_threads() == 1)
 #endif
   {
-    return pair_loop_serial<Normal, Tangential, Rolling>(law, p, contacts, buf, period, dt,
-                                                         history_dt);
+    return pair_loop_serial<Normal, Tangential, Rolling, kMark>(law, p, contacts, buf, period, dt,
+                                                                history_dt);
   }
   constexpr bool kTorque = Tangential || Rolling;
   const std::size_t zero = contacts.size();  // the slot of the pairs that do not overlap
@@ -241,7 +247,7 @@ std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& 
   std::size_t touching = 0;
 #pragma omp parallel for schedule(static) reduction(+ : touching)
   for (std::int64_t b = 0; b < blocks; ++b) {
-    touching += block_rows<Normal, Tangential, Rolling>(
+    touching += block_rows<Normal, Tangential, Rolling, kMark>(
         law, p, contacts, buf, static_cast<std::size_t>(b), period, dt, history_dt);
   }
   const auto receivers = contacts.cross_receivers();
@@ -457,12 +463,15 @@ std::size_t ContactModel::add_pair_forces(Particles& p, ContactList& contacts,
                                           PairForceBuffers& buffers, double period, double dt,
                                           double history_dt) const {
   std::size_t touching = 0;
+  const CohesiveParts parts = cohesive_parts();
   with_law(pair_, pair_tangential_, pair_rolling_,
            [&]<class N, bool Tangential, bool Rolling>(const ContactLaw<N>& law) {
-             touching = pair_loop<N, Tangential, Rolling>(law, p, contacts, buffers, period, dt,
-                                                          history_dt);
+             touching = parts.any() ? pair_loop<N, Tangential, Rolling, true>(
+                                          law, p, contacts, buffers, period, dt, history_dt)
+                                    : pair_loop<N, Tangential, Rolling, false>(
+                                          law, p, contacts, buffers, period, dt, history_dt);
            });
-  if (const CohesiveParts parts = cohesive_parts(); parts.any()) {
+  if (parts.any()) {
     cohesion_pair_loop(parts, p, contacts, period, history_dt, buffers.cohesion);
   }
   return touching;

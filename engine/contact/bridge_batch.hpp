@@ -1,0 +1,109 @@
+#pragma once
+// Batches of listed pairs for pass 1 of the liquid bridge (engine/contact/cohesion_loops.cpp), as
+// PairBatch is for the contact force (contact_kernel.hpp): a bridged pair's force is a chain of
+// square roots and divisions (distance, Willett's radius, s~, the force, the direction), one pair
+// at a time each waits for the last, and whether the pair touches (F = F0) or is apart decides a
+// branch no predictor learns. The batch gathers up to kSize pairs into arrays of each input and
+// evaluates them in a loop without branches that the compiler turns into SIMD code, with the same
+// operations in the same order as LiquidBridge::force, so the results are the same bits.
+//
+// What the batch decides for each pair (the scene's bridge alone: no viscous term, no sjkr):
+//   event:  the bridge may rupture (its gap is within 1e-6 of s_rup or beyond, as
+//           BridgeLiquid::ruptured's first two tests say; the caller settles these few with
+//           ruptured() itself, from `gaps`) or a pair without one touches (it forms): the films
+//           change, pass 2 does it in the serial order;
+//   live:   the bridge holds: its force, attractive along the line of centres;
+//   else:   nothing acts.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include "engine/contact/contact_kernel.hpp"
+#include "engine/contact/liquid_bridge.hpp"
+#include "engine/types.hpp"
+
+namespace drumlab {
+
+struct BridgeBatch {
+  static constexpr std::size_t kSize = 64;
+  /// What evaluate() found for a lane (doubles, so the loop needs no second vector width).
+  static constexpr double kNothing = 0.0;
+  static constexpr double kLive = 1.0;
+  static constexpr double kEvent = 2.0;
+
+  std::size_t count = 0;
+  std::uint32_t k[kSize];  ///< the pair's place in the contact list
+  Index i[kSize];
+  Index j[kSize];
+  Lanes3<kSize> d;  ///< separation x_i - x_j
+  alignas(64) double r_i[kSize];
+  alignas(64) double r_j[kSize];
+  alignas(64) double volume[kSize];  ///< the bridge's volume (0: none)
+  Lanes3<kSize> force;               ///< after evaluate: the force on j of a live bridge
+  alignas(64) double gaps[kSize];    ///< after evaluate: the surface gap
+  alignas(64) double kind[kSize];
+  alignas(64) double xx[kSize];  ///< scratch of evaluate
+  alignas(64) double yy[kSize];
+
+  bool full() const { return count == kSize; }
+
+  /// Adds pair (i, j), contact `contact`, at separation dij, radii ri, rj, bridge volume v.
+  [[gnu::always_inline]] void add(Index pi, Index pj, std::uint32_t contact, const Vec3& dij,
+                                  double ri, double rj, double v) {
+    const std::size_t l = count;
+    k[l] = contact;
+    i[l] = pi;
+    j[l] = pj;
+    d.set(l, dij);
+    r_i[l] = ri;
+    r_j[l] = rj;
+    volume[l] = v;
+    ++count;
+  }
+
+  /// Sets kind and, for live bridges, force of every lane. Not inlined: GCC 12 vectorizes the
+  /// loop through `this`, not over a batch that is a local of the caller ("no vectype").
+  [[gnu::noinline]] void evaluate(const BridgeLiquid& liquid) {
+    const std::size_t n = pad_lanes(*this);
+    const double shrink = 1.0 / (1.0 + 0.5 * liquid.contact_angle);
+    constexpr double kBelow = 1.0 - 1e-6;  // BridgeLiquid::ruptured: surely intact below this
+    // |d|^2 as Eigen's Vec3::squaredNorm rounds it (the scalar path's distance):
+    // fma(z, z, x^2 + y^2) with both squares rounded; a loop of its own, so that the compiler
+    // cannot fuse x^2 + y^2 into one multiply-add.
+    for (std::size_t l = 0; l < n; ++l) {
+      xx[l] = d.x[l] * d.x[l];
+      yy[l] = d.y[l] * d.y[l];
+    }
+    for (std::size_t l = 0; l < n; ++l) {
+      const LaneVec dl = d.get(l);
+      const double dist = std::sqrt(std::fma(dl.z, dl.z, xx[l] + yy[l]));
+      const double gap = dist - (r_i[l] + r_j[l]);
+      const double v = volume[l];
+      const bool live = v > 0.0;
+      const double g = gap * shrink;
+      const bool may_rupture = (gap > 0.0) & !(g * g * g < kBelow * v);
+      const bool event = (live & may_rupture) | (!live & !(gap > 0.0));
+      // LiquidBridge::force with the touching branch folded in: at s~ = 0 the denominator is
+      // exactly 1 and F = F0.
+      const double r_eff = LiquidBridge::pair_radius(r_i[l], r_j[l]);
+      const double s = std::max(gap, 0.0) * std::sqrt(r_eff / (live ? v : 1.0));
+      const double pull = liquid.touching_force(r_eff) / (1.0 + (1.05 + 2.5 * s) * s);
+      force.set(l, (pull / dist) * dl);
+      gaps[l] = gap;
+      const double held = live ? kLive : kNothing;
+      kind[l] = event ? kEvent : held;
+    }
+  }
+
+ private:
+  friend std::size_t pad_lanes<BridgeBatch>(BridgeBatch&);
+  void copy_lane(std::size_t from, std::size_t to) {
+    d.set(to, d.get(from));
+    r_i[to] = r_i[from];
+    r_j[to] = r_j[from];
+    volume[to] = volume[from];
+  }
+};
+
+}  // namespace drumlab
