@@ -3,9 +3,10 @@
 // ranks (and 2 ranks x 2 threads), and one with sjkr adhesion on 2 and 3 ranks, give the serial
 // run's state bit for bit (positions, velocities, forces, films, wall bridges, every touching or
 // bridged pair with its history and its state), with the scene's liquid conserved to round-off; a
-// wet checkpoint written on 3 ranks (periodic ends, grid search m5) continues on 2 as the
-// uninterrupted run. The bridge events cross ranks every step (engine/parallel/bridge_events.hpp),
-// so the films agree only if every rank replays them in the serial order.
+// wet checkpoint written on 3 ranks (periodic ends, grid search m5, no viscous term) continues on 2
+// as the uninterrupted run. The bridge events cross ranks every step
+// (engine/parallel/bridge_events.hpp), so the films agree only if every rank replays them in the
+// serial order.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -39,12 +40,13 @@ std::string scene_text(const std::string& law, const std::string& ends = "") {
   return t.text() + "[performance]\nsort_every = 30\nverlet_skin = 0.1\n" + law;
 }
 
-/// Migration (films), wall bridges (on by default), a viscous term, half the liquid seeded in
-/// the bridges of the first contacts; bridges of at most 2e-9 m^3 rupture beyond ~1.3 mm.
-std::string wet_law() {
+/// Migration (films), wall bridges (on by default), half the liquid seeded in the bridges of the
+/// first contacts, a viscous term or not (without: pass 1 runs the plain bridge's SIMD batches);
+/// bridges of at most 2e-9 m^3 rupture beyond ~1.3 mm.
+std::string wet_law(bool viscous = true) {
   return "[liquid]\nsurface_tension = 0.072\ncontact_angle_deg = 20\nliquid_content = " +
-         std::to_string(kLiquidContent) +
-         "\nmax_bridge_volume = 2e-9\nfilm_share = 0.5\nviscosity = 0.001\nmin_gap = 1e-5\n";
+         std::to_string(kLiquidContent) + "\nmax_bridge_volume = 2e-9\nfilm_share = 0.5\n" +
+         (viscous ? "viscosity = 0.001\nmin_gap = 1e-5\n" : "");
 }
 
 /// A pair that matters: touching, or with any law state (a bridge, an adhesive contact). A Verlet
@@ -177,10 +179,10 @@ TEST_F(MpiWet, AdhesionIsBitIdenticalOnTwoAndThreeRanks) {
   }
 }
 
-// Periodic ends (wall bridges with the mantle only) and a grid search (the contact list is
-// rebuilt every step, so ruptures of dropped pairs happen every step).
+// Periodic ends (wall bridges with the mantle only), a grid search (the contact list is rebuilt
+// every step, so ruptures of dropped pairs happen every step) and no viscous term.
 TEST_F(MpiWet, WetCheckpointRestartsFromThreeOnTwoRanks) {
-  const std::string scene = dir.write("wet.toml", scene_text(wet_law(), "periodic"));
+  const std::string scene = dir.write("wet.toml", scene_text(wet_law(false), "periodic"));
   const SimulationState whole = serial(scene, "--method m5 --steps 120", "whole.h5");
   parallel(3, scene, "--method m5 --steps 60", "half3.h5");
   expect_same_state(
