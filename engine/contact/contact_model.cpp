@@ -163,7 +163,7 @@ std::size_t pair_loop_serial(const ContactLaw<Normal>& law, Particles& p, Contac
         const Index i = b.i[l];
         const Index j = b.j[l];
         own.add(p, i, b, l);
-        const bool inner = j < block_end[i];  // no branch: one of two addresses
+        const bool inner = j < block_end[i];  // one of two addresses (GCC 12 emits a branch)
         Vec3* force = inner ? p.force.data() : buf.cross_force.data();
         force[j] -= b.force.vec3(l);
         if constexpr (kTorque) {
