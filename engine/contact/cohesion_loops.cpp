@@ -105,65 +105,71 @@ bool bridge_event(const CohesiveParts& parts, const double* state, double gap) {
   if (pull != 0.0) out[n++] = {i, j, kk, 0, (pull / dist) * d};
 }
 
-// Pass 1 of cohesion_pair_loop over the rows of block `block`. Most listed pairs are apart, with
-// no bridge and no adhesive contact: nothing acts (a bridge forms only on contact; sjkr acts only
-// while overlapping). Each chunk of a row is first sifted by a loop without branches on the touch
-// marks the contact pair loop left (no partner is gathered for it), then the pairs that remain
-// are evaluated, by increasing k.
-[[gnu::noinline]] void cohesion_block(const CohesiveParts& parts, Particles& p,
-                                      ContactList& contacts, double period, double dt,
-                                      std::size_t block, CohesionBuffers& buffers) {
+// Visits, by increasing k, the listed pairs of the rows of cohesion block `block` on which a
+// cohesive part may act: take(mark[k], live(k)). Most listed pairs are apart, with no bridge and
+// no adhesive contact: nothing acts (a bridge forms only on contact; sjkr acts only while
+// overlapping). Each chunk of a row is first sifted by a loop without branches on the touch
+// marks the contact pair loop left (no partner is gathered for it), then visit(i, k) runs on the
+// pairs that remain.
+template <class Live, class Visit>
+[[gnu::always_inline]] inline void for_each_acting_pair(const ContactList& contacts,
+                                                        const std::uint8_t* mark, std::size_t block,
+                                                        Live&& live, Visit&& visit) {
   constexpr std::size_t kChunk = 64;
   std::uint32_t sel[kChunk];
   const auto row = contacts.row_start();
+  const std::size_t begin = block * kCohesionBlockRows;
+  const std::size_t end = std::min(contacts.rows(), begin + kCohesionBlockRows);
+  for (std::size_t i = begin; i < end; ++i) {
+    for (std::size_t k0 = row[i]; k0 < row[i + 1]; k0 += kChunk) {
+      const std::size_t k1 = std::min(row[i + 1], k0 + kChunk);
+      std::size_t m = 0;
+      for (std::size_t k = k0; k < k1; ++k) {
+        sel[m] = static_cast<std::uint32_t>(k - k0);
+        m += take(mark[k], live(k));
+      }
+      for (std::size_t q = 0; q < m; ++q) visit(i, k0 + sel[q]);
+    }
+  }
+}
+
+// Pass 1 of cohesion_pair_loop over the rows of block `block`, any composition of parts: every
+// pair that may act (for_each_acting_pair) evaluated one at a time.
+[[gnu::noinline]] void cohesion_block(const CohesiveParts& parts, Particles& p,
+                                      ContactList& contacts, double period, double dt,
+                                      std::size_t block, CohesionBuffers& buffers) {
   const auto col = contacts.col();
   const auto state = contacts.state();
   const std::size_t stride = contacts.state_size();
   const bool bridges = parts.bridge != nullptr;
   const bool sjkr = parts.sjkr != nullptr;
   const std::size_t bo = parts.bridge_offset, so = parts.sjkr_offset;  // < stride
-  const std::uint8_t* mark = buffers.mark.data();
-  const std::size_t begin = block * kCohesionBlockRows;
-  const std::size_t end = std::min(contacts.rows(), begin + kCohesionBlockRows);
-  CohesionBuffers::Entry* out = &buffers.entries[row[begin]];
+  CohesionBuffers::Entry* out = &buffers.entries[contacts.row_start()[block * kCohesionBlockRows]];
   std::size_t n = 0;
-  for (std::size_t i = begin; i < end; ++i) {
-    const Vec3 x = p.position[i];
-    for (std::size_t k0 = row[i]; k0 < row[i + 1]; k0 += kChunk) {
-      const std::size_t k1 = std::min(row[i + 1], k0 + kChunk);
-      std::size_t m = 0;
-      for (std::size_t k = k0; k < k1; ++k) {
+  for_each_acting_pair(
+      contacts, buffers.mark.data(), block,
+      [&](std::size_t k) {
         const double* st = &state[k * stride];
-        const bool live = (bridges & (st[bo] > 0.0)) | (sjkr & (st[so] > 0.0));
-        sel[m] = static_cast<std::uint32_t>(k - k0);
-        m += take(mark[k], live);
-      }
-      for (std::size_t q = 0; q < m; ++q) {
-        const std::size_t k = k0 + sel[q];
+        return (bridges & (st[bo] > 0.0)) | (sjkr & (st[so] > 0.0));
+      },
+      [&](std::size_t i, std::size_t k) {
         const Index j = col[k];
         cohesion_entry(parts, p, &state[k * stride], static_cast<Index>(i), j, k,
-                       nearest_image(x, p.position[j], period), dt, out, n);
-      }
-    }
-  }
+                       nearest_image(p.position[i], p.position[j], period), dt, out, n);
+      });
   buffers.count[block] = n;
 }
 
 // Pass 1 over block `block` for a scene whose only cohesive part is the plain bridge (no viscous
-// term, no sjkr): the same entries as cohesion_block, in the same order, sifted the same way; the
-// pairs that may act (touching, or bridged) are evaluated in a BridgeBatch's SIMD lanes
-// (bridge_batch.hpp).
+// term, no sjkr): the same entries as cohesion_block, in the same order; the pairs that may act
+// (touching, or bridged) are evaluated in a BridgeBatch's SIMD lanes (bridge_batch.hpp).
 [[gnu::noinline]] void bridge_block(const LiquidBridge& bridge, std::size_t bo, Particles& p,
                                     ContactList& contacts, double period, double dt,
                                     std::size_t block, CohesionBuffers& buffers) {
-  const auto row = contacts.row_start();
   const auto col = contacts.col();
   const auto state = contacts.state();
   const std::size_t stride = contacts.state_size();
-  const std::size_t begin = block * kCohesionBlockRows;
-  const std::size_t end = std::min(contacts.rows(), begin + kCohesionBlockRows);
-  const std::uint8_t* mark = buffers.mark.data();
-  CohesionBuffers::Entry* out = &buffers.entries[row[begin]];
+  CohesionBuffers::Entry* out = &buffers.entries[contacts.row_start()[block * kCohesionBlockRows]];
   std::size_t n = 0;
   BridgeBatch batch;
   const auto flush = [&] {
@@ -180,28 +186,16 @@ bool bridge_event(const CohesiveParts& parts, const double* state, double gap) {
     }
     batch.count = 0;
   };
-  constexpr std::size_t kChunk = 64;
-  std::uint32_t sel[kChunk];
-  for (std::size_t i = begin; i < end; ++i) {
-    const Vec3 x = p.position[i];
-    const double r_i = p.radius[i];
-    for (std::size_t k0 = row[i]; k0 < row[i + 1]; k0 += kChunk) {
-      const std::size_t k1 = std::min(row[i + 1], k0 + kChunk);
-      std::size_t m = 0;
-      for (std::size_t k = k0; k < k1; ++k) {
-        sel[m] = static_cast<std::uint32_t>(k - k0);
-        m += take(mark[k], state[k * stride + bo] > 0.0);
-      }
-      for (std::size_t q = 0; q < m; ++q) {
-        const std::size_t k = k0 + sel[q];
+  for_each_acting_pair(
+      contacts, buffers.mark.data(), block,
+      [&](std::size_t k) { return state[k * stride + bo] > 0.0; },
+      [&](std::size_t i, std::size_t k) {
         const Index j = col[k];
         batch.add(static_cast<Index>(i), j, static_cast<std::uint32_t>(k),
-                  nearest_image(x, p.position[j], period), r_i, p.radius[j],
+                  nearest_image(p.position[i], p.position[j], period), p.radius[i], p.radius[j],
                   state[k * stride + bo]);
         if (batch.full()) flush();
-      }
-    }
-  }
+      });
   flush();
   buffers.count[block] = n;
 }
