@@ -8,6 +8,7 @@
 #include "engine/analysis/agglomerates.hpp"
 #include "engine/io/checkpoint.hpp"
 #include "engine/io/h5_series.hpp"
+#include "engine/io/h5_series_frame.hpp"
 #ifdef DRUMLAB_WITH_RENDER
 #include "render/agglomerate_chart.hpp"
 #include "render/vtu_series_writer.hpp"
@@ -36,15 +37,7 @@ class H5Observer final : public FrameObserver {
   H5Observer(const std::string& file, double granule_age)
       : series_(file), granule_age_(granule_age) {}
   void on_frame(const Simulation& sim, std::uint64_t) override {
-    if (!scene_has_bonds(sim.scene())) {  // a dry scene's series as before
-      series_.write_frame(sim.particles(), sim.time(), sim.steps());
-      return;
-    }
-    const AgglomerateInput in = agglomerate_input(sim, bonds_);
-    const AgglomerateFrame frame =
-        find_agglomerates(in, granule_options(sim.scene().drum.omega, granule_age_));
-    const SeriesBondFrame b{bonds_, frame.label, in.period, sim.scene().drum.omega};
-    series_.write_frame(sim.particles(), sim.time(), sim.steps(), &b);
+    write_series_frame(series_, sim, granule_age_, bonds_);
   }
   void on_finish(const Simulation&) override {
     series_.finish();

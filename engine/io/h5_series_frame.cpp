@@ -1,0 +1,21 @@
+#include "engine/io/h5_series_frame.hpp"
+
+#include "engine/analysis/agglomerates.hpp"
+#include "engine/simulation.hpp"
+
+namespace drumlab {
+
+void write_series_frame(H5Series& series, const Simulation& sim, double granule_age,
+                        std::vector<Bond>& bonds) {
+  if (!scene_has_bonds(sim.scene())) {  // a dry scene's series: the particles only
+    series.write_frame(sim.particles(), sim.time(), sim.steps());
+    return;
+  }
+  const double omega = sim.scene().drum.omega;
+  const AgglomerateInput in = agglomerate_input(sim, bonds);
+  const AgglomerateFrame frame = find_agglomerates(in, granule_options(omega, granule_age));
+  const SeriesBondFrame b{bonds, frame.label, in.period, omega};
+  series.write_frame(sim.particles(), sim.time(), sim.steps(), &b);
+}
+
+}  // namespace drumlab
