@@ -44,7 +44,13 @@ void add_run(CLI::App& app, MpiRunOptions& o, std::optional<std::uint64_t>& step
                   "write a checkpoint (serial layout, parallel HDF5) at the end");
   run->add_option("--checkpoint-every", o.checkpoint_every, "also every K turning steps")
       ->check(CLI::PositiveNumber);
-  run->add_option("--h5", o.h5, "HDF5 series (+ XDMF) in the serial layout, parallel HDF5");
+  run->add_option("--h5", o.h5,
+                  "HDF5 series (+ XDMF) in the serial layout, parallel HDF5 (a scene with bonds: "
+                  "gathered on rank 0)");
+  run->add_option("--granule-age", o.granule_age,
+                  "granule criterion of the series' agglomerate labels: bonds older than T s join "
+                  "(0: plain components; default: one drum revolution)")
+      ->check(CLI::NonNegativeNumber);
   run->add_flag("--gather-output", o.gather_output,
                 "gather checkpoints and series on rank 0 and write them there (no MPI-IO)");
   run->add_option("--every", o.every, "steps between series frames (default: 1/100 of the turn)");

@@ -12,6 +12,7 @@
 #include "engine/analysis/agglomerates.hpp"
 #include "engine/contact/contact_model.hpp"
 #include "engine/io/checkpoint.hpp"
+#include "engine/io/h5_series_frame.hpp"
 #include "engine/io/mpi/checkpoint_mpi.hpp"
 #include "engine/io/mpi/h5_mpi.hpp"
 #include "engine/io/mpi/h5_series_mpi.hpp"
@@ -60,10 +61,13 @@ MpiDomainOptions domain_options(const SceneConfig& scene, const MpiRunOptions& o
 
 /// Checkpoints and the series: written by every rank into one file (parallel HDF5, the serial
 /// layout), or with --gather-output gathered on rank 0 and written there by the serial writer;
-/// each write timed on this rank.
+/// each write timed on this rank. The series of a scene with bonds is always gathered: its frames
+/// carry the bond graph and the agglomerate labels, which the analysis finds on the whole graph.
 struct Output {
   const MpiRunOptions& o;
+  bool gather_series = false;
   std::optional<H5Series> series;
+  std::vector<Bond> bonds;  ///< rank 0's scratch for a gathered frame of a scene with bonds
   std::uint64_t checkpoints = 0, frames = 0;
   double checkpoint_seconds = 0.0, frame_seconds = 0.0;
 };
@@ -86,10 +90,12 @@ void write_checkpoint_now(MpiDomain& domain, const Simulation& sim, Output& out)
 void write_series_frame(MpiDomain& domain, Simulation& sim, Output& out) {
   sim.check_stability();
   const double t0 = MPI_Wtime();
-  if (out.o.gather_output) {
-    const auto state = domain.gather(sim);
-    h5::on_root(domain.comm().comm(),
-                [&] { out.series->write_frame(state->particles, state->time, state->steps); });
+  if (out.gather_series) {
+    std::optional<SimulationState> state = domain.gather(sim);
+    h5::on_root(domain.comm().comm(), [&] {
+      const Simulation whole(sim.scene(), std::move(*state));  // the serial run at this step
+      write_series_frame(*out.series, whole, out.o.granule_age, out.bonds);
+    });
   } else {
     write_frame_mpi(*out.series, domain.comm(), sim, domain.slots());
   }
@@ -101,7 +107,7 @@ void write_series_frame(MpiDomain& domain, Simulation& sim, Output& out) {
 void open_series(MpiComm& comm, Output& out) {
   const MpiRunOptions& o = out.o;
   if (o.h5.empty()) return;
-  if (o.gather_output) {
+  if (out.gather_series) {
     h5::on_root(comm.comm(), [&] { out.series.emplace(o.h5); });
   } else {
     out.series.emplace(o.h5, mpi_series_access(comm, o.h5));
@@ -112,7 +118,7 @@ void open_series(MpiComm& comm, Output& out) {
 void finish_output(MpiDomain& domain, const Simulation& sim, Output& out) {
   if (!out.o.checkpoint.empty()) write_checkpoint_now(domain, sim, out);
   if (out.o.h5.empty()) return;
-  if (out.o.gather_output) {
+  if (out.gather_series) {
     h5::on_root(domain.comm().comm(), [&] { out.series->finish(); });
   } else {
     out.series->finish();
@@ -150,17 +156,11 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
   MPI_Comm_size(comm, &ranks);
   set_thread_count(o.threads);
   SceneConfig scene = load_dynamic_scene(o.session.scene_file);
-  if (scene_has_bonds(scene) && !o.h5.empty()) {
-    throw InputError(fmt::format(
-        "{}: drumlab-mpi writes no --h5 series for a scene with [liquid] or [cohesion] yet (its "
-        "frames carry the bond graph); use --checkpoint-every, or drumlab run --h5",
-        o.session.scene_file));
-  }
   if (!o.h5.empty() && !o.checkpoint.empty() &&
       std::filesystem::weakly_canonical(o.h5) == std::filesystem::weakly_canonical(o.checkpoint)) {
     throw InputError(fmt::format("--h5 and --checkpoint both name {}", o.h5));
   }
-  Output out{o, {}};
+  Output out{o, o.gather_output || scene_has_bonds(scene), {}, {}};
   MpiComm io_comm(comm);
   open_series(io_comm, out);  // checked before the fill, written from the turn
   MpiRunSummary s;

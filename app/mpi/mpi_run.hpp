@@ -5,7 +5,8 @@
 // the drum together. Checkpoints are written by every rank into one file (parallel HDF5,
 // engine/io/mpi/) in the serial layout (engine/io/checkpoint.hpp), so `drumlab run --restart` and
 // `drumlab-mpi run --restart` on any rank count continue from them; an HDF5 series (--h5) is
-// written the same way, so `drumlab analyze` and `drumlab convert` read it. --gather-output
+// written the same way (a scene with bonds: gathered on rank 0, see MpiRunOptions::h5), so
+// `drumlab analyze` and `drumlab convert` read it. --gather-output
 // gathers both on rank 0 and writes them with the serial writers instead.
 #include <cstdint>
 #include <string>
@@ -22,11 +23,14 @@ struct MpiRunOptions {
   std::string checkpoint;  ///< written at the end (and every checkpoint_every steps)
   std::uint64_t checkpoint_every = 0;
   std::uint64_t rebalance_every = 1000;  ///< turning and settling steps between RCB re-balances
-  /// HDF5 series (engine/io/h5_series.hpp), gathered on rank 0 and written in the serial layout:
-  /// frame 0 at the start of the turn, then every `every` turning steps (0: 1/100 of the turn),
-  /// as `drumlab run --h5` writes it.
+  /// HDF5 series (engine/io/h5_series.hpp), written by every rank in the serial layout: frame 0
+  /// at the start of the turn, then every `every` turning steps (0: 1/100 of the turn), as
+  /// `drumlab run --h5` writes it. A scene with bonds (scene_has_bonds) is always gathered: its
+  /// frames carry the bond graph and the agglomerate labels, found on rank 0 on the whole graph as
+  /// `drumlab run` finds them.
   std::string h5;
   std::uint64_t every = 0;
+  double granule_age = -1.0;  ///< the labels' criterion (s); < 0: one drum revolution
   /// Gather checkpoints and series on rank 0 and write them there with the serial writer instead
   /// of every rank writing its share (parallel HDF5): for file systems without working MPI-IO.
   bool gather_output = false;

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include "engine/io/checkpoint.hpp"
@@ -16,6 +18,14 @@ using Ran = CliResult;
 /// A command line (mpirun ...) with its output: the one shell runner of the tests.
 inline Ran shell(const std::string& command) {
   return run_shell(command);
+}
+
+/// A file's whole text ("" if it cannot be read).
+inline std::string read_text(const std::string& file) {
+  std::ifstream in(file);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
 }
 
 /// The mpirun command for `ranks` ranks (root allowed, more ranks than cores allowed), or the

@@ -7,8 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -22,13 +20,6 @@
 
 namespace drumlab::test {
 namespace {
-
-std::string read_text(const std::string& file) {
-  std::ifstream in(file);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 /// 700 particles (two of the pair loop's blocks of 512 rows), settling 0.004 s (41 steps),
 /// re-ordered every 30 steps, a small Verlet skin so that particles migrate often. (Short: ranks

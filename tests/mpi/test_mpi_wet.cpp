@@ -4,16 +4,21 @@
 // run's state bit for bit (positions, velocities, forces, films, wall bridges, every touching or
 // bridged pair with its history and its state), with the scene's liquid conserved to round-off; a
 // wet checkpoint written on 3 ranks (periodic ends, grid search m5, no viscous term) continues on 2
-// as the uninterrupted run. The bridge events cross ranks every step
+// as the uninterrupted run; the HDF5 series of the wet drum on 2 ranks is the serial run's (bond
+// graph and agglomerate labels included). The bridge events cross ranks every step
 // (engine/parallel/bridge_events.hpp), so the films agree only if every rank replays them in the
 // serial order.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
+#include <set>
 #include <string>
 #include <vector>
 
+#include "engine/io/h5_series.hpp"
 #include "engine/periodic.hpp"
 #include "tests/mpi/mpi_runner.hpp"
 #include "tests/same_bits.hpp"
@@ -191,16 +196,66 @@ TEST_F(MpiWet, WetCheckpointRestartsFromThreeOnTwoRanks) {
   EXPECT_NEAR(liquid_held(whole).total, scene_liquid(whole), 1e-12 * scene_liquid(whole));
 }
 
-TEST_F(MpiWet, SeriesOfAWetSceneIsRefusedWithOneLine) {
-  SmallDrumText t;
-  t.fill = "count = 50\nsettle_time = 0.0";
-  const std::string scene =
-      dir.write("wet.toml", t.text() + "[liquid]\nbridge_volume = 1e-9\nsurface_tension = 0.07\n");
-  const Ran r =
-      shell(mpirun(2) + DRUMLAB_MPI_CLI + " run " + scene + " --steps 1 --h5 " + dir.file("s.h5"));
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("writes no --h5 series for a scene with [liquid]"), std::string::npos)
-      << r.output;
+/// A frame's bonds by their particles' stable ids (a < b), sorted: the graph, whatever the order
+/// of the contact list it was read from.
+struct IdBond {
+  std::uint32_t a, b;
+  double volume, force, age;
+  bool operator<(const IdBond& o) const { return a != o.a ? a < o.a : b < o.b; }
+};
+std::vector<IdBond> id_bonds(const SeriesFrame& f) {
+  std::vector<IdBond> out;
+  for (const Bond& b : f.bonds) {
+    const std::uint32_t x = f.id[b.i], y = f.id[b.j];
+    out.push_back({std::min(x, y), std::max(x, y), b.volume, b.force, b.age});
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// The series of a wet scene on 2 ranks is the serial run's series: every frame's particles, films,
+// bond graph (pairs, volumes, forces, ages) and agglomerate labels bit for bit, and `drumlab
+// analyze` reads the same agglomerates from both.
+TEST_F(MpiWet, SeriesOfAWetSceneIsTheSerialRunsSeries) {
+  const std::string scene = dir.write("wet.toml", scene_text(wet_law()));
+  const std::string h5 = " --steps 60 --every 30 --granule-age 0.0005 --h5 ";
+  serial(scene, h5 + dir.file("serial_series.h5"), "s.h5");
+  parallel(2, scene, h5 + dir.file("mpi_series.h5"), "m.h5");
+  const SeriesInfo want = read_series_info(dir.file("serial_series.h5"));
+  const SeriesInfo got = read_series_info(dir.file("mpi_series.h5"));
+  ASSERT_EQ(want.frames, 3u);
+  ASSERT_EQ(got.frames, want.frames);
+  EXPECT_TRUE(want.has_bonds && got.has_bonds && got.complete);
+  for (std::size_t k = 0; k < want.frames; ++k) {
+    SCOPED_TRACE("frame " + std::to_string(k));
+    const SeriesFrame a = read_series_frame(dir.file("serial_series.h5"), k);
+    const SeriesFrame b = read_series_frame(dir.file("mpi_series.h5"), k);
+    EXPECT_EQ(a.step, b.step);
+    ASSERT_EQ(a.id, b.id);
+    EXPECT_TRUE(same_bits(a.position, b.position));
+    EXPECT_TRUE(same_bits(a.film, b.film));
+    EXPECT_TRUE(same_bits(std::vector{a.wall_liquid}, std::vector{b.wall_liquid}));
+    EXPECT_EQ(a.agglomerate_id, b.agglomerate_id);
+    const auto ba = id_bonds(a), bb = id_bonds(b);
+    EXPECT_GT(ba.size(), k == 0 ? 0u : 50u);  // bridges form as the bed packs
+    const std::set<std::uint32_t> labels(a.agglomerate_id.begin(), a.agglomerate_id.end());
+    if (k > 0) {  // some agglomerates hold several primaries
+      EXPECT_LT(labels.size() + 20, a.id.size());
+    }
+    ASSERT_EQ(ba.size(), bb.size());
+    for (std::size_t n = 0; n < ba.size(); ++n) {
+      EXPECT_TRUE(ba[n].a == bb[n].a && ba[n].b == bb[n].b) << "bond " << n;
+      EXPECT_TRUE(same_bits(std::vector{ba[n].volume, ba[n].force, ba[n].age},
+                            std::vector{bb[n].volume, bb[n].force, bb[n].age}))
+          << "bond " << n;
+    }
+  }
+  for (const std::string name : {"serial", "mpi"}) {
+    const Ran r = shell(std::string(DRUMLAB_CLI) + " analyze " + dir.file(name + "_series.h5") +
+                        " --granule-age 0.0005 --agglomerates " + dir.file(name + ".csv"));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+  }
+  EXPECT_EQ(read_text(dir.file("serial.csv")), read_text(dir.file("mpi.csv")));
 }
 
 }  // namespace
