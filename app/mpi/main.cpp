@@ -7,6 +7,7 @@
 #include <csignal>
 #include <cstdio>
 #include <exception>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -56,7 +57,17 @@ void add_run(CLI::App& app, MpiRunOptions& o, std::optional<std::uint64_t>& step
   run->add_option("--every", o.every, "steps between series frames (default: 1/100 of the turn)");
   run->add_option("--restart", o.session.restart, "continue from a checkpoint (any rank count)");
   run->add_option("--rebalance-every", o.rebalance_every,
-                  "steps between RCB re-balances (0: never)");
+                  "steps between balance checks (0: keep the first cut; default 200)");
+  const std::map<std::string, drumlab::BalanceBy> by{{"time", drumlab::BalanceBy::time},
+                                                     {"count", drumlab::BalanceBy::count}};
+  run->add_option("--balance", o.balance,
+                  "what a re-balance equalises: time (each rank's measured work, the default) or "
+                  "count (owned particles)")
+      ->transform(CLI::CheckedTransformer(by, CLI::ignore_case));
+  run->add_option("--balance-threshold", o.balance_threshold,
+                  "by time: re-cut when the slowest rank's work exceeds the mean by more than "
+                  "this share (default 0.05; 0: at every check)")
+      ->check(CLI::NonNegativeNumber);
 }
 
 void print_summary(const drumlab::mpi::MpiRunSummary& s) {
@@ -71,6 +82,19 @@ void print_summary(const drumlab::mpi::MpiRunSummary& s) {
       "communication     {:.1f} % of the time inside MPI (mean over ranks; max {:.1f} %), "
       "{} exchanges, {} re-balances\n",
       100.0 * s.comm_share_mean, 100.0 * s.comm_share_max, s.exchanges, s.rebalances);
+  if (s.ranks > 1 && s.rebalance_every > 0) {
+    if (s.balance == drumlab::BalanceBy::count) {
+      fmt::print("balance           by count, re-cut every {} steps\n", s.rebalance_every);
+    } else if (s.first_imbalance > 0.0) {
+      fmt::print(
+          "balance           by time, checked every {} steps, re-cut above +{:.0f} %; slowest "
+          "rank's work / mean: {:.3f} at the first check, {:.3f} at the last\n",
+          s.rebalance_every, 100.0 * s.balance_threshold, s.first_imbalance, s.last_imbalance);
+    } else {
+      fmt::print("balance           by time, checked every {} steps (no check in this run)\n",
+                 s.rebalance_every);
+    }
+  }
   fmt::print("ghosts            at the exchanges {} sent in full (new), {} kept (motion only)\n",
              s.ghosts_new, s.ghosts_kept);
   if (s.wet && s.ranks > 1) {

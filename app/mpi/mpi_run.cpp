@@ -56,6 +56,8 @@ MpiDomainOptions domain_options(const SceneConfig& scene, const MpiRunOptions& o
   if (scene.drum.ends == DrumEnds::periodic) d.period_z = scene.drum.depth;
   d.domain = drum_domain(scene.drum.diameter, scene.drum.depth);
   d.rebalance_every = o.rebalance_every;
+  d.balance = o.balance;
+  d.balance_threshold = o.balance_threshold;
   return d;
 }
 
@@ -205,6 +207,11 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
   s.comm_share_mean = domain.sum(share) / ranks;
   s.exchanges = b.exchanges;
   s.rebalances = b.rebalances;
+  s.balance = o.balance;
+  s.rebalance_every = o.rebalance_every;
+  s.balance_threshold = o.balance_threshold;
+  s.first_imbalance = b.first_imbalance;
+  s.last_imbalance = b.last_imbalance;
   s.ghosts_new = b.ghosts_new;
   s.ghosts_kept = b.ghosts_kept;
   s.wet = scene.liquid.enabled && scene.liquid.migration;

@@ -13,6 +13,7 @@
 
 #include <mpi.h>
 
+#include "engine/parallel/mpi/mpi_domain.hpp"
 #include "engine/session/run_session.hpp"
 
 namespace drumlab::mpi {
@@ -22,7 +23,12 @@ struct MpiRunOptions {
   int threads = 1;
   std::string checkpoint;  ///< written at the end (and every checkpoint_every steps)
   std::uint64_t checkpoint_every = 0;
-  std::uint64_t rebalance_every = 1000;  ///< turning and settling steps between RCB re-balances
+  /// Settling and turning steps between balance checks (0: the first cut is kept): by time a
+  /// check re-cuts when the slowest rank's work exceeds the mean by more than the threshold, by
+  /// count every check re-cuts (MpiDomainOptions).
+  std::uint64_t rebalance_every = 200;
+  BalanceBy balance = BalanceBy::time;
+  double balance_threshold = 0.05;
   /// HDF5 series (engine/io/h5_series.hpp), written by every rank in the serial layout: frame 0
   /// at the start of the turn, then every `every` turning steps (0: 1/100 of the turn), as
   /// `drumlab run --h5` writes it. A scene with bonds (scene_has_bonds) is always gathered: its
@@ -50,7 +56,11 @@ struct MpiRunSummary {
   double comm_share_max = 0.0;  ///< largest share of a rank's time inside MPI
   double comm_share_mean = 0.0;
   std::uint64_t exchanges = 0, rebalances = 0;
-  std::uint64_t ghosts_new = 0, ghosts_kept = 0;  ///< ghost records at exchanges, all ranks
+  BalanceBy balance = BalanceBy::time;
+  std::uint64_t rebalance_every = 0;
+  double balance_threshold = 0.0;
+  double first_imbalance = 0.0, last_imbalance = 0.0;  ///< MpiBalance (by time)
+  std::uint64_t ghosts_new = 0, ghosts_kept = 0;       ///< ghost records at exchanges, all ranks
   bool wet = false;                 ///< liquid migration: films change at bridge events
   std::uint64_t bridge_events = 0;  ///< of all ranks, replayed in the serial order (2+ ranks)
   std::uint64_t checkpoints = 0, frames = 0;             ///< written

@@ -144,7 +144,7 @@ class MpiWet : public MpiCase {};
 
 TEST_F(MpiWet, LiquidMigrationIsBitIdenticalOnOneToThreeRanks) {
   const std::string scene = dir.write("wet.toml", scene_text(wet_law()));
-  const std::string args = "--steps 120 --rebalance-every 50";
+  const std::string args = "--steps 120 --rebalance-every 50 --balance-threshold 0";
   const SimulationState want = serial(scene, "--steps 120", "serial.h5");
   ASSERT_EQ(want.contact_state_size, 2u);  // [liquid] alone: bridge volume, age
   const Liquid held = liquid_held(want);
@@ -179,8 +179,10 @@ TEST_F(MpiWet, AdhesionIsBitIdenticalOnTwoAndThreeRanks) {
       dir.write("sjkr.toml", scene_text("[cohesion]\nmodel = \"sjkr\"\nenergy_density = 2e5\n"));
   const SimulationState want = serial(scene, "--steps 120", "serial.h5");
   for (const int r : {2, 3}) {
-    expect_same_state(want, parallel(r, scene, "--steps 120 --rebalance-every 50", "mpi.h5"),
-                      std::to_string(r) + " ranks");
+    expect_same_state(
+        want,
+        parallel(r, scene, "--steps 120 --rebalance-every 50 --balance-threshold 0", "mpi.h5"),
+        std::to_string(r) + " ranks");
   }
 }
 

@@ -220,6 +220,8 @@ std::unique_ptr<Simulation> MpiDomain::distribute(const SceneConfig& scene,
   cell_ = 2.0 * p.max_radius();
   decomposition_ = rcb_decompose(p.position, {}, options_.domain, comm_.size());
   last_balance_ = full.steps;
+  window_wall_ = MPI_Wtime();
+  window_comm_ = comm_.seconds();
   const auto r = static_cast<std::size_t>(comm_.size());
   std::vector<std::byte> owned;
   std::size_t owned_count = 0;
@@ -274,8 +276,9 @@ void MpiDomain::refresh_ghosts(Simulation& sim, double moved) {
     due = !(first + second <= options_.skin);
     moved_ = first;
   }
-  const bool rebalance_due =
-      options_.rebalance_every > 0 && sim.steps() + 1 - last_balance_ >= options_.rebalance_every;
+  const bool rebalance_due = options_.rebalance_every > 0 &&
+                             sim.steps() + 1 - last_balance_ >= options_.rebalance_every &&
+                             balance_check(sim);
   if (due || rebalance_due) {
     if (rebalance_due) rebalance(sim);
     exchange(sim);
@@ -328,19 +331,53 @@ void MpiDomain::forward(Simulation& sim) {
   }
 }
 
+bool MpiDomain::balance_check(const Simulation& sim) {
+  last_balance_ = sim.steps() + 1;
+  // This rank's work in the window: its wall time outside MPI (the waits for slower ranks are
+  // inside), taken before the gather below adds its own wait.
+  const double work = (MPI_Wtime() - window_wall_) - (comm_.seconds() - window_comm_);
+  std::uint64_t owned = 0;
+  for (std::size_t i = 0; i < sim.particles().size(); ++i) owned += sim.is_ghost(i) ? 0 : 1;
+  const std::vector<double> all = comm_.all_gather(std::span<const double>(&work, 1));
+  window_wall_ = MPI_Wtime();
+  window_comm_ = comm_.seconds();
+  if (options_.balance == BalanceBy::count) return true;
+  const double mean = std::accumulate(all.begin(), all.end(), 0.0) / double(all.size());
+  const double imbalance = mean > 0.0 ? *std::max_element(all.begin(), all.end()) / mean : 1.0;
+  if (first_imbalance_ == 0.0) first_imbalance_ = imbalance;
+  last_imbalance_ = imbalance;
+  // Per particle; a rank that owns nothing (or measured nothing) weighs as the mean rank would.
+  work_weight_ = owned > 0 && work > 0.0 ? work / double(owned) : 0.0;
+  return options_.balance_threshold <= 0.0 || !(imbalance <= 1.0 + options_.balance_threshold);
+}
+
 void MpiDomain::rebalance(const Simulation& sim) {
   const Particles& p = sim.particles();
+  const bool by_time = options_.balance == BalanceBy::time;
+  const std::size_t width = by_time ? 4 : 3;  // x, y, z (and the particle's work weight)
   std::vector<double> mine;
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (sim.is_ghost(i)) continue;
     mine.insert(mine.end(), p.position[i].data(), p.position[i].data() + 3);
+    if (by_time) mine.push_back(work_weight_);
   }
   const std::vector<double> all = comm_.all_gather(mine);
-  std::vector<Vec3> x(all.size() / 3);
+  std::vector<Vec3> x(all.size() / width);
+  std::vector<double> w;
   for (std::size_t k = 0; k < x.size(); ++k)
-    x[k] = Vec3(all[3 * k], all[3 * k + 1], all[3 * k + 2]);
-  decomposition_ = rcb_decompose(x, {}, options_.domain, comm_.size());
-  last_balance_ = sim.steps() + 1;
+    x[k] = Vec3(all[width * k], all[width * k + 1], all[width * k + 2]);
+  if (by_time) {
+    w.resize(x.size());
+    double sum = 0.0;
+    std::size_t measured = 0;
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      w[k] = all[width * k + 3];
+      if (w[k] > 0.0) sum += w[k], ++measured;
+    }
+    const double fallback = measured > 0 ? sum / double(measured) : 1.0;
+    for (double& v : w) v = v > 0.0 ? v : fallback;
+  }
+  decomposition_ = rcb_decompose(x, w, options_.domain, comm_.size());
   ++rebalances_;
 }
 
@@ -489,6 +526,8 @@ MpiBalance MpiDomain::balance(const Simulation& sim) {
                  static_cast<double>(all.size());
   b.exchanges = exchanges_;
   b.rebalances = rebalances_;
+  b.first_imbalance = first_imbalance_;
+  b.last_imbalance = last_imbalance_;
   b.ghosts_new = comm_.sum(ghosts_new_);
   b.ghosts_kept = comm_.sum(ghosts_kept_);
   b.bridge_events = events_.replayed();

@@ -29,12 +29,22 @@
 
 namespace drumlab {
 
+/// What an RCB re-balance equalises: the particle count, or each rank's measured computing time
+/// (LAMMPS' `fix balance ... weight time`): every particle weighs its rank's seconds of work (wall
+/// time outside MPI) since the last check over its owned count, so the cuts move work from the
+/// ranks that computed longest.
+enum class BalanceBy { count, time };
+
 struct MpiDomainOptions {
   double reach = 0.0;  ///< ghost reach (m), ghost_reach() with the skin
   double skin = 0.0;   ///< m: particles migrate when one moved more than half of it
   std::optional<double> period_z;
   Box domain;                         ///< drum_domain of the scene
-  std::uint64_t rebalance_every = 0;  ///< steps between RCB re-balances (0: never)
+  std::uint64_t rebalance_every = 0;  ///< steps between balance checks (0: never re-balance)
+  BalanceBy balance = BalanceBy::time;
+  /// By time: a check re-cuts only when the slowest rank's work exceeds the mean by more than
+  /// this share (0: at every check). By count every check re-cuts.
+  double balance_threshold = 0.05;
 };
 
 /// A packed particle in a message (packed_size bytes at `at`), its serial slot and the rank that
@@ -49,6 +59,9 @@ struct MpiBalance {
   std::size_t owned_min = 0, owned_max = 0;
   double owned_mean = 0.0;
   std::uint64_t exchanges = 0, rebalances = 0;
+  /// By time: the slowest rank's work over the mean at the first and at the last balance check
+  /// (0: no check yet).
+  double first_imbalance = 0.0, last_imbalance = 0.0;
   /// Ghost records sent at exchanges over all ranks: in full (new ghosts) and motion only (kept).
   std::uint64_t ghosts_new = 0, ghosts_kept = 0;
   std::uint64_t bridge_events = 0;  ///< liquid bridge events replayed (the same on every rank)
@@ -90,6 +103,9 @@ class MpiDomain final : public DomainHooks {
   /// The two largest displacements of all ranks' particles since the last exchange (m), largest
   /// first. Collective.
   std::pair<double, double> measured_displacement(const Simulation& sim);
+  /// At a balance check: whether to re-cut now (by time: the measured imbalance against the
+  /// threshold; this rank's work weight kept for rebalance). Starts the next window. Collective.
+  bool balance_check(const Simulation& sim);
   void rebalance(const Simulation& sim);
   /// The local set from the owned particles' bytes `owned` and the ghosts' bytes by source rank
   /// (records; empty: exchanged here): particles sorted by serial slot, send and receive lists,
@@ -120,7 +136,10 @@ class MpiDomain final : public DomainHooks {
   double moved_ = 0.0;           ///< bound on the largest displacement since the last exchange, m
   std::vector<Vec3> reference_;  ///< positions at the last exchange
   double cell_ = 0.0;            ///< Morton cell, 2 r_max over all ranks
-  std::uint64_t last_balance_ = 0;
+  std::uint64_t last_balance_ = 0;  ///< step of the last balance check (or of the distribution)
+  double window_wall_ = 0.0, window_comm_ = 0.0;  ///< MPI_Wtime and comm seconds at its start
+  double work_weight_ = 1.0;  ///< by time: this rank's work per owned particle in the last window
+  double first_imbalance_ = 0.0, last_imbalance_ = 0.0;
   std::uint64_t exchanges_ = 0, rebalances_ = 0;
   std::uint64_t ghosts_new_ = 0, ghosts_kept_ = 0;  ///< this rank's, at exchanges
   MpiBridgeEvents events_{comm_, slot_};
