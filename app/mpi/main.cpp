@@ -4,9 +4,12 @@
 // printed once (by rank 0, or by the rank that met it if only one did) and every rank exits.
 #include <mpi.h>
 
+#include <malloc.h>
+
 #include <csignal>
 #include <cstdio>
 #include <exception>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -120,10 +123,21 @@ int fail(int code, const char* kind, const std::string& what, int rank) {
   return code;
 }
 
+/// Every exchange (every ~20 steps) builds each rank's arrays anew, tens of MB on a large drum.
+/// glibc serves chunks above its mmap threshold from fresh mappings and trims the heap's top back
+/// to the kernel, so each exchange would fault all of them in again: the deep drum on 2 ranks took
+/// ~50 K page faults per 600 steps, 5 % of the samples (app/bench/README.md, "MPI scaling").
+/// Keeping freed memory in the heap lets the next exchange reuse it.
+void keep_freed_memory() {
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest (64-bit): bigger blocks stay mmap'd
+  mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   drumlab::choose_openmp_waiting(argc, argv);  // before MPI_Init; may execute us again
+  keep_freed_memory();
   std::signal(SIGXFSZ, SIG_IGN);
   MPI_Init(&argc, &argv);
   int rank = 0;
