@@ -160,6 +160,11 @@ Simulation::~Simulation() = default;
 
 SimulationState Simulation::state() const {
   SimulationState s;
+  state_into(s);
+  return s;
+}
+
+void Simulation::state_into(SimulationState& s) const {
   s.particles = particles_;
   s.time = time_;
   s.dt = dt_;
@@ -174,7 +179,6 @@ SimulationState Simulation::state() const {
   s.contact_state_size = c.state_size();
   s.contact_state.assign(c.state().begin(), c.state().end());
   s.wall_history = impl_->wall_history;
-  return s;
 }
 
 void Simulation::contact_forces(std::vector<ContactForce>& out) const {
@@ -511,14 +515,14 @@ void Simulation::set_search_method(std::string_view name) {
   scene_.search_method = std::string(name);
 }
 
-void Simulation::replace_local(SimulationState state, std::vector<std::uint8_t> ghost,
+void Simulation::replace_local(SimulationState& state, std::vector<std::uint8_t> ghost,
                                std::span<const std::uint64_t> row_keys) {
-  particles_ = std::move(state.particles);
+  std::swap(particles_, state.particles);
   ghost_ = std::move(ghost);
   ContactList& c = impl_->contacts;
   c.assign(state.contact_row_start, state.contact_col, state.contact_history, state.contact_state);
   c.set_row_keys(row_keys);
-  impl_->wall_history = std::move(state.wall_history);
+  std::swap(impl_->wall_history, state.wall_history);
   use_search(make_search(scene_.search_method, search_tuning()));  // a fresh list
   impl_->walls.invalidate();
   impl_->moved = std::numeric_limits<double>::infinity();

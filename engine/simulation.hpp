@@ -103,7 +103,9 @@ class Simulation {
   /// Replaces this rank's particles, contact list and wall history (a migration): `ghost` is the
   /// mask above, `row_keys` the serial run's slot of each particle (ContactList::set_row_keys).
   /// The search lists are rebuilt at the next evaluation.
-  void replace_local(SimulationState state, std::vector<std::uint8_t> ghost,
+  /// `state` gets this rank's previous particles and wall history back (to fill again at the
+  /// next migration without allocating).
+  void replace_local(SimulationState& state, std::vector<std::uint8_t> ghost,
                      std::span<const std::uint64_t> row_keys);
 
   const Particles& particles() const { return particles_; }
@@ -127,6 +129,9 @@ class Simulation {
 
   /// Everything the next step depends on (for checkpoints); see SimulationState.
   SimulationState state() const;
+  /// The same into `out`, whose arrays keep their capacity (a decomposition copies its state at
+  /// every migration).
+  void state_into(SimulationState& out) const;
   /// Force on i of every overlapping particle-particle contact at the current state (i < j),
   /// evaluated read-only with the stored tangential history, and of every live liquid bridge or
   /// adhesive contact (their capillary / adhesive force added; a bridged pair apart has an entry

@@ -131,6 +131,7 @@ int fail(int code, const char* kind, const std::string& what, int rank) {
 void keep_freed_memory() {
   mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest (64-bit): bigger blocks stay mmap'd
   mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());
+  mallopt(M_MMAP_MAX, 0);  // larger blocks too: from the heap, kept there when freed
 }
 
 }  // namespace

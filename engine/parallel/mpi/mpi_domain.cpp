@@ -16,6 +16,22 @@ namespace drumlab {
 
 namespace {
 
+/// Whether every byte of v is zero (+0.0 only: a -0.0 is kept as it is).
+template <class T>
+bool all_zero_bits(std::span<const T> v) {
+  const auto* b = reinterpret_cast<const unsigned char*>(v.data());
+  return std::all_of(b, b + v.size_bytes(), [](unsigned char c) { return c == 0; });
+}
+
+/// Whether a and b hold the same extra arrays (names, in order).
+bool same_arrays(const Particles& a, const Particles& b) {
+  if (a.extra.size() != b.extra.size()) return false;
+  for (std::size_t k = 0; k < a.extra.size(); ++k) {
+    if (a.extra[k].name != b.extra[k].name) return false;
+  }
+  return true;
+}
+
 /// Owned particles, sorted by serial slot.
 struct OwnedSet {
   Particles p;
@@ -187,7 +203,14 @@ void MpiDomain::assemble(Simulation& sim, const std::vector<std::byte>& owned,
   std::sort(order.begin(), order.end(),
             [&](Index a, Index b) { return all[a].slot < all[b].slot; });
   SimulationState s;
-  s.particles = empty_like(like);
+  if (same_arrays(spare_.particles, like)) {  // last exchange's arrays, refilled
+    s.particles = std::move(spare_.particles);
+    s.particles.for_each_array([](std::string_view, auto& values) { values.clear(); });
+    s.wall_history = std::move(spare_.wall_history);
+    s.wall_history.clear();
+  } else {
+    s.particles = empty_like(like);
+  }
   s.particles.reserve(all.size());
   s.wall_history.reserve(all.size());
   std::vector<std::uint8_t> ghost(all.size(), 0);
@@ -211,7 +234,9 @@ void MpiDomain::assemble(Simulation& sim, const std::vector<std::byte>& owned,
       [&](std::size_t i, std::size_t j) { return ghost[i] == 0 || ghost[j] == 0; }, s);
   moved_ = 0.0;
   reference_ = s.particles.position;
-  sim.replace_local(std::move(s), std::move(ghost), slot_);
+  sim.replace_local(s, std::move(ghost), slot_);
+  spare_.particles = std::move(s.particles);
+  spare_.wall_history = std::move(s.wall_history);
 }
 
 std::unique_ptr<Simulation> MpiDomain::distribute(const SceneConfig& scene,
@@ -382,7 +407,8 @@ void MpiDomain::rebalance(const Simulation& sim) {
 }
 
 void MpiDomain::exchange(Simulation& sim) {
-  const SimulationState old = sim.state();
+  sim.state_into(old_);
+  const SimulationState& old = old_;
   const Particles& p = old.particles;
   const auto& ghost = sim.ghost_mask();
   const auto r = static_cast<std::size_t>(comm_.size());
@@ -390,7 +416,9 @@ void MpiDomain::exchange(Simulation& sim) {
   std::vector<int> dest(p.size(), -1);
   std::vector<std::vector<std::byte>> parts(r), recs(r);
   std::vector<std::size_t> migrants(r, 0), records_to(r, 0);
-  std::vector<std::byte> owned;
+  std::vector<std::byte>& owned = owned_bytes_;
+  owned.clear();
+  owned.reserve(p.size() * packed_size(p));
   std::size_t owned_count = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (ghost[i] != 0) continue;
@@ -405,13 +433,20 @@ void MpiDomain::exchange(Simulation& sim) {
     ++migrants[static_cast<std::size_t>(q)];
   }
   // Contact records: ours where one particle was owned here, and a copy to each migrant's rank.
+  // A listed pair whose history and state are all zero bits carries nothing: a pair new to the
+  // rebuilt list starts with exactly that (ContactList::transfer_history), so it is left out.
   ContactRecords records;
   records.state_size = old.contact_state_size;
   const std::size_t rows = old.contact_row_start.empty() ? 0 : old.contact_row_start.size() - 1;
+  const auto carries = [&](std::size_t k) {
+    const std::size_t s = records.state_size;
+    return !all_zero_bits(std::span(&old.contact_history[k], 1)) ||
+           !all_zero_bits(std::span(old.contact_state).subspan(k * s, s));
+  };
   for (std::size_t i = 0; i < rows; ++i) {
     for (std::size_t k = old.contact_row_start[i]; k < old.contact_row_start[i + 1]; ++k) {
       const Index j = old.contact_col[k];
-      if (ghost[i] != 0 && ghost[j] != 0) continue;
+      if ((ghost[i] != 0 && ghost[j] != 0) || !carries(k)) continue;
       records.add(slot_[i], slot_[j], old.contact_history[k],
                   std::span(old.contact_state).subspan(k * records.state_size, records.state_size));
       for (const int q : {dest[i], dest[j] != dest[i] ? dest[j] : -1}) {

@@ -143,6 +143,11 @@ class MpiDomain final : public DomainHooks {
   std::uint64_t exchanges_ = 0, rebalances_ = 0;
   std::uint64_t ghosts_new_ = 0, ghosts_kept_ = 0;  ///< this rank's, at exchanges
   MpiBridgeEvents events_{comm_, slot_};
+  // Kept between exchanges so that each one refills memory instead of allocating (and faulting
+  // in) hundreds of MB on a large drum: the state before the exchange, the particles the last one
+  // replaced (refilled by the next), the owned particles' bytes.
+  SimulationState old_, spare_;
+  std::vector<std::byte> owned_bytes_;
 };
 
 }  // namespace drumlab
