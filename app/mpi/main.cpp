@@ -123,15 +123,15 @@ int fail(int code, const char* kind, const std::string& what, int rank) {
   return code;
 }
 
-/// Every exchange (every ~20 steps) builds each rank's arrays anew, tens of MB on a large drum.
-/// glibc serves chunks above its mmap threshold from fresh mappings and trims the heap's top back
-/// to the kernel, so each exchange would fault all of them in again: the deep drum on 2 ranks took
-/// ~50 K page faults per 600 steps, 5 % of the samples (app/bench/README.md, "MPI scaling").
-/// Keeping freed memory in the heap lets the next exchange reuse it.
+/// Every exchange (every ~20 steps) needs each rank's arrays again, hundreds of MB on a large drum.
+/// glibc serves blocks above its mmap threshold from fresh mappings and trims the heap's top back
+/// to the kernel, so each exchange would fault them all in again (the Table 2 drum on 2 ranks:
+/// 2.3 M page faults in 200 steps; app/bench/README.md, "MPI scaling"). Every block comes from
+/// the heap instead and stays there when freed, for the next exchange to reuse: a rank's memory
+/// stays at its peak until it exits.
 void keep_freed_memory() {
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's largest (64-bit): bigger blocks stay mmap'd
+  mallopt(M_MMAP_MAX, 0);
   mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());
-  mallopt(M_MMAP_MAX, 0);  // larger blocks too: from the heap, kept there when freed
 }
 
 }  // namespace
