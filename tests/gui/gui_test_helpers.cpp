@@ -1,7 +1,11 @@
 #include "tests/gui/gui_test_helpers.hpp"
 
+#include <unistd.h>
+
 #include <array>
 #include <cmath>
+#include <system_error>
+#include <vector>
 
 #include <vtkImageData.h>
 #include <vtkNew.h>
@@ -29,10 +33,27 @@ GuiRun run_gui(const std::string& args, bool window) {
   return r;
 }
 
+namespace {
+
+/// The directories fresh_dir made in this process, removed when it exits.
+struct MadeDirs {
+  std::vector<std::filesystem::path> dirs;
+  ~MadeDirs() {
+    std::error_code ignored;
+    for (const auto& d : dirs) std::filesystem::remove_all(d, ignored);
+  }
+};
+MadeDirs made_dirs;
+
+}  // namespace
+
 std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("drumlab-gui-test-" + name);
+  // The process id in the name: two checkouts running the suite at once do not share it.
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("drumlab-gui-test-" + name + "-" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
+  made_dirs.dirs.push_back(dir);
   return dir;
 }
 

@@ -22,7 +22,8 @@ struct GuiRun {
 GuiRun run_gui(const std::string& args, bool window);
 /// True where ctest found xvfb-run at configure time.
 bool have_xvfb();
-/// A fresh empty directory under the temporary directory.
+/// A fresh empty directory under the temporary directory, unique to this process and removed when
+/// it exits.
 std::filesystem::path fresh_dir(const std::string& name);
 /// Writes the small two-size test drum (tests/small_drum_text.hpp) with `search` to DIR/NAME.
 std::filesystem::path write_small_drum(const std::filesystem::path& dir, const std::string& search);
