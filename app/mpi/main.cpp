@@ -10,7 +10,6 @@
 #include <cstdio>
 #include <exception>
 #include <limits>
-#include <map>
 #include <optional>
 #include <string>
 
@@ -26,7 +25,8 @@ namespace {
 
 using drumlab::mpi::MpiRunOptions;
 
-void add_run(CLI::App& app, MpiRunOptions& o, std::optional<std::uint64_t>& steps) {
+void add_run(CLI::App& app, MpiRunOptions& o, std::optional<std::uint64_t>& steps,
+             std::string& balance) {
   auto* run = app.add_subcommand("run", "fill (or restart), settle and turn a scene on all ranks");
   run->add_option("scene", o.session.scene_file, "scene TOML file")->required();
   run->add_option("--method", o.session.method,
@@ -61,16 +61,14 @@ void add_run(CLI::App& app, MpiRunOptions& o, std::optional<std::uint64_t>& step
   run->add_option("--restart", o.session.restart, "continue from a checkpoint (any rank count)");
   run->add_option("--rebalance-every", o.rebalance_every,
                   "steps between balance checks (0: keep the first cut; default 200)");
-  const std::map<std::string, drumlab::BalanceBy> by{{"time", drumlab::BalanceBy::time},
-                                                     {"count", drumlab::BalanceBy::count}};
-  run->add_option("--balance", o.balance,
+  run->add_option("--balance", balance,
                   "what a re-balance equalises: time (each rank's measured work, the default) or "
                   "count (owned particles)")
-      ->transform(CLI::CheckedTransformer(by, CLI::ignore_case));
+      ->check(CLI::IsMember({"time", "count"}));
   run->add_option("--balance-threshold", o.balance_threshold,
                   "by time: re-cut when the slowest rank's work exceeds the mean by more than "
                   "this share (default 0.05; 0: at every check)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0.0, 10.0));
 }
 
 void print_summary(const drumlab::mpi::MpiRunSummary& s) {
@@ -147,11 +145,13 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   MpiRunOptions o;
   std::optional<std::uint64_t> steps;
-  add_run(app, o, steps);
+  std::string balance = "time";
+  add_run(app, o, steps, balance);
   int code = 0;
   try {
     app.parse(argc, argv);
     o.session.steps = steps;
+    o.balance = balance == "count" ? drumlab::BalanceBy::count : drumlab::BalanceBy::time;
     const auto summary = drumlab::mpi::run_mpi(MPI_COMM_WORLD, o);
     if (rank == 0) print_summary(summary);
   } catch (const CLI::ParseError& e) {
