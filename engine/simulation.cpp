@@ -164,6 +164,14 @@ SimulationState Simulation::state() const {
   return s;
 }
 
+const ContactList& Simulation::contacts() const {
+  return impl_->contacts;
+}
+
+const WallHistory& Simulation::wall_history() const {
+  return impl_->wall_history;
+}
+
 void Simulation::state_into(SimulationState& s) const {
   s.particles = particles_;
   s.time = time_;

@@ -109,6 +109,10 @@ class Simulation {
                      std::span<const std::uint64_t> row_keys);
 
   const Particles& particles() const { return particles_; }
+  /// The contact list (rows in storage slots) and the wall history, read-only: what a migration
+  /// keeps of the particles that stay on their rank, without copying the state.
+  const ContactList& contacts() const;
+  const WallHistory& wall_history() const;
   const SceneConfig& scene() const { return scene_; }
   const ContactSearch& search() const { return *search_; }
   /// The search's input on the current state (positions, radii, margin, z period): what the step

@@ -206,6 +206,7 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
   s.comm_share_max = domain.max(share);
   s.comm_share_mean = domain.sum(share) / ranks;
   s.exchanges = b.exchanges;
+  s.exchange_seconds = domain.max(b.exchange_seconds);
   s.rebalances = b.rebalances;
   s.balance = o.balance;
   s.rebalance_every = o.rebalance_every;

@@ -56,6 +56,7 @@ struct MpiRunSummary {
   double comm_share_max = 0.0;  ///< largest share of a rank's time inside MPI
   double comm_share_mean = 0.0;
   std::uint64_t exchanges = 0, rebalances = 0;
+  double exchange_seconds = 0.0;  ///< in exchanges, slowest rank
   BalanceBy balance = BalanceBy::time;
   std::uint64_t rebalance_every = 0;
   double balance_threshold = 0.0;

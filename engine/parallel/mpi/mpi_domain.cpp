@@ -407,6 +407,7 @@ void MpiDomain::rebalance(const Simulation& sim) {
 }
 
 void MpiDomain::exchange(Simulation& sim) {
+  const double start = MPI_Wtime();
   sim.state_into(old_);
   const SimulationState& old = old_;
   const Particles& p = old.particles;
@@ -469,6 +470,7 @@ void MpiDomain::exchange(Simulation& sim) {
   }
   assemble(sim, owned, owned_count, {}, std::move(records), &old);
   ++exchanges_;
+  exchange_seconds_ += MPI_Wtime() - start;
 }
 
 void MpiDomain::reorder(Simulation& sim) {
@@ -567,6 +569,7 @@ MpiBalance MpiDomain::balance(const Simulation& sim) {
   b.ghosts_kept = comm_.sum(ghosts_kept_);
   b.bridge_events = events_.replayed();
   b.comm_seconds = comm_.seconds();
+  b.exchange_seconds = exchange_seconds_;
   return b;
 }
 
