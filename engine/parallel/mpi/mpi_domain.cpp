@@ -9,19 +9,13 @@
 #include <stdexcept>
 
 #include "engine/parallel/ghost_layer.hpp"
+#include "engine/parallel/local_set.hpp"
 #include "engine/periodic.hpp"
 #include "engine/spatial_order.hpp"
 
 namespace drumlab {
 
 namespace {
-
-/// Whether every byte of v is zero (+0.0 only: a -0.0 is kept as it is).
-template <class T>
-bool all_zero_bits(std::span<const T> v) {
-  const auto* b = reinterpret_cast<const unsigned char*>(v.data());
-  return std::all_of(b, b + v.size_bytes(), [](unsigned char c) { return c == 0; });
-}
 
 /// Whether a and b hold the same extra arrays (names, in order).
 bool same_arrays(const Particles& a, const Particles& b) {
@@ -96,27 +90,39 @@ MpiDomain::MpiDomain(MPI_Comm comm, MpiDomainOptions options)
 }
 
 std::vector<std::vector<std::byte>> MpiDomain::ghost_packs(
-    std::span<const PackedPiece> owned, std::size_t size,
+    std::span<const PackedPiece> owned, const Simulation& sim,
     const std::vector<std::vector<std::uint64_t>>& sent) {
+  const Particles& p = sim.particles();
+  const std::size_t size = packed_size(p);
   const auto r = static_cast<std::size_t>(comm_.size());
   std::vector<std::vector<std::byte>> full(r), motion(r);
   std::vector<std::vector<Index>> kept(r);
   for (auto& s : send_) s.clear();
   std::vector<int> near;
   for (std::size_t k = 0; k < owned.size(); ++k) {
-    const std::byte* at = owned[k].at;
-    ranks_within(decomposition_, packed_position({at, size}), options_.reach, options_.period_z,
-                 near);
+    const PackedPiece& e = owned[k];
+    const Vec3 x = e.at != nullptr ? packed_position({e.at, size}) : p.position[e.local];
+    ranks_within(decomposition_, x, options_.reach, options_.period_z, near);
     for (const int q : near) {
       if (q == comm_.rank()) continue;
       const auto uq = static_cast<std::size_t>(q);
       // Owned-set indices, made local in assemble.
-      if (!sent.empty() && std::binary_search(sent[uq].begin(), sent[uq].end(), owned[k].slot)) {
-        put_bytes(motion[uq], owned[k].slot);  // q holds it as a ghost already: its motion only
-        motion[uq].insert(motion[uq].end(), at, at + kPackedMotionBytes);
+      if (!sent.empty() && std::binary_search(sent[uq].begin(), sent[uq].end(), e.slot)) {
+        put_bytes(motion[uq], e.slot);  // q holds it as a ghost already: its motion only
+        if (e.at != nullptr) {
+          motion[uq].insert(motion[uq].end(), e.at, e.at + kPackedMotionBytes);
+        } else {
+          put_bytes(motion[uq], p.position[e.local]);
+          put_bytes(motion[uq], p.velocity[e.local]);
+          put_bytes(motion[uq], p.omega[e.local]);
+        }
         kept[uq].push_back(static_cast<Index>(k));
       } else {
-        full[uq].insert(full[uq].end(), at, at + size);
+        if (e.at != nullptr) {
+          full[uq].insert(full[uq].end(), e.at, e.at + size);
+        } else {
+          pack_particle(p, e.local, e.slot, sim.wall_history()[e.local], full[uq]);
+        }
         send_[uq].push_back(static_cast<Index>(k));
       }
     }
@@ -137,106 +143,112 @@ std::vector<std::vector<std::byte>> MpiDomain::ghost_packs(
 }
 
 void MpiDomain::received_ghosts(const std::vector<std::vector<std::byte>>& in, std::size_t size,
-                                const SimulationState* old, std::vector<std::byte>& rebuilt,
-                                std::vector<PackedPiece>& all) {
-  constexpr std::size_t kKept = sizeof(std::uint64_t) + kPackedMotionBytes;
-  std::size_t kept = 0;
-  for (const auto& msg : in) {
-    std::size_t pos = 0;
-    const auto n = get_bytes<std::uint64_t>(msg, pos);
-    kept += (msg.size() - pos - static_cast<std::size_t>(n) * size) / kKept;
-  }
-  rebuilt.reserve(kept * size);  // no reallocation: `all` points into it
+                                std::vector<PackedPiece>& ghosts) const {
   for (std::size_t q = 0; q < in.size(); ++q) {
     const std::vector<std::byte>& msg = in[q];
     std::size_t pos = 0;
     const auto n = get_bytes<std::uint64_t>(msg, pos);
     for (std::uint64_t m = 0; m < n; ++m, pos += size) {
-      all.push_back({packed_slot({msg.data() + pos, size}), msg.data() + pos, static_cast<int>(q)});
+      ghosts.push_back(
+          {packed_slot({msg.data() + pos, size}), msg.data() + pos, static_cast<int>(q)});
     }
-    while (pos < msg.size()) {
+    while (pos < msg.size()) {  // kept: our copy (slot_ still holds the current slots), new motion
       const auto slot = get_bytes<std::uint64_t>(msg, pos);
       const auto it = std::lower_bound(slot_.begin(), slot_.end(), slot);
-      if (old == nullptr || it == slot_.end() || *it != slot) {
+      if (it == slot_.end() || *it != slot) {
         throw std::logic_error("MpiDomain: a kept ghost that this rank does not hold");
       }
-      const auto i = static_cast<std::size_t>(it - slot_.begin());
-      const std::size_t start = rebuilt.size();
-      pack_particle(old->particles, i, slot, old->wall_history[i], rebuilt);
-      std::memcpy(rebuilt.data() + start, msg.data() + pos, kPackedMotionBytes);
+      const auto i = static_cast<Index>(it - slot_.begin());
+      ghosts.push_back({slot, nullptr, static_cast<int>(q), i, msg.data() + pos});
       pos += kPackedMotionBytes;
-      all.push_back({slot, rebuilt.data() + start, static_cast<int>(q)});
     }
   }
 }
 
-void MpiDomain::assemble(Simulation& sim, const std::vector<std::byte>& owned,
-                         std::size_t owned_count, const std::vector<std::vector<std::byte>>& ghosts,
-                         ContactRecords records, const SimulationState* old) {
+void MpiDomain::assemble(Simulation& sim, std::vector<PackedPiece> owned,
+                         const std::vector<std::vector<std::byte>>& given, ContactRecords records,
+                         bool migration) {
   const Particles& like = sim.particles();
   const std::size_t size = packed_size(like);
-  // Every record is unpacked once, straight into its place in the serial order.
-  std::vector<PackedPiece> all = sorted_pieces(owned, owned_count, size);
   // The ghosts each rank holds of ours (serial slots, ascending): they get their motion only.
-  std::vector<std::vector<std::uint64_t>> sent(old != nullptr ? send_.size() : 0);
+  std::vector<std::vector<std::uint64_t>> sent(migration ? send_.size() : 0);
   for (std::size_t q = 0; q < sent.size(); ++q) {
     for (const Index i : send_[q]) sent[q].push_back(slot_[i]);
     std::sort(sent[q].begin(), sent[q].end());
   }
-  // Ghosts for the others first (send_ in owned-set indices), then ours from them.
-  const auto out = ghost_packs(all, size, sent);
-  std::vector<std::byte> rebuilt;          // our kept ghosts: our copy with the owner's motion
-  std::vector<std::vector<std::byte>> in;  // `all` points into it and into `rebuilt`
-  if (ghosts.empty()) {
+  // Ghosts for the others first (send_ in owned-set indices), then ours from them, in message
+  // order (recv_ lists them so).
+  const auto out = ghost_packs(owned, sim, sent);
+  std::vector<std::vector<std::byte>> in;  // the ghosts' pieces point into it
+  std::vector<PackedPiece> ghosts;
+  if (migration) {
     in = comm_.all_to_all(out);
-    received_ghosts(in, size, old, rebuilt, all);
+    received_ghosts(in, size, ghosts);
   } else {
-    for (std::size_t q = 0; q < ghosts.size(); ++q) {
-      for (std::size_t pos = 0; pos < ghosts[q].size(); pos += size) {
-        const std::byte* at = ghosts[q].data() + pos;
-        all.push_back({packed_slot({at, size}), at, static_cast<int>(q)});
+    for (std::size_t q = 0; q < given.size(); ++q) {
+      for (std::size_t pos = 0; pos < given[q].size(); pos += size) {
+        const std::byte* at = given[q].data() + pos;
+        ghosts.push_back({packed_slot({at, size}), at, static_cast<int>(q)});
       }
     }
   }
-  std::vector<Index> order(all.size()), local_of(all.size());
-  std::iota(order.begin(), order.end(), Index{0});
-  std::sort(order.begin(), order.end(),
-            [&](Index a, Index b) { return all[a].slot < all[b].slot; });
+  // The next local set in serial order: the owned (sorted) merged with the sorted ghosts.
+  std::vector<Index> by_slot(ghosts.size());
+  std::iota(by_slot.begin(), by_slot.end(), Index{0});
+  std::sort(by_slot.begin(), by_slot.end(),
+            [&](Index a, Index b) { return ghosts[a].slot < ghosts[b].slot; });
+  const std::size_t n = owned.size() + ghosts.size();
+  std::vector<const PackedPiece*> seq;
+  seq.reserve(n);
+  std::vector<std::uint8_t> ghost(n, 0);
+  std::vector<Index> owned_at(owned.size()), ghost_at(ghosts.size());
+  std::vector<std::uint64_t> next_slot;
+  next_slot.reserve(n);
+  for (std::size_t a = 0, b = 0; a < owned.size() || b < by_slot.size();) {
+    const auto local = static_cast<Index>(seq.size());
+    if (b == by_slot.size() || (a < owned.size() && owned[a].slot < ghosts[by_slot[b]].slot)) {
+      owned_at[a] = local;
+      seq.push_back(&owned[a++]);
+    } else {
+      ghost_at[by_slot[b]] = local;
+      ghost[local] = 1;
+      seq.push_back(&ghosts[by_slot[b++]]);
+    }
+    next_slot.push_back(seq.back()->slot);
+  }
   SimulationState s;
   if (same_arrays(spare_.particles, like)) {  // last exchange's arrays, refilled
-    s.particles = std::move(spare_.particles);
-    s.particles.for_each_array([](std::string_view, auto& values) { values.clear(); });
-    s.wall_history = std::move(spare_.wall_history);
-    s.wall_history.clear();
+    s = std::move(spare_);
   } else {
     s.particles = empty_like(like);
   }
-  s.particles.reserve(all.size());
-  s.wall_history.reserve(all.size());
-  std::vector<std::uint8_t> ghost(all.size(), 0);
-  slot_.clear();
-  for (const Index k : order) {
-    const auto local = static_cast<Index>(slot_.size());
-    local_of[k] = local;
-    ghost[local] = all[k].source < 0 ? 0 : 1;
-    std::size_t pos = 0;
-    slot_.push_back(unpack_particle({all[k].at, size}, pos, s.particles, s.wall_history));
+  fill_particles(seq, like, sim.wall_history(), size, s.particles, s.wall_history);
+  if (migration) {
+    // Each current particle's index in the next set by its slot, whatever its data came from
+    // (n: not in it), for the contact list. Both sets are sorted by slot.
+    std::vector<Index> new_of_old(like.size(), static_cast<Index>(n));
+    for (std::size_t i = 0, k = 0; i < like.size(); ++i) {
+      while (k < n && next_slot[k] < slot_[i]) ++k;
+      if (k < n && next_slot[k] == slot_[i]) new_of_old[i] = static_cast<Index>(k);
+    }
+    merge_contacts(sim.contacts(), sim.ghost_mask(), new_of_old, ghost, next_slot, records, s);
+  } else {
+    assign_records(
+        std::move(records), next_slot,
+        [&](std::size_t i, std::size_t j) { return ghost[i] == 0 || ghost[j] == 0; }, s);
   }
   for (auto& list : send_) {
-    for (Index& i : list) i = local_of[i];
+    for (Index& i : list) i = owned_at[i];
   }
   for (auto& r : recv_) r.clear();
-  for (std::size_t k = owned_count; k < all.size(); ++k) {  // in message order
-    recv_[static_cast<std::size_t>(all[k].source)].push_back(local_of[k]);
+  for (std::size_t g = 0; g < ghosts.size(); ++g) {  // in message order
+    recv_[static_cast<std::size_t>(ghosts[g].source)].push_back(ghost_at[g]);
   }
-  assign_records(
-      std::move(records), slot_,
-      [&](std::size_t i, std::size_t j) { return ghost[i] == 0 || ghost[j] == 0; }, s);
+  slot_ = std::move(next_slot);
   moved_ = 0.0;
   reference_ = s.particles.position;
   sim.replace_local(s, std::move(ghost), slot_);
-  spare_.particles = std::move(s.particles);
-  spare_.wall_history = std::move(s.wall_history);
+  spare_ = std::move(s);
 }
 
 std::unique_ptr<Simulation> MpiDomain::distribute(const SceneConfig& scene,
@@ -280,7 +292,8 @@ std::unique_ptr<Simulation> MpiDomain::distribute(const SceneConfig& scene,
   start.search_method = full.search_method;
   start.contact_state_size = full.contact_state_size;
   auto sim = std::make_unique<Simulation>(scene, std::move(start));
-  assemble(*sim, owned, owned_count, ghosts, std::move(records));
+  assemble(*sim, sorted_pieces(owned, owned_count, packed_size(p)), ghosts, std::move(records),
+           false);
   events_.set_ghosts(&sim->ghost_mask());
   sim->set_domain(this);
   return sim;
@@ -407,52 +420,52 @@ void MpiDomain::rebalance(const Simulation& sim) {
 }
 
 void MpiDomain::exchange(Simulation& sim) {
+  // Only the migrants are packed: the particles that stay are copied from the current arrays
+  // into the next local set (assemble), their contacts from the current list.
   const double start = MPI_Wtime();
-  sim.state_into(old_);
-  const SimulationState& old = old_;
-  const Particles& p = old.particles;
+  const Particles& p = sim.particles();
+  const WallHistory& wall = sim.wall_history();
+  const ContactList& c = sim.contacts();
   const auto& ghost = sim.ghost_mask();
+  const std::size_t size = packed_size(p);
   const auto r = static_cast<std::size_t>(comm_.size());
   // Where each owned particle goes (-1: stays), and the migrants' bytes per destination.
   std::vector<int> dest(p.size(), -1);
   std::vector<std::vector<std::byte>> parts(r), recs(r);
   std::vector<std::size_t> migrants(r, 0), records_to(r, 0);
-  std::vector<std::byte>& owned = owned_bytes_;
-  owned.clear();
-  owned.reserve(p.size() * packed_size(p));
-  std::size_t owned_count = 0;
+  std::vector<PackedPiece> staying;
+  staying.reserve(p.size());
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (ghost[i] != 0) continue;
     const int q = rcb_owner(decomposition_, p.position[i]);
     if (q == comm_.rank()) {
-      pack_particle(p, i, slot_[i], old.wall_history[i], owned);
-      ++owned_count;
+      staying.push_back({slot_[i], nullptr, -1, static_cast<Index>(i)});
       continue;
     }
     dest[i] = q;
-    pack_particle(p, i, slot_[i], old.wall_history[i], parts[static_cast<std::size_t>(q)]);
+    pack_particle(p, i, slot_[i], wall[i], parts[static_cast<std::size_t>(q)]);
     ++migrants[static_cast<std::size_t>(q)];
   }
-  // Contact records: ours where one particle was owned here, and a copy to each migrant's rank.
-  // A listed pair whose history and state are all zero bits carries nothing: a pair new to the
-  // rebuilt list starts with exactly that (ContactList::transfer_history), so it is left out.
-  ContactRecords records;
-  records.state_size = old.contact_state_size;
-  const std::size_t rows = old.contact_row_start.empty() ? 0 : old.contact_row_start.size() - 1;
-  const auto carries = [&](std::size_t k) {
-    const std::size_t s = records.state_size;
-    return !all_zero_bits(std::span(&old.contact_history[k], 1)) ||
-           !all_zero_bits(std::span(old.contact_state).subspan(k * s, s));
-  };
-  for (std::size_t i = 0; i < rows; ++i) {
-    for (std::size_t k = old.contact_row_start[i]; k < old.contact_row_start[i + 1]; ++k) {
-      const Index j = old.contact_col[k];
-      if ((ghost[i] != 0 && ghost[j] != 0) || !carries(k)) continue;
-      records.add(slot_[i], slot_[j], old.contact_history[k],
-                  std::span(old.contact_state).subspan(k * records.state_size, records.state_size));
+  // The migrants' contact records, to each migrant's rank: the pairs with one particle owned
+  // here. A listed pair whose history and state are all zero bits carries nothing: a pair new to
+  // the rebuilt list starts with exactly that (ContactList::transfer_history), so it is left out.
+  ContactRecords sending;
+  sending.state_size = c.state_size();
+  const auto row = c.row_start();
+  const auto col = c.col();
+  for (std::size_t i = 0; i < c.rows(); ++i) {
+    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
+      const Index j = col[k];
+      if (dest[i] < 0 && dest[j] < 0) continue;
+      if ((ghost[i] != 0 && ghost[j] != 0) ||
+          !carries_contact(c.history(), c.state(), sending.state_size, k)) {
+        continue;
+      }
+      sending.add(slot_[i], slot_[j], c.history()[k],
+                  c.state().subspan(k * sending.state_size, sending.state_size));
       for (const int q : {dest[i], dest[j] != dest[i] ? dest[j] : -1}) {
         if (q < 0) continue;
-        records.pack(records.size() - 1, recs[static_cast<std::size_t>(q)]);
+        sending.pack(sending.size() - 1, recs[static_cast<std::size_t>(q)]);
         ++records_to[static_cast<std::size_t>(q)];
       }
     }
@@ -465,10 +478,19 @@ void MpiDomain::exchange(Simulation& sim) {
     out[q].insert(out[q].end(), recs[q].begin(), recs[q].end());
   }
   const auto in = comm_.all_to_all(out);
+  std::vector<std::byte>& arrived = owned_bytes_;
+  arrived.clear();
+  std::size_t arrived_count = 0;
+  ContactRecords records;
+  records.state_size = c.state_size();
   for (const auto& msg : in) {
-    if (!msg.empty()) owned_count += read_message(msg, p, owned, records);
+    if (!msg.empty()) arrived_count += read_message(msg, p, arrived, records);
   }
-  assemble(sim, owned, owned_count, {}, std::move(records), &old);
+  const std::vector<PackedPiece> arrivals = sorted_pieces(arrived, arrived_count, size);
+  std::vector<PackedPiece> owned(staying.size() + arrivals.size());
+  std::merge(staying.begin(), staying.end(), arrivals.begin(), arrivals.end(), owned.begin(),
+             [](const PackedPiece& a, const PackedPiece& b) { return a.slot < b.slot; });
+  assemble(sim, std::move(owned), {}, std::move(records), true);
   ++exchanges_;
   exchange_seconds_ += MPI_Wtime() - start;
 }

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "engine/parallel/domain_hooks.hpp"
+#include "engine/parallel/local_set.hpp"
 #include "engine/parallel/mpi/mpi_bridge_events.hpp"
 #include "engine/parallel/mpi/mpi_comm.hpp"
 #include "engine/parallel/particle_pack.hpp"
@@ -45,14 +46,6 @@ struct MpiDomainOptions {
   /// By time: a check re-cuts only when the slowest rank's work exceeds the mean by more than
   /// this share (0: at every check). By count every check re-cuts.
   double balance_threshold = 0.05;
-};
-
-/// A packed particle in a message (packed_size bytes at `at`), its serial slot and the rank that
-/// sent it (-1: owned here).
-struct PackedPiece {
-  std::uint64_t slot;
-  const std::byte* at;
-  int source;
 };
 
 struct MpiBalance {
@@ -110,25 +103,25 @@ class MpiDomain final : public DomainHooks {
   /// threshold; this rank's work weight kept for rebalance). Starts the next window. Collective.
   bool balance_check(const Simulation& sim);
   void rebalance(const Simulation& sim);
-  /// The local set from the owned particles' bytes `owned` and the ghosts' bytes by source rank
-  /// (records; empty: exchanged here): particles sorted by serial slot, send and receive lists,
-  /// reference positions. `old`: the local state before an exchange (its slots still in slot_),
-  /// whose ghosts that stay ghosts get only their motion from their owners.
-  void assemble(Simulation& sim, const std::vector<std::byte>& owned, std::size_t owned_count,
-                const std::vector<std::vector<std::byte>>& ghosts, ContactRecords records,
-                const SimulationState* old = nullptr);
-  /// The messages of the other ranks for ghost_packs (to send) and the owned particles' records
-  /// `owned` (sorted by serial slot, `size` bytes each): to each rank the records of its new
-  /// ghosts, then the slots and motion of the ghosts it keeps (those in `sent`, by rank); send_
-  /// lists them in that order, by their index in `owned`.
+  /// The next local set from the owned particles `owned` (sorted by serial slot) and the ghosts:
+  /// at a migration (`migration`) exchanged here, the ghosts that stay ghosts getting only their
+  /// motion from their owners, and the current contact list's entries kept besides `records`; at
+  /// the distribution the ghosts' records by source rank `given`, the contacts from `records`
+  /// alone. Sets the slots, send and receive lists and reference positions, replaces sim's
+  /// particles.
+  void assemble(Simulation& sim, std::vector<PackedPiece> owned,
+                const std::vector<std::vector<std::byte>>& given, ContactRecords records,
+                bool migration);
+  /// The messages of the other ranks (to send): to each rank the records of its new ghosts
+  /// among `owned` (sorted by serial slot), then the slots and motion of the ghosts it keeps
+  /// (those in `sent`, by rank); send_ lists them in that order, by their index in `owned`.
   std::vector<std::vector<std::byte>> ghost_packs(
-      std::span<const PackedPiece> owned, std::size_t size,
+      std::span<const PackedPiece> owned, const Simulation& sim,
       const std::vector<std::vector<std::uint64_t>>& sent);
-  /// Appends the ghosts of the messages `in` (by source rank) to `all`: new ones as received, kept
-  /// ones rebuilt into `rebuilt` from `old` with their owner's motion.
+  /// Appends the ghosts of the messages `in` (by source rank) to `ghosts`: new ones as received,
+  /// kept ones as this rank's current copy with their owner's motion.
   void received_ghosts(const std::vector<std::vector<std::byte>>& in, std::size_t size,
-                       const SimulationState* old, std::vector<std::byte>& rebuilt,
-                       std::vector<PackedPiece>& all);
+                       std::vector<PackedPiece>& ghosts) const;
 
   MpiComm comm_;
   MpiDomainOptions options_;
@@ -148,9 +141,9 @@ class MpiDomain final : public DomainHooks {
   std::uint64_t ghosts_new_ = 0, ghosts_kept_ = 0;  ///< this rank's, at exchanges
   MpiBridgeEvents events_{comm_, slot_};
   // Kept between exchanges so that each one refills memory instead of allocating (and faulting
-  // in) hundreds of MB on a large drum: the state before the exchange, the particles the last one
-  // replaced (refilled by the next), the owned particles' bytes.
-  SimulationState old_, spare_;
+  // in) hundreds of MB on a large drum: the particles and contact arrays the last one replaced
+  // (refilled by the next), the arrived migrants' bytes.
+  SimulationState spare_;
   std::vector<std::byte> owned_bytes_;
 };
 
