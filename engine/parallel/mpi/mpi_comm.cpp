@@ -140,23 +140,39 @@ std::vector<std::vector<std::byte>> MpiComm::gather(std::span<const std::byte> m
   return out;
 }
 
-void MpiComm::exchange(const std::vector<std::vector<double>>& send,
-                       std::vector<std::vector<double>>& recv) {
-  Timed t(seconds_);
+namespace {
+
+template <class T>
+void point_to_point(const std::vector<std::vector<T>>& send, std::vector<std::vector<T>>& recv,
+                    MPI_Datatype type, MPI_Comm comm) {
   std::vector<MPI_Request> requests;
   for (std::size_t q = 0; q < recv.size(); ++q) {
     if (recv[q].empty()) continue;
     requests.emplace_back();
-    MPI_Irecv(recv[q].data(), static_cast<int>(recv[q].size()), MPI_DOUBLE, static_cast<int>(q), 7,
-              comm_, &requests.back());
+    MPI_Irecv(recv[q].data(), static_cast<int>(recv[q].size()), type, static_cast<int>(q), 7, comm,
+              &requests.back());
   }
   for (std::size_t q = 0; q < send.size(); ++q) {
     if (send[q].empty()) continue;
     requests.emplace_back();
-    MPI_Isend(send[q].data(), static_cast<int>(send[q].size()), MPI_DOUBLE, static_cast<int>(q), 7,
-              comm_, &requests.back());
+    MPI_Isend(send[q].data(), static_cast<int>(send[q].size()), type, static_cast<int>(q), 7, comm,
+              &requests.back());
   }
   MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+}
+
+}  // namespace
+
+void MpiComm::exchange(const std::vector<std::vector<double>>& send,
+                       std::vector<std::vector<double>>& recv) {
+  Timed t(seconds_);
+  point_to_point(send, recv, MPI_DOUBLE, comm_);
+}
+
+void MpiComm::exchange(const std::vector<std::vector<std::uint64_t>>& send,
+                       std::vector<std::vector<std::uint64_t>>& recv) {
+  Timed t(seconds_);
+  point_to_point(send, recv, MPI_UINT64_T, comm_);
 }
 
 }  // namespace drumlab

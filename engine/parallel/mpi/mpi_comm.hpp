@@ -34,6 +34,8 @@ class MpiComm {
   /// non-empty buffer.
   void exchange(const std::vector<std::vector<double>>& send,
                 std::vector<std::vector<double>>& recv);
+  void exchange(const std::vector<std::vector<std::uint64_t>>& send,
+                std::vector<std::vector<std::uint64_t>>& recv);
   /// Seconds spent inside MPI calls so far.
   double seconds() const { return seconds_; }
 
