@@ -10,6 +10,7 @@
 
 #include "engine/parallel/ghost_layer.hpp"
 #include "engine/parallel/local_set.hpp"
+#include "engine/parallel/mpi/global_order.hpp"
 #include "engine/periodic.hpp"
 #include "engine/spatial_order.hpp"
 
@@ -497,7 +498,7 @@ void MpiDomain::exchange(Simulation& sim) {
 
 void MpiDomain::reorder(Simulation& sim) {
   // The serial run's re-ordering (morton_order): cells of 2 r_max from the smallest coordinates of
-  // all particles, ties by the current order; here every rank sorts every owned key.
+  // all particles, ties by the current order.
   const Particles& p = sim.particles();
   double lo[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
                   std::numeric_limits<double>::infinity()};
@@ -507,21 +508,26 @@ void MpiDomain::reorder(Simulation& sim) {
   }
   comm_.min3(lo);
   const Vec3 origin(lo[0], lo[1], lo[2]);
-  std::vector<std::uint64_t> key(p.size()), mine;
+  // Each owned particle's new serial slot is the rank of its (key, slot) among all ranks' owned
+  // ones (a sample sort over the ranks); each ghost's comes from its owner.
+  std::vector<OrderKey> mine;
+  mine.reserve(p.size());
   for (std::size_t i = 0; i < p.size(); ++i) {
-    key[i] = morton_key(p.position[i], origin, cell_);
-    if (sim.is_ghost(i)) continue;
-    mine.push_back(key[i]);
-    mine.push_back(slot_[i]);
+    if (!sim.is_ghost(i)) mine.push_back({morton_key(p.position[i], origin, cell_), slot_[i]});
   }
-  const std::vector<std::uint64_t> flat = comm_.all_gather(mine);
-  std::vector<std::pair<std::uint64_t, std::uint64_t>> all(flat.size() / 2);
-  for (std::size_t k = 0; k < all.size(); ++k) all[k] = {flat[2 * k], flat[2 * k + 1]};
-  std::sort(all.begin(), all.end());
+  const std::vector<std::uint64_t> ranked = global_ranks(comm_, mine);
   std::vector<std::uint64_t> next(p.size());
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const auto it = std::lower_bound(all.begin(), all.end(), std::pair{key[i], slot_[i]});
-    next[i] = static_cast<std::uint64_t>(it - all.begin());
+  for (std::size_t i = 0, k = 0; i < p.size(); ++i) {
+    if (!sim.is_ghost(i)) next[i] = ranked[k++];
+  }
+  std::vector<std::vector<std::uint64_t>> out(send_.size()), in(recv_.size());
+  for (std::size_t q = 0; q < send_.size(); ++q) {
+    for (const Index i : send_[q]) out[q].push_back(next[i]);
+    in[q].resize(recv_[q].size());
+  }
+  comm_.exchange(out, in);
+  for (std::size_t q = 0; q < recv_.size(); ++q) {
+    for (std::size_t k = 0; k < recv_[q].size(); ++k) next[recv_[q][k]] = in[q][k];
   }
   std::vector<Index> order(p.size()), new_index(p.size());
   std::iota(order.begin(), order.end(), Index{0});
