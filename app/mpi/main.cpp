@@ -97,6 +97,15 @@ void print_summary(const drumlab::mpi::MpiRunSummary& s) {
                  s.rebalance_every);
     }
   }
+  const drumlab::StepTimers& t = s.split;
+  if (t.total() > 0.0) {
+    const double all = t.total();
+    fmt::print(
+        "time split        search {:.1f} %, forces {:.1f} %, walls {:.1f} %, integration with "
+        "the ghost refresh and exchanges {:.1f} %, re-ordering {:.1f} % (mean over ranks)\n",
+        100.0 * t.search / all, 100.0 * t.forces / all, 100.0 * t.walls / all,
+        100.0 * t.integration / all, 100.0 * t.reorder / all);
+  }
   fmt::print("ghosts            at the exchanges {} sent in full (new), {} kept (motion only)\n",
              s.ghosts_new, s.ghosts_kept);
   if (s.wet && s.ranks > 1) {

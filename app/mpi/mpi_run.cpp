@@ -207,6 +207,14 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
   s.comm_share_mean = domain.sum(share) / ranks;
   s.exchanges = b.exchanges;
   s.exchange_seconds = domain.max(b.exchange_seconds);
+  const StepTimers& tm = sim->timers();
+  for (auto [mine, mean] : {std::pair{tm.search, &s.split.search},
+                            {tm.forces, &s.split.forces},
+                            {tm.walls, &s.split.walls},
+                            {tm.integration, &s.split.integration},
+                            {tm.reorder, &s.split.reorder}}) {
+    *mean = domain.sum(mine) / ranks;
+  }
   s.rebalances = b.rebalances;
   s.balance = o.balance;
   s.rebalance_every = o.rebalance_every;
