@@ -172,6 +172,19 @@ const WallHistory& Simulation::wall_history() const {
   return impl_->wall_history;
 }
 
+SimulationState Simulation::take_state() {
+  SimulationState s;
+  Particles kept;
+  WallHistory wall;
+  std::swap(kept, particles_);
+  std::swap(wall, impl_->wall_history);
+  state_into(s);  // the contacts and scalars (copied), no particles
+  s.particles = std::move(kept);
+  s.wall_history = std::move(wall);
+  impl_->contacts.clear();
+  return s;
+}
+
 void Simulation::state_into(SimulationState& s) const {
   s.particles = particles_;
   s.time = time_;

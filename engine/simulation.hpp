@@ -136,6 +136,10 @@ class Simulation {
   /// The same into `out`, whose arrays keep their capacity (a decomposition copies its state at
   /// every migration).
   void state_into(SimulationState& out) const;
+  /// The state() without copying the particles and the wall history: they are moved out, and
+  /// this Simulation holds no particles afterwards (it must not step again). A decomposed run
+  /// takes the whole state so from the session that built it, one copy fewer at startup.
+  SimulationState take_state();
   /// Force on i of every overlapping particle-particle contact at the current state (i < j),
   /// evaluated read-only with the stored tangential history, and of every live liquid bridge or
   /// adhesive contact (their capillary / adhesive force added; a bridged pair apart has an entry

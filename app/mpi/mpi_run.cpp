@@ -172,7 +172,7 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
   MpiDomain domain(comm, domain_options(run_scene, o));
   std::unique_ptr<Simulation> sim;
   {
-    const SimulationState full = session->simulation().state();
+    const SimulationState full = session->simulation().take_state();
     session.reset();
     sim = domain.distribute(run_scene, full);
     s.particles = full.particles.size();

@@ -265,20 +265,24 @@ std::unique_ptr<Simulation> MpiDomain::distribute(const SceneConfig& scene,
   std::size_t owned_count = 0;
   std::vector<std::vector<std::byte>> ghosts(r);
   const Box& mine = decomposition_.boxes[static_cast<std::size_t>(comm_.rank())];
+  std::vector<std::uint8_t> here(p.size(), 0);  // owned or a ghost here
   for (std::size_t i = 0; i < p.size(); ++i) {
     const int owner = rcb_owner(decomposition_, p.position[i]);
     if (owner == comm_.rank()) {
       pack_particle(p, i, i, full.wall_history[i], owned);
       ++owned_count;
+      here[i] = 1;
     } else if (box_distance(mine, p.position[i], options_.period_z) <= options_.reach) {
       pack_particle(p, i, i, full.wall_history[i], ghosts[static_cast<std::size_t>(owner)]);
+      here[i] = 1;
     }
   }
   std::vector<std::uint64_t> all(p.size());
   std::iota(all.begin(), all.end(), std::uint64_t{0});
-  ContactRecords records;
+  ContactRecords records;  // the pairs of particles held here: about 1 / ranks of them
   collect_records(
-      full, all, [](std::size_t, std::size_t) { return true; }, records);
+      full, all, [&](std::size_t i, std::size_t j) { return here[i] != 0 && here[j] != 0; },
+      records);
   // A Simulation over the owned particles (the scalars and search method from `full`); assemble
   // then gives it the ghosts and the contact list.
   SimulationState start;
