@@ -425,8 +425,9 @@ void MpiDomain::rebalance(const Simulation& sim) {
 }
 
 void MpiDomain::exchange(Simulation& sim) {
-  // Only the migrants are packed: the particles that stay are copied from the current arrays
-  // into the next local set (assemble), their contacts from the current list.
+  // Only what moves is packed (the migrants here, the new ghosts in ghost_packs): the particles
+  // that stay are copied from the current arrays into the next local set (assemble), their
+  // contacts from the current list.
   const double start = MPI_Wtime();
   const Particles& p = sim.particles();
   const WallHistory& wall = sim.wall_history();
