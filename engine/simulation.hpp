@@ -133,9 +133,6 @@ class Simulation {
 
   /// Everything the next step depends on (for checkpoints); see SimulationState.
   SimulationState state() const;
-  /// The same into `out`, whose arrays keep their capacity (a decomposition copies its state at
-  /// every migration).
-  void state_into(SimulationState& out) const;
   /// The state() without copying the particles and the wall history: they are moved out, and
   /// this Simulation holds no particles afterwards (it must not step again). A decomposed run
   /// takes the whole state so from the session that built it, one copy fewer at startup.
@@ -160,6 +157,8 @@ class Simulation {
   void check_stability() const;
 
  private:
+  /// state() into `out` (state() and take_state() share it).
+  void state_into(SimulationState& out) const;
   struct Impl;
   void validate_particles();
   /// Registers the liquid's per-particle arrays (films, wall bridges) if the scene has them and
