@@ -65,6 +65,28 @@ void MpiComm::max(std::span<double> v) {
   std::copy(r.begin(), r.end(), v.begin());
 }
 
+void MpiComm::min(std::span<double> v) {
+  Timed t(seconds_);
+  std::vector<double> r(v.size());
+  MPI_Allreduce(v.data(), r.data(), static_cast<int>(v.size()), MPI_DOUBLE, MPI_MIN, comm_);
+  std::copy(r.begin(), r.end(), v.begin());
+}
+
+void MpiComm::sum(std::span<std::uint64_t> v) {
+  Timed t(seconds_);
+  std::vector<std::uint64_t> r(v.size());
+  MPI_Allreduce(v.data(), r.data(), static_cast<int>(v.size()), MPI_UINT64_T, MPI_SUM, comm_);
+  std::copy(r.begin(), r.end(), v.begin());
+}
+
+void MpiComm::agreed_sum(std::span<double> v) {
+  Timed t(seconds_);
+  std::vector<double> r(v.size());
+  MPI_Reduce(v.data(), r.data(), static_cast<int>(v.size()), MPI_DOUBLE, MPI_SUM, 0, comm_);
+  MPI_Bcast(r.data(), static_cast<int>(r.size()), MPI_DOUBLE, 0, comm_);
+  std::copy(r.begin(), r.end(), v.begin());
+}
+
 void MpiComm::min3(double v[3]) {
   Timed t(seconds_);
   double r[3];

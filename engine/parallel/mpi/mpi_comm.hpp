@@ -21,7 +21,14 @@ class MpiComm {
   double sum(double v);
   std::uint64_t sum(std::uint64_t v);
   void min3(double v[3]);
+  /// Element-wise over ranks, in place.
   void max(std::span<double> v);
+  void min(std::span<double> v);
+  void sum(std::span<std::uint64_t> v);
+  /// Element-wise sums reduced on rank 0 and broadcast from there: the same bits on every rank,
+  /// whatever order the reduction adds in (for sums that decide something every rank must agree
+  /// on).
+  void agreed_sum(std::span<double> v);
   /// Sends out[q] to rank q for every q and returns what each rank sent here, by source.
   std::vector<std::vector<std::byte>> all_to_all(const std::vector<std::vector<std::byte>>& out);
   /// Every rank's `mine`, concatenated in rank order, on every rank.
