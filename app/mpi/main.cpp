@@ -81,9 +81,9 @@ void print_summary(const drumlab::mpi::MpiRunSummary& s) {
              s.owned_mean, s.owned_max, s.owned_mean > 0 ? s.owned_max / s.owned_mean : 0.0);
   fmt::print(
       "communication     {:.1f} % of the time inside MPI (mean over ranks; max {:.1f} %), "
-      "{} exchanges ({:.2f} s, slowest rank), {} re-balances\n",
+      "{} exchanges ({:.2f} s, slowest rank), {} re-balances ({:.3f} s finding the cuts)\n",
       100.0 * s.comm_share_mean, 100.0 * s.comm_share_max, s.exchanges, s.exchange_seconds,
-      s.rebalances);
+      s.rebalances, s.recut_seconds);
   if (s.ranks > 1 && s.rebalance_every > 0) {
     if (s.balance == drumlab::BalanceBy::count) {
       fmt::print("balance           by count, re-cut every {} steps\n", s.rebalance_every);

@@ -207,6 +207,7 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
   s.comm_share_mean = domain.sum(share) / ranks;
   s.exchanges = b.exchanges;
   s.exchange_seconds = domain.max(b.exchange_seconds);
+  s.recut_seconds = domain.max(b.recut_seconds);
   const StepTimers& tm = sim->timers();
   for (auto [mine, mean] : {std::pair{tm.search, &s.split.search},
                             {tm.forces, &s.split.forces},

@@ -57,6 +57,7 @@ struct MpiRunSummary {
   double comm_share_mean = 0.0;
   std::uint64_t exchanges = 0, rebalances = 0;
   double exchange_seconds = 0.0;  ///< in exchanges, slowest rank
+  double recut_seconds = 0.0;     ///< finding new cuts at re-balances, slowest rank
   /// Seconds in each phase of the step (StepTimers; integration includes the ghost refresh and
   /// the exchanges), mean over ranks.
   StepTimers split;

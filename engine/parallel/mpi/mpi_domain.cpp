@@ -11,6 +11,7 @@
 #include "engine/parallel/ghost_layer.hpp"
 #include "engine/parallel/local_set.hpp"
 #include "engine/parallel/mpi/global_order.hpp"
+#include "engine/parallel/mpi/rcb_mpi.hpp"
 #include "engine/periodic.hpp"
 #include "engine/spatial_order.hpp"
 
@@ -395,33 +396,26 @@ bool MpiDomain::balance_check(const Simulation& sim) {
 }
 
 void MpiDomain::rebalance(const Simulation& sim) {
+  // The cuts from the owned particles where they are (rcb_decompose_mpi): no rank gathers them.
+  const double start = MPI_Wtime();
   const Particles& p = sim.particles();
-  const bool by_time = options_.balance == BalanceBy::time;
-  const std::size_t width = by_time ? 4 : 3;  // x, y, z (and the particle's work weight)
-  std::vector<double> mine;
+  std::vector<Vec3> x;
+  x.reserve(p.size());
   for (std::size_t i = 0; i < p.size(); ++i) {
-    if (sim.is_ghost(i)) continue;
-    mine.insert(mine.end(), p.position[i].data(), p.position[i].data() + 3);
-    if (by_time) mine.push_back(work_weight_);
+    if (!sim.is_ghost(i)) x.push_back(p.position[i]);
   }
-  const std::vector<double> all = comm_.all_gather(mine);
-  std::vector<Vec3> x(all.size() / width);
   std::vector<double> w;
-  for (std::size_t k = 0; k < x.size(); ++k)
-    x[k] = Vec3(all[width * k], all[width * k + 1], all[width * k + 2]);
-  if (by_time) {
-    w.resize(x.size());
-    double sum = 0.0;
-    std::size_t measured = 0;
-    for (std::size_t k = 0; k < x.size(); ++k) {
-      w[k] = all[width * k + 3];
-      if (w[k] > 0.0) sum += w[k], ++measured;
-    }
-    const double fallback = measured > 0 ? sum / double(measured) : 1.0;
-    for (double& v : w) v = v > 0.0 ? v : fallback;
+  if (options_.balance == BalanceBy::time) {
+    // A rank that measured nothing weighs its particles as the measured ones do on average.
+    const bool measured = work_weight_ > 0.0;
+    const double measured_weight = comm_.sum(measured ? work_weight_ * double(x.size()) : 0.0);
+    const std::uint64_t measured_count = comm_.sum(std::uint64_t{measured ? x.size() : 0});
+    const double fallback = measured_count > 0 ? measured_weight / double(measured_count) : 1.0;
+    w.assign(x.size(), measured ? work_weight_ : fallback);
   }
-  decomposition_ = rcb_decompose(x, w, options_.domain, comm_.size());
+  decomposition_ = rcb_decompose_mpi(comm_, x, w, options_.domain);
   ++rebalances_;
+  recut_seconds_ += MPI_Wtime() - start;
 }
 
 void MpiDomain::exchange(Simulation& sim) {
@@ -603,6 +597,7 @@ MpiBalance MpiDomain::balance(const Simulation& sim) {
   b.bridge_events = events_.replayed();
   b.comm_seconds = comm_.seconds();
   b.exchange_seconds = exchange_seconds_;
+  b.recut_seconds = recut_seconds_;
   return b;
 }
 

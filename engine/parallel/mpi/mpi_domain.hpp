@@ -62,6 +62,8 @@ struct MpiBalance {
   /// This rank's wall seconds in exchanges (migration, ghost layer, the next local set; the list
   /// rebuild that follows is the search's).
   double exchange_seconds = 0.0;
+  /// This rank's wall seconds finding new cuts at re-balances (rcb_decompose_mpi).
+  double recut_seconds = 0.0;
 };
 
 class MpiDomain final : public DomainHooks {
@@ -137,7 +139,7 @@ class MpiDomain final : public DomainHooks {
   double work_weight_ = 1.0;  ///< by time: this rank's work per owned particle in the last window
   double first_imbalance_ = 0.0, last_imbalance_ = 0.0;
   std::uint64_t exchanges_ = 0, rebalances_ = 0;
-  double exchange_seconds_ = 0.0;
+  double exchange_seconds_ = 0.0, recut_seconds_ = 0.0;
   std::uint64_t ghosts_new_ = 0, ghosts_kept_ = 0;  ///< this rank's, at exchanges
   MpiBridgeEvents events_{comm_, slot_};
   // Kept between exchanges so that each one refills memory instead of allocating (and faulting
