@@ -41,13 +41,17 @@ double planned_dt(const SceneConfig& scene, double dt_factor) {
 
 }  // namespace
 
-RunSession::RunSession(SceneConfig scene, SessionOptions options)
-    : scene_(std::move(scene)), options_(std::move(options)) {
-  if (!options_.method.empty()) scene_.search_method = options_.method;
-  if (options_.sort_every >= 0) {
-    scene_.performance.sort_every = static_cast<std::uint64_t>(options_.sort_every);
+SceneConfig scene_with_options(SceneConfig scene, const SessionOptions& options) {
+  if (!options.method.empty()) scene.search_method = options.method;
+  if (options.sort_every >= 0) {
+    scene.performance.sort_every = static_cast<std::uint64_t>(options.sort_every);
   }
-  if (options_.skin > 0.0) scene_.performance.verlet_skin = options_.skin;
+  if (options.skin > 0.0) scene.performance.verlet_skin = options.skin;
+  return scene;
+}
+
+RunSession::RunSession(SceneConfig scene, SessionOptions options)
+    : scene_(scene_with_options(std::move(scene), options)), options_(std::move(options)) {
   if (options_.restart.empty()) {
     SimulationOptions sim_options;
     sim_options.allow_unsafe_dt = options_.unsafe_dt;

@@ -68,6 +68,10 @@ struct TurnResult {
   bool stopped = false;  ///< the progress callback stopped it early
 };
 
+/// The scene with the options' overrides applied (search method, sort_every, Verlet skin): what a
+/// RunSession runs, but for "auto", which it resolves on its particles.
+SceneConfig scene_with_options(SceneConfig scene, const SessionOptions& options);
+
 /// If the scene's search is "auto", replaces it by the method chosen for these particles with
 /// time step `dt` and returns the choice (method and reason); otherwise returns nothing.
 std::optional<SearchChoice> resolve_auto_search(SceneConfig& scene, const Particles& particles,

@@ -17,6 +17,9 @@ struct Timed {
   Timed& operator=(const Timed&) = delete;
 };
 
+/// The largest piece of one MPI call on bytes (its counts are ints).
+constexpr std::size_t kPiece = std::size_t{1} << 30;
+
 std::vector<int> displacements(const std::vector<int>& counts) {
   std::vector<int> d(counts.size(), 0);
   if (!counts.empty()) std::partial_sum(counts.begin(), counts.end() - 1, d.begin() + 1);
@@ -160,6 +163,39 @@ std::vector<std::vector<std::byte>> MpiComm::gather(std::span<const std::byte> m
     out[q].assign(all.begin() + d[q], all.begin() + d[q] + counts[q]);
   }
   return out;
+}
+
+void MpiComm::broadcast(std::vector<std::byte>& bytes) {
+  Timed t(seconds_);
+  auto n = static_cast<std::uint64_t>(bytes.size());
+  MPI_Bcast(&n, 1, MPI_UINT64_T, 0, comm_);
+  bytes.resize(static_cast<std::size_t>(n));
+  for (std::size_t at = 0; at < bytes.size(); at += kPiece) {
+    const auto count = static_cast<int>(std::min(kPiece, bytes.size() - at));
+    MPI_Bcast(bytes.data() + at, count, MPI_BYTE, 0, comm_);
+  }
+}
+
+void MpiComm::send(int to, std::span<const std::byte> bytes) {
+  Timed t(seconds_);
+  const auto n = static_cast<std::uint64_t>(bytes.size());
+  MPI_Send(&n, 1, MPI_UINT64_T, to, 11, comm_);
+  for (std::size_t at = 0; at < bytes.size(); at += kPiece) {
+    const auto count = static_cast<int>(std::min(kPiece, bytes.size() - at));
+    MPI_Send(bytes.data() + at, count, MPI_BYTE, to, 11, comm_);
+  }
+}
+
+std::vector<std::byte> MpiComm::receive(int from) {
+  Timed t(seconds_);
+  std::uint64_t n = 0;
+  MPI_Recv(&n, 1, MPI_UINT64_T, from, 11, comm_, MPI_STATUS_IGNORE);
+  std::vector<std::byte> bytes(static_cast<std::size_t>(n));
+  for (std::size_t at = 0; at < bytes.size(); at += kPiece) {
+    const auto count = static_cast<int>(std::min(kPiece, bytes.size() - at));
+    MPI_Recv(bytes.data() + at, count, MPI_BYTE, from, 11, comm_, MPI_STATUS_IGNORE);
+  }
+  return bytes;
 }
 
 namespace {

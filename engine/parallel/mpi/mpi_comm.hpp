@@ -37,6 +37,12 @@ class MpiComm {
   std::vector<std::byte> all_gather(std::span<const std::byte> mine);
   /// Every rank's bytes on rank 0, by rank (empty elsewhere).
   std::vector<std::vector<std::byte>> gather(std::span<const std::byte> mine);
+  /// Rank 0's `bytes` on every rank (resized to fit).
+  void broadcast(std::vector<std::byte>& bytes);
+  /// Point-to-point bytes of any length (in pieces of at most 1 GiB): send to rank `to`, and what
+  /// rank `from` sent here.
+  void send(int to, std::span<const std::byte> bytes);
+  std::vector<std::byte> receive(int from);
   /// Point-to-point doubles: send[q] to q and recv[q].size() doubles from q, for every q with a
   /// non-empty buffer.
   void exchange(const std::vector<std::vector<double>>& send,
