@@ -24,28 +24,53 @@ namespace drumlab::mpi {
 
 namespace {
 
-/// The session on every rank; "auto" is resolved on rank 0 only (it times the candidates) and
-/// its choice sent to the others, so every rank runs the same method.
-std::unique_ptr<RunSession> make_session(MPI_Comm comm, int rank, const SceneConfig& scene,
-                                         SessionOptions o, std::string& reason) {
-  const std::string asked = o.method.empty() ? scene.search_method : o.method;
-  if (asked != "auto") return std::make_unique<RunSession>(scene, o);
-  std::unique_ptr<RunSession> session;
-  std::string chosen;
-  if (rank == 0) {
-    session = std::make_unique<RunSession>(scene, o);
-    chosen = session->scene().search_method;
-    if (session->auto_choice()) reason = session->auto_choice()->reason;
-  }
-  int length = static_cast<int>(chosen.size());
+/// Rank 0's string on every rank.
+void broadcast(MPI_Comm comm, std::string& text) {
+  int length = static_cast<int>(text.size());
   MPI_Bcast(&length, 1, MPI_INT, 0, comm);
-  chosen.resize(static_cast<std::size_t>(length));
-  MPI_Bcast(chosen.data(), length, MPI_CHAR, 0, comm);
-  if (rank != 0) {
-    o.method = chosen;
-    session = std::make_unique<RunSession>(scene, o);
+  text.resize(static_cast<std::size_t>(length));
+  MPI_Bcast(text.data(), length, MPI_CHAR, 0, comm);
+}
+
+/// How the run starts: the scene as run and the plan on every rank, the whole state on rank 0 only.
+struct Start {
+  SceneConfig scene;
+  SessionPlan plan;
+  std::optional<SimulationState> full;
+  std::string search_reason;  ///< how "auto" chose, if it did
+};
+
+/// Rank 0 alone fills the scene or reads the checkpoint (and resolves "auto"); the others get the
+/// method and the plan from it and apply the same options to the scene. Bad input met by rank 0
+/// is thrown on every rank.
+Start start_run(MPI_Comm comm, int rank, const SceneConfig& scene, const SessionOptions& o) {
+  Start s;
+  std::string error;
+  if (rank == 0) {
+    try {
+      RunSession session(scene, o);
+      s.plan = session.plan();
+      s.scene = session.scene();
+      if (session.auto_choice()) s.search_reason = session.auto_choice()->reason;
+      s.full = session.simulation().take_state();
+    } catch (const InputError& e) {
+      error = e.what();
+    }
   }
-  return session;
+  broadcast(comm, error);
+  if (!error.empty()) throw InputError(error);
+  std::string method = s.scene.search_method;
+  broadcast(comm, method);
+  std::uint64_t steps[2] = {s.plan.settle_steps, s.plan.turn_steps};
+  MPI_Bcast(steps, 2, MPI_UINT64_T, 0, comm);
+  MPI_Bcast(&s.plan.settle_time, 1, MPI_DOUBLE, 0, comm);
+  if (rank != 0) {
+    s.scene = scene_with_options(scene, o);
+    s.scene.search_method = method;
+    s.plan.settle_steps = steps[0];
+    s.plan.turn_steps = steps[1];
+  }
+  return s;
 }
 
 MpiDomainOptions domain_options(const SceneConfig& scene, const MpiRunOptions& o) {
@@ -166,17 +191,15 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
   MpiComm io_comm(comm);
   open_series(io_comm, out);  // checked before the fill, written from the turn
   MpiRunSummary s;
-  auto session = make_session(comm, rank, scene, o.session, s.search_reason);
-  const SessionPlan plan = session->plan();
-  const SceneConfig run_scene = session->scene();
+  Start start = start_run(comm, rank, scene, o.session);
+  s.search_reason = std::move(start.search_reason);
+  const SessionPlan plan = start.plan;
+  const SceneConfig& run_scene = start.scene;
   MpiDomain domain(comm, domain_options(run_scene, o));
-  std::unique_ptr<Simulation> sim;
-  {
-    const SimulationState full = session->simulation().take_state();
-    session.reset();
-    sim = domain.distribute(run_scene, full);
-    s.particles = full.particles.size();
-  }
+  std::unique_ptr<Simulation> sim =
+      domain.distribute(run_scene, start.full ? &*start.full : nullptr);
+  start.full.reset();
+  s.particles = domain.particles();
   MPI_Barrier(comm);
   const double t0 = MPI_Wtime();
   const double comm0 = domain.comm_seconds();  // the distribution is not part of the stepping

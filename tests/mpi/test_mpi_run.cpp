@@ -251,6 +251,22 @@ TEST_F(MpiRun, ParallelCheckpointHoldsTheSerialRunsDatasets) {
                     "3 ranks -> serial");
 }
 
+// Only rank 0 reads the checkpoint (or fills the scene): a checkpoint it cannot read stops every
+// rank with exit 2 and one line naming the file, as a bad scene does, and no rank waits forever.
+TEST_F(MpiRun, CheckpointRankZeroCannotReadStopsEveryRankWithOneLine) {
+  const std::string scene = dir.write("scene.toml", scene_text("verlet:m2", "", ""));
+  const std::string garbage = dir.write("garbage.h5", "not an HDF5 file\n");
+  for (const std::string& ck : {dir.file("missing.h5"), garbage}) {
+    const Ran r =
+        shell(mpirun(3) + "--timeout 60 " + DRUMLAB_MPI_CLI + " run " + scene + " --restart " + ck);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    const std::size_t first = r.output.find("drumlab-mpi: error: ");
+    ASSERT_NE(first, std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("drumlab-mpi: error: ", first + 1), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(ck), std::string::npos) << r.output;
+  }
+}
+
 // A write that fails on one rank only (rank 1, not the one that writes the metadata: a file size
 // limit as a full disk, on that process alone; shared memory off, which the limit would break)
 // stops every rank with exit 2 and one line naming the file, and leaves no checkpoint and no

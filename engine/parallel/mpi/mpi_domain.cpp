@@ -12,6 +12,7 @@
 #include "engine/parallel/local_set.hpp"
 #include "engine/parallel/mpi/global_order.hpp"
 #include "engine/parallel/mpi/rcb_mpi.hpp"
+#include "engine/parallel/start_message.hpp"
 #include "engine/periodic.hpp"
 #include "engine/spatial_order.hpp"
 
@@ -254,52 +255,44 @@ void MpiDomain::assemble(Simulation& sim, std::vector<PackedPiece> owned,
 }
 
 std::unique_ptr<Simulation> MpiDomain::distribute(const SceneConfig& scene,
-                                                  const SimulationState& full) {
-  const Particles& p = full.particles;
-  cell_ = 2.0 * p.max_radius();
-  decomposition_ = rcb_decompose(p.position, {}, options_.domain, comm_.size());
-  last_balance_ = full.steps;
+                                                  const SimulationState* full) {
+  // Rank 0 cuts the whole state and sends every other rank its part, one rank after the other (it
+  // holds the state and one packed part at a time); no other rank ever holds more than its part.
+  std::vector<std::byte> header;
+  StartPart part;
+  if (comm_.rank() == 0) {
+    if (full == nullptr) throw std::logic_error("MpiDomain::distribute: no state on rank 0");
+    const std::span<const Vec3> x = full->particles.position;
+    const Decomposition d = rcb_decompose(x, {}, options_.domain, comm_.size());
+    header = pack_start_header(*full, d);
+    comm_.broadcast(header);
+    const GhostLayer g = ghost_layer(d, x, options_.reach, options_.period_z);
+    std::vector<std::uint8_t> held(x.size(), 0);
+    for (int q = 1; q < comm_.size(); ++q) {
+      comm_.send(q, pack_start_part(start_part(*full, d, g, q, held)));
+    }
+    part = start_part(*full, d, g, 0, held);
+  } else {
+    comm_.broadcast(header);
+    part = unpack_start_part(comm_.receive(0));
+  }
+  StartHeader h = unpack_start_header(header);
+  decomposition_ = std::move(h.decomposition);
+  particles_ = h.particles;
+  cell_ = 2.0 * h.max_radius;
+  last_balance_ = h.state.steps;
   window_wall_ = MPI_Wtime();
   window_comm_ = comm_.seconds();
-  const auto r = static_cast<std::size_t>(comm_.size());
-  std::vector<std::byte> owned;
-  std::size_t owned_count = 0;
-  std::vector<std::vector<std::byte>> ghosts(r);
-  const Box& mine = decomposition_.boxes[static_cast<std::size_t>(comm_.rank())];
-  std::vector<std::uint8_t> here(p.size(), 0);  // owned or a ghost here
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const int owner = rcb_owner(decomposition_, p.position[i]);
-    if (owner == comm_.rank()) {
-      pack_particle(p, i, i, full.wall_history[i], owned);
-      ++owned_count;
-      here[i] = 1;
-    } else if (box_distance(mine, p.position[i], options_.period_z) <= options_.reach) {
-      pack_particle(p, i, i, full.wall_history[i], ghosts[static_cast<std::size_t>(owner)]);
-      here[i] = 1;
-    }
-  }
-  std::vector<std::uint64_t> all(p.size());
-  std::iota(all.begin(), all.end(), std::uint64_t{0});
-  ContactRecords records;  // the pairs of particles held here: about 1 / ranks of them
-  collect_records(
-      full, all, [&](std::size_t i, std::size_t j) { return here[i] != 0 && here[j] != 0; },
-      records);
-  // A Simulation over the owned particles (the scalars and search method from `full`); assemble
-  // then gives it the ghosts and the contact list.
-  SimulationState start;
-  OwnedSet o = unpack_owned(p, owned, owned_count);
+  // A Simulation over the owned particles (the scalars and search method from the header);
+  // assemble then gives it the ghosts and the contact list.
+  SimulationState start = std::move(h.state);
+  const std::size_t size = packed_size(start.particles);
+  OwnedSet o = unpack_owned(start.particles, part.owned, part.owned_count);
   start.particles = std::move(o.p);
   start.wall_history = std::move(o.wall);
-  start.time = full.time;
-  start.dt = full.dt;
-  start.drum_omega = full.drum_omega;
-  start.drum_angle = full.drum_angle;
-  start.steps = full.steps;
-  start.search_method = full.search_method;
-  start.contact_state_size = full.contact_state_size;
   auto sim = std::make_unique<Simulation>(scene, std::move(start));
-  assemble(*sim, sorted_pieces(owned, owned_count, packed_size(p)), ghosts, std::move(records),
-           false);
+  assemble(*sim, sorted_pieces(part.owned, part.owned_count, size), part.ghosts,
+           std::move(part.records), false);
   events_.set_ghosts(&sim->ghost_mask());
   sim->set_domain(this);
   return sim;

@@ -70,9 +70,12 @@ class MpiDomain final : public DomainHooks {
  public:
   MpiDomain(MPI_Comm comm, MpiDomainOptions options);
 
-  /// This rank's part of `full` (the same on every rank, particles in the serial run's order),
-  /// as a Simulation wired to this domain.
-  std::unique_ptr<Simulation> distribute(const SceneConfig& scene, const SimulationState& full);
+  /// This rank's part of the whole state `full` (particles in the serial run's order), as a
+  /// Simulation wired to this domain. `full` is rank 0's (nullptr on the others): rank 0 cuts it
+  /// and sends each rank its part (engine/parallel/start_message.hpp). Collective.
+  std::unique_ptr<Simulation> distribute(const SceneConfig& scene, const SimulationState* full);
+  /// Particles of the whole state at the distribution.
+  std::uint64_t particles() const { return particles_; }
   /// The whole state on rank 0, particles in the serial run's order (nothing elsewhere): what a
   /// serial run at this step would export. Collective.
   std::optional<SimulationState> gather(const Simulation& sim);
@@ -134,6 +137,7 @@ class MpiDomain final : public DomainHooks {
   double moved_ = 0.0;           ///< bound on the largest displacement since the last exchange, m
   std::vector<Vec3> reference_;  ///< positions at the last exchange
   double cell_ = 0.0;            ///< Morton cell, 2 r_max over all ranks
+  std::uint64_t particles_ = 0;
   std::uint64_t last_balance_ = 0;  ///< step of the last balance check (or of the distribution)
   double window_wall_ = 0.0, window_comm_ = 0.0;  ///< MPI_Wtime and comm seconds at its start
   double work_weight_ = 1.0;  ///< by time: this rank's work per owned particle in the last window
