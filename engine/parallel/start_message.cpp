@@ -46,20 +46,6 @@ Box get_box(std::span<const std::byte> in, std::size_t& pos) {
   return b;
 }
 
-/// A byte section: its length, then the bytes.
-void put_section(std::vector<std::byte>& out, std::span<const std::byte> bytes) {
-  append(out, static_cast<std::uint64_t>(bytes.size()));
-  append_bytes(out, bytes.data(), bytes.size());
-}
-
-std::vector<std::byte> get_section(std::span<const std::byte> in, std::size_t& pos) {
-  const auto n = static_cast<std::size_t>(get_bytes<std::uint64_t>(in, pos));
-  std::vector<std::byte> v(in.begin() + static_cast<std::ptrdiff_t>(pos),
-                           in.begin() + static_cast<std::ptrdiff_t>(pos + n));
-  pos += n;
-  return v;
-}
-
 }  // namespace
 
 std::vector<std::byte> pack_start_header(const SimulationState& full, const Decomposition& d) {
@@ -157,29 +143,21 @@ StartPart start_part(const SimulationState& full, const Decomposition& d, const 
   return part;
 }
 
-std::vector<std::byte> pack_start_part(const StartPart& part) {
+std::vector<std::byte> pack_records(const ContactRecords& records) {
   std::vector<std::byte> out;
-  append(out, static_cast<std::uint64_t>(part.owned_count));
-  put_section(out, part.owned);
-  append(out, static_cast<std::uint64_t>(part.ghosts.size()));
-  for (const auto& g : part.ghosts) put_section(out, g);
-  append(out, static_cast<std::uint64_t>(part.records.state_size));
-  append(out, static_cast<std::uint64_t>(part.records.size()));
-  for (std::size_t k = 0; k < part.records.size(); ++k) part.records.pack(k, out);
+  append(out, static_cast<std::uint64_t>(records.state_size));
+  append(out, static_cast<std::uint64_t>(records.size()));
+  for (std::size_t k = 0; k < records.size(); ++k) records.pack(k, out);
   return out;
 }
 
-StartPart unpack_start_part(std::span<const std::byte> in) {
-  StartPart part;
+ContactRecords unpack_records(std::span<const std::byte> in) {
+  ContactRecords records;
   std::size_t pos = 0;
-  part.owned_count = static_cast<std::size_t>(get_bytes<std::uint64_t>(in, pos));
-  part.owned = get_section(in, pos);
-  part.ghosts.resize(static_cast<std::size_t>(get_bytes<std::uint64_t>(in, pos)));
-  for (auto& g : part.ghosts) g = get_section(in, pos);
-  part.records.state_size = static_cast<std::size_t>(get_bytes<std::uint64_t>(in, pos));
-  const auto records = get_bytes<std::uint64_t>(in, pos);
-  for (std::uint64_t k = 0; k < records; ++k) part.records.unpack(in, pos);
-  return part;
+  records.state_size = static_cast<std::size_t>(get_bytes<std::uint64_t>(in, pos));
+  const auto n = get_bytes<std::uint64_t>(in, pos);
+  for (std::uint64_t k = 0; k < n; ++k) records.unpack(in, pos);
+  return records;
 }
 
 }  // namespace drumlab

@@ -41,7 +41,8 @@ struct StartPart {
 StartPart start_part(const SimulationState& full, const Decomposition& d, const GhostLayer& g,
                      int q, std::vector<std::uint8_t>& held);
 
-std::vector<std::byte> pack_start_part(const StartPart& part);
-StartPart unpack_start_part(std::span<const std::byte> bytes);
+/// Contact records as bytes (state size, count, then each record) and back.
+std::vector<std::byte> pack_records(const ContactRecords& records);
+ContactRecords unpack_records(std::span<const std::byte> bytes);
 
 }  // namespace drumlab

@@ -269,12 +269,24 @@ std::unique_ptr<Simulation> MpiDomain::distribute(const SceneConfig& scene,
     const GhostLayer g = ghost_layer(d, x, options_.reach, options_.period_z);
     std::vector<std::uint8_t> held(x.size(), 0);
     for (int q = 1; q < comm_.size(); ++q) {
-      comm_.send(q, pack_start_part(start_part(*full, d, g, q, held)));
+      const StartPart p = start_part(*full, d, g, q, held);
+      const auto count = static_cast<std::uint64_t>(p.owned_count);
+      comm_.send(q, std::as_bytes(std::span(&count, 1)));
+      comm_.send(q, p.owned);
+      for (const auto& ghosts : p.ghosts) comm_.send(q, ghosts);
+      comm_.send(q, pack_records(p.records));
     }
     part = start_part(*full, d, g, 0, held);
   } else {
     comm_.broadcast(header);
-    part = unpack_start_part(comm_.receive(0));
+    const std::vector<std::byte> count = comm_.receive(0);
+    std::uint64_t n = 0;
+    std::memcpy(&n, count.data(), sizeof n);
+    part.owned_count = static_cast<std::size_t>(n);
+    part.owned = comm_.receive(0);
+    part.ghosts.resize(static_cast<std::size_t>(comm_.size()));
+    for (auto& ghosts : part.ghosts) ghosts = comm_.receive(0);
+    part.records = unpack_records(comm_.receive(0));
   }
   StartHeader h = unpack_start_header(header);
   decomposition_ = std::move(h.decomposition);
