@@ -4,13 +4,15 @@
 // 1/4), on layouts that stress the histogram search: uniform points in unequal numbers per rank, a
 // cluster a micrometre wide holding most of them (many rounds of narrowing), all points on one
 // rank, fewer points than ranks, none at all. Points sharing coordinates (a lattice, and more equal
-// coordinates than the gather takes) have no single serial answer: there the tree must be the same
-// on every rank and every particle's owner that of rcb_owner, the owned counts adding up. Run
+// coordinates than the gather takes) and a NaN and an infinite coordinate have no single serial
+// answer: there the tree must be the same on every rank and every particle's owner that of
+// rcb_owner, the owned counts adding up. Run
 // under mpirun (ctest label mpi); prints one line per failed case and exits 1 if any failed.
 #include <mpi.h>
 
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -125,6 +127,13 @@ int main(int argc, char** argv) {
       if (u(rng) < 0.75) x[2] = 0.25;
       return x;
     };
+    const auto with_non_finite = [&](Points p) {  // as a run that blows up between checks
+      if (rank == 1 % comm.size() && p.x.size() > 2) {
+        p.x[0][2] = std::numeric_limits<double>::quiet_NaN();
+        p.x[1][0] = std::numeric_limits<double>::infinity();
+      }
+      return p;
+    };
     const std::size_t unequal = 3000 + 2000 * static_cast<std::size_t>(rank);
     struct Case {
       const char* name;
@@ -143,6 +152,7 @@ int main(int argc, char** argv) {
         {"lattice (equal coordinates)", points(4000, lattice, false), false},
         {"lattice, weighted", points(4000, lattice, true), false},
         {"most points on one plane", points(5000, one_plane, false), false},
+        {"a NaN and an infinite coordinate", with_non_finite(points(3000, uniform, true)), false},
     };
     for (const Case& c : cases) {
       const std::string what = check(comm, c.mine, deep, c.exact);

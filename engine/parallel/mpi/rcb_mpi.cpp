@@ -150,8 +150,7 @@ class DistributedRcb {
       const int axis = longest_axis(node.box);
       for (const Index i : mine) {
         const double x = coord(i, axis);
-        if (!std::isfinite(x))
-          throw std::invalid_argument("RCB: a particle at a non-finite position");
+        if (!std::isfinite(x)) continue;  // counted, never a candidate (see decide)
         s.extremes[2 * l] = std::min(s.extremes[2 * l], x);
         s.extremes[2 * l + 1] = std::min(s.extremes[2 * l + 1], -x);
       }
@@ -245,6 +244,7 @@ class DistributedRcb {
       mine.push_back(0.0);
       for (const Index i : members_[s.node]) {
         const double x = coord(i, s.axis);
+        if (!std::isfinite(x)) continue;
         if (x < s.a) {
           outside[2 * n] = std::max(outside[2 * n], x);
         } else if (x >= s.b) {

@@ -11,7 +11,9 @@
 // cut are distinct and the weight sums exact (tests/mpi_checks/rcb_check.cpp); with equal
 // coordinates at a cut, its children are the particles below the cut and the rest, as rcb_owner
 // assigns them, where the serial cut takes an arbitrary k of them. Every rank gets the same tree:
-// counts are summed exactly, weights by MpiComm::agreed_sum.
+// counts are summed exactly, weights by MpiComm::agreed_sum. A particle at a non-finite position (a
+// run blowing up between its stability checks) counts in its box but never places a cut; it goes
+// where rcb_owner sends it, and the next stability check stops the run.
 #include <span>
 
 #include "engine/parallel/mpi/mpi_comm.hpp"
