@@ -196,9 +196,7 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
   const SessionPlan plan = start.plan;
   const SceneConfig& run_scene = start.scene;
   MpiDomain domain(comm, domain_options(run_scene, o));
-  std::unique_ptr<Simulation> sim =
-      domain.distribute(run_scene, start.full ? &*start.full : nullptr);
-  start.full.reset();
+  std::unique_ptr<Simulation> sim = domain.distribute(run_scene, std::move(start.full));
   s.particles = domain.particles();
   MPI_Barrier(comm);
   const double t0 = MPI_Wtime();

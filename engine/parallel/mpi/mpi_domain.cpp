@@ -255,13 +255,13 @@ void MpiDomain::assemble(Simulation& sim, std::vector<PackedPiece> owned,
 }
 
 std::unique_ptr<Simulation> MpiDomain::distribute(const SceneConfig& scene,
-                                                  const SimulationState* full) {
+                                                  std::optional<SimulationState> full) {
   // Rank 0 cuts the whole state and sends every other rank its part, one rank after the other (it
   // holds the state and one packed part at a time); no other rank ever holds more than its part.
   std::vector<std::byte> header;
   StartPart part;
   if (comm_.rank() == 0) {
-    if (full == nullptr) throw std::logic_error("MpiDomain::distribute: no state on rank 0");
+    if (!full) throw std::logic_error("MpiDomain::distribute: no state on rank 0");
     const std::span<const Vec3> x = full->particles.position;
     const Decomposition d = rcb_decompose(x, {}, options_.domain, comm_.size());
     header = pack_start_header(*full, d);
@@ -277,6 +277,7 @@ std::unique_ptr<Simulation> MpiDomain::distribute(const SceneConfig& scene,
       comm_.send(q, pack_records(p.records));
     }
     part = start_part(*full, d, g, 0, held);
+    full.reset();  // before this rank builds its own local set
   } else {
     comm_.broadcast(header);
     const std::vector<std::byte> count = comm_.receive(0);

@@ -71,9 +71,10 @@ class MpiDomain final : public DomainHooks {
   MpiDomain(MPI_Comm comm, MpiDomainOptions options);
 
   /// This rank's part of the whole state `full` (particles in the serial run's order), as a
-  /// Simulation wired to this domain. `full` is rank 0's (nullptr on the others): rank 0 cuts it
-  /// and sends each rank its part (engine/parallel/start_message.hpp). Collective.
-  std::unique_ptr<Simulation> distribute(const SceneConfig& scene, const SimulationState* full);
+  /// Simulation wired to this domain. `full` is rank 0's (none on the others): rank 0 cuts it,
+  /// sends each rank its part (engine/parallel/start_message.hpp) and frees it. Collective.
+  std::unique_ptr<Simulation> distribute(const SceneConfig& scene,
+                                         std::optional<SimulationState> full);
   /// Particles of the whole state at the distribution.
   std::uint64_t particles() const { return particles_; }
   /// The whole state on rank 0, particles in the serial run's order (nothing elsewhere): what a
