@@ -119,7 +119,7 @@ class DistributedRcb {
         s.a = sums.extremes[2 * l];
         s.b = std::nextafter(-sums.extremes[2 * l + 1], kInf);
         s.inside = s.m;
-        s.open = s.m > kGatherAt;
+        s.open = s.m > kGatherAt && s.a < s.b;  // not when no coordinate is finite
       }
       searches.push_back(s);
     }
@@ -298,7 +298,8 @@ class DistributedRcb {
     const double lo = node.box.lo[s.axis], hi = node.box.hi[s.axis];
     const double left_max = k == 0 ? lo : value(k);
     const double right_min = k >= s.m ? hi : value(k + 1);
-    const double cut = s.m == 0 ? 0.5 * (lo + hi) : 0.5 * (left_max + right_min);
+    double cut = s.m == 0 ? 0.5 * (lo + hi) : 0.5 * (left_max + right_min);
+    if (!std::isfinite(cut)) cut = 0.5 * (lo + hi);  // a box of non-finite positions only
     node.axis = s.axis;
     node.cut = std::clamp(cut, lo, hi);
     RcbNode& left = d_.nodes[static_cast<std::size_t>(node.left)];
