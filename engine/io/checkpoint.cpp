@@ -37,21 +37,21 @@ void write_particles(hid_t file, const Particles& p, const h5::Rows& rows) {
   h5::write_attribute(g.get(), "extra_arrays", names);
 }
 
-Particles read_particles(hid_t file) {
+/// The particles of `range` (all by default) of the file's n.
+Particles read_particles(hid_t file, std::size_t n, const h5::RowRange& range) {
   h5::Handle g = h5::open_group(file, "particles");
   Particles p;
-  p.radius = h5::read_doubles(g.get(), "radius", h5::kAnySize);
-  const std::size_t n = p.radius.size();
-  p.position = h5::read_vec3(g.get(), "position", n);
-  p.velocity = h5::read_vec3(g.get(), "velocity", n);
-  p.omega = h5::read_vec3(g.get(), "omega", n);
-  p.force = h5::read_vec3(g.get(), "force", n);
-  p.torque = h5::read_vec3(g.get(), "torque", n);
-  p.mass = h5::read_doubles(g.get(), "mass", n);
-  p.inv_mass = h5::read_doubles(g.get(), "inv_mass", n);
-  p.inv_inertia = h5::read_doubles(g.get(), "inv_inertia", n);
-  p.size_class = h5::read_u8(g.get(), "size_class", n);
-  p.id = h5::read_u32(g.get(), "id", n);
+  p.radius = h5::read_doubles(g.get(), "radius", n, range);
+  p.position = h5::read_vec3(g.get(), "position", n, range);
+  p.velocity = h5::read_vec3(g.get(), "velocity", n, range);
+  p.omega = h5::read_vec3(g.get(), "omega", n, range);
+  p.force = h5::read_vec3(g.get(), "force", n, range);
+  p.torque = h5::read_vec3(g.get(), "torque", n, range);
+  p.mass = h5::read_doubles(g.get(), "mass", n, range);
+  p.inv_mass = h5::read_doubles(g.get(), "inv_mass", n, range);
+  p.inv_inertia = h5::read_doubles(g.get(), "inv_inertia", n, range);
+  p.size_class = h5::read_u8(g.get(), "size_class", n, range);
+  p.id = h5::read_u32(g.get(), "id", n, range);
   if (H5Aexists(g.get(), "extra_arrays") > 0) {
     const std::string names = h5::read_string_attribute(g.get(), "extra_arrays");
     std::size_t begin = 0;
@@ -60,7 +60,7 @@ Particles read_particles(hid_t file) {
       const std::string name = names.substr(begin, end - begin);
       std::vector<double>& a =
           p.add_array(name, h5::read_double_attribute(g.get(), "extra_initial_" + name));
-      a = h5::read_doubles(g.get(), "extra_" + name, n);
+      a = h5::read_doubles(g.get(), "extra_" + name, n, range);
       begin = end + 1;
     }
   }
@@ -87,22 +87,36 @@ void write_contacts(hid_t file, const SimulationState& s, const CheckpointRows& 
             {s.wall_history.size(), kWallParts, 3}, rows.particles);
 }
 
-void read_contacts(hid_t file, SimulationState& s) {
-  const std::size_t n = s.particles.size();
+/// The contacts of the rows `range` (all by default) of the file's n particles: row_start from 0,
+/// contact_col the partners' rows in the file; and those rows' wall history.
+void read_contacts(hid_t file, const std::string& label, std::size_t n, const h5::RowRange& range,
+                   SimulationState& s) {
+  const std::size_t rows = range.all ? n : static_cast<std::size_t>(range.count);
   h5::Handle g = h5::open_group(file, "contacts");
-  const std::vector<std::uint64_t> rows = h5::read_u64(g.get(), "row_start", h5::kAnySize);
-  s.contact_row_start.assign(rows.begin(), rows.end());
-  s.contact_col = h5::read_u32(g.get(), "col", h5::kAnySize);
-  s.contact_history = h5::read_vec3(g.get(), "history", s.contact_col.size());
+  const std::size_t m = h5::rows_of(g.get(), "col");
+  std::vector<std::uint64_t> starts =
+      h5::read_u64(g.get(), "row_start", h5::kAnySize,
+                   range.all ? range : h5::RowRange::of(range.first, range.count + 1));
+  h5::RowRange records;  // all, or the rows' records
+  if (!range.all && !starts.empty()) {
+    if (starts.front() > starts.back() || starts.back() > m) {
+      throw InputError(fmt::format("{}: contacts/row_start out of order", label));
+    }
+    records = h5::RowRange::of(starts.front(), starts.back() - starts.front());
+    const std::uint64_t base = starts.front();
+    for (std::uint64_t& v : starts) v -= base;
+  }
+  s.contact_row_start.assign(starts.begin(), starts.end());
+  s.contact_col = h5::read_u32(g.get(), "col", m, records);
+  s.contact_history = h5::read_vec3(g.get(), "history", m, records);
   if (H5Aexists(g.get(), "state_size") > 0) {
     s.contact_state_size = h5::read_u64_attribute(g.get(), "state_size");
-    s.contact_state =
-        h5::read_doubles(g.get(), "state", s.contact_col.size() * s.contact_state_size);
+    s.contact_state = h5::read_doubles(g.get(), "state", m * s.contact_state_size, records);
   }
   h5::Handle w = h5::open_group(file, "walls");
-  const std::vector<double> flat = h5::read_doubles(w.get(), "history", 9 * n);
-  s.wall_history.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
+  const std::vector<double> flat = h5::read_doubles(w.get(), "history", 9 * n, range);
+  s.wall_history.resize(rows);
+  for (std::size_t i = 0; i < rows; ++i) {
     for (std::size_t part = 0; part < kWallParts; ++part) {
       const double* v = flat.data() + 9 * i + 3 * part;
       s.wall_history[i][part] = Vec3(v[0], v[1], v[2]);
@@ -134,7 +148,9 @@ void write_checkpoint(const std::filesystem::path& file, const SimulationState& 
   h5::save_memory_file(f, file);
 }
 
-Checkpoint read_checkpoint(const std::filesystem::path& file) {
+namespace {
+
+Checkpoint read_rows(const std::filesystem::path& file, const h5::RowRange& range) {
   h5::Handle f = h5::open_file(file);
   if (!H5Aexists(f.get(), "format") || h5::read_string_attribute(f.get(), "format") != kFormat) {
     throw InputError(fmt::format("{}: not a drumlab checkpoint", file.string()));
@@ -153,9 +169,24 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
   s.drum_omega = h5::read_double_attribute(f.get(), "drum_omega");
   s.drum_angle = h5::read_double_attribute(f.get(), "drum_angle");
   s.steps = h5::read_u64_attribute(f.get(), "steps");
-  s.particles = read_particles(f.get());
-  read_contacts(f.get(), s);
+  {
+    h5::Handle g = h5::open_group(f.get(), "particles");
+    c.particles = h5::rows_of(g.get(), "radius");
+  }
+  s.particles = read_particles(f.get(), c.particles, range);
+  read_contacts(f.get(), file.string(), c.particles, range, s);
   return c;
+}
+
+}  // namespace
+
+Checkpoint read_checkpoint(const std::filesystem::path& file) {
+  return read_rows(file, {});
+}
+
+Checkpoint read_checkpoint_rows(const std::filesystem::path& file, std::size_t first,
+                                std::size_t count) {
+  return read_rows(file, h5::RowRange::of(first, count));
 }
 
 }  // namespace drumlab

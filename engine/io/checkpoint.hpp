@@ -24,9 +24,18 @@ void write_checkpoint(const std::filesystem::path& file, const SimulationState& 
 struct Checkpoint {
   SimulationState state;
   std::string scene_name;
+  std::size_t particles = 0;  ///< in the file
 };
 
 /// Reads a checkpoint; throws InputError for a missing file, another format or inconsistent data.
 Checkpoint read_checkpoint(const std::filesystem::path& file);
+
+/// Reads the particles [first, first + count) of a checkpoint (an MPI rank's share of it): their
+/// arrays and wall history, and their rows of the contact list, contact_row_start from 0 and
+/// contact_col the partners' slots in the whole file (so not a state a Simulation runs); the
+/// scalars as read_checkpoint. Throws InputError as read_checkpoint does, and for rows beyond the
+/// file's.
+Checkpoint read_checkpoint_rows(const std::filesystem::path& file, std::size_t first,
+                                std::size_t count);
 
 }  // namespace drumlab

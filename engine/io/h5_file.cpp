@@ -104,7 +104,7 @@ void write_raw(hid_t loc, const std::string& name, hid_t file_type, hid_t mem_ty
 
 template <class T>
 std::vector<T> read_raw(hid_t loc, const std::string& name, hid_t mem_type, H5T_class_t cls,
-                        std::size_t expected) {
+                        std::size_t expected, const RowRange& range) {
   if (!exists(loc, name)) fail(loc, name, "missing dataset");
   Handle set(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), H5Dclose);
   if (set.get() < 0) fail(loc, name, "cannot open dataset");
@@ -117,9 +117,32 @@ std::vector<T> read_raw(hid_t loc, const std::string& name, hid_t mem_type, H5T_
     throw InputError(fmt::format("{}: dataset '{}' has {} values, expected {}", file_of(loc), name,
                                  n, expected));
   }
-  std::vector<T> out(static_cast<std::size_t>(n));
-  T dummy{};
-  if (H5Dread(set.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, n ? out.data() : &dummy) < 0) {
+  if (range.all) {
+    std::vector<T> out(static_cast<std::size_t>(n));
+    T dummy{};
+    if (H5Dread(set.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, n ? out.data() : &dummy) < 0) {
+      fail(loc, name, "cannot read dataset");
+    }
+    return out;
+  }
+  // Rows [first, first + count) along the first dimension, every row whole.
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  std::vector<hsize_t> dims(static_cast<std::size_t>(std::max(rank, 1)), 0);
+  if (rank < 1 || H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr) < 0 ||
+      range.first + range.count > dims[0]) {
+    fail(loc, name, "rows out of range in dataset");
+  }
+  std::vector<hsize_t> start(dims.size(), 0), count(dims);
+  start[0] = range.first;
+  count[0] = range.count;
+  hsize_t values = 1;
+  for (const hsize_t c : count) values *= c;
+  std::vector<T> out(static_cast<std::size_t>(values));
+  if (values == 0) return out;
+  Handle memory(H5Screate_simple(1, &values, nullptr), H5Sclose);
+  if (H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(),
+                          nullptr) < 0 ||
+      H5Dread(set.get(), mem_type, memory.get(), space.get(), H5P_DEFAULT, out.data()) < 0) {
     fail(loc, name, "cannot read dataset");
   }
   return out;
@@ -365,22 +388,40 @@ void append(hid_t set, std::uint64_t value, const Rows& rows) {
   append_raw(set, H5T_NATIVE_UINT64, &value, rows);
 }
 
-std::vector<double> read_doubles(hid_t loc, const std::string& name, std::size_t expected) {
-  return read_raw<double>(loc, name, H5T_NATIVE_DOUBLE, H5T_FLOAT, expected);
+std::vector<double> read_doubles(hid_t loc, const std::string& name, std::size_t expected,
+                                 const RowRange& range) {
+  return read_raw<double>(loc, name, H5T_NATIVE_DOUBLE, H5T_FLOAT, expected, range);
 }
-std::vector<std::uint64_t> read_u64(hid_t loc, const std::string& name, std::size_t expected) {
-  return read_raw<std::uint64_t>(loc, name, H5T_NATIVE_UINT64, H5T_INTEGER, expected);
+std::vector<std::uint64_t> read_u64(hid_t loc, const std::string& name, std::size_t expected,
+                                    const RowRange& range) {
+  return read_raw<std::uint64_t>(loc, name, H5T_NATIVE_UINT64, H5T_INTEGER, expected, range);
 }
-std::vector<std::uint32_t> read_u32(hid_t loc, const std::string& name, std::size_t expected) {
-  return read_raw<std::uint32_t>(loc, name, H5T_NATIVE_UINT32, H5T_INTEGER, expected);
+std::vector<std::uint32_t> read_u32(hid_t loc, const std::string& name, std::size_t expected,
+                                    const RowRange& range) {
+  return read_raw<std::uint32_t>(loc, name, H5T_NATIVE_UINT32, H5T_INTEGER, expected, range);
 }
-std::vector<std::uint8_t> read_u8(hid_t loc, const std::string& name, std::size_t expected) {
-  return read_raw<std::uint8_t>(loc, name, H5T_NATIVE_UINT8, H5T_INTEGER, expected);
+std::vector<std::uint8_t> read_u8(hid_t loc, const std::string& name, std::size_t expected,
+                                  const RowRange& range) {
+  return read_raw<std::uint8_t>(loc, name, H5T_NATIVE_UINT8, H5T_INTEGER, expected, range);
 }
 
-std::vector<Vec3> read_vec3(hid_t loc, const std::string& name, std::size_t expected_rows) {
+std::size_t rows_of(hid_t loc, const std::string& name) {
+  if (!exists(loc, name)) fail(loc, name, "missing dataset");
+  Handle set(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (set.get() < 0) fail(loc, name, "cannot open dataset");
+  Handle space(H5Dget_space(set.get()), H5Sclose);
+  hsize_t dims[8] = {};
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  if (rank < 1 || rank > 8 || H5Sget_simple_extent_dims(space.get(), dims, nullptr) < 0) {
+    fail(loc, name, "cannot read the size of dataset");
+  }
+  return static_cast<std::size_t>(dims[0]);
+}
+
+std::vector<Vec3> read_vec3(hid_t loc, const std::string& name, std::size_t expected_rows,
+                            const RowRange& range) {
   const std::size_t expected = expected_rows == kAnySize ? kAnySize : 3 * expected_rows;
-  const std::vector<double> flat = read_doubles(loc, name, expected);
+  const std::vector<double> flat = read_doubles(loc, name, expected, range);
   if (flat.size() % 3 != 0) fail(loc, name, "not an N x 3 dataset:");
   std::vector<Vec3> out(flat.size() / 3);
   for (std::size_t i = 0; i < out.size(); ++i) {

@@ -111,14 +111,30 @@ Handle create_growing_u64(hid_t loc, const std::string& name);
 void append(hid_t set, double value, const Rows& rows = all_rows());
 void append(hid_t set, std::uint64_t value, const Rows& rows = all_rows());
 
-/// Reads a whole dataset; throws InputError if it is missing, of another element class or its
-/// total size differs from `expected` (unless expected is kAnySize).
+/// Rows [first, first + count) of a dataset along its first dimension (every row whole); the
+/// default is the whole dataset.
+struct RowRange {
+  bool all = true;
+  hsize_t first = 0, count = 0;
+  static RowRange of(hsize_t first, hsize_t count) { return {false, first, count}; }
+};
+
+/// Reads a dataset (or the rows `range` of it); throws InputError if it is missing, of another
+/// element class, its total size (the whole dataset's) differs from `expected` (unless expected is
+/// kAnySize), or the range exceeds its rows.
 inline constexpr std::size_t kAnySize = static_cast<std::size_t>(-1);
-std::vector<double> read_doubles(hid_t loc, const std::string& name, std::size_t expected);
-std::vector<std::uint64_t> read_u64(hid_t loc, const std::string& name, std::size_t expected);
-std::vector<std::uint32_t> read_u32(hid_t loc, const std::string& name, std::size_t expected);
-std::vector<std::uint8_t> read_u8(hid_t loc, const std::string& name, std::size_t expected);
-std::vector<Vec3> read_vec3(hid_t loc, const std::string& name, std::size_t expected_rows);
+std::vector<double> read_doubles(hid_t loc, const std::string& name, std::size_t expected,
+                                 const RowRange& range = {});
+std::vector<std::uint64_t> read_u64(hid_t loc, const std::string& name, std::size_t expected,
+                                    const RowRange& range = {});
+std::vector<std::uint32_t> read_u32(hid_t loc, const std::string& name, std::size_t expected,
+                                    const RowRange& range = {});
+std::vector<std::uint8_t> read_u8(hid_t loc, const std::string& name, std::size_t expected,
+                                  const RowRange& range = {});
+std::vector<Vec3> read_vec3(hid_t loc, const std::string& name, std::size_t expected_rows,
+                            const RowRange& range = {});
+/// The rows (first dimension) of a dataset; throws InputError if it is missing.
+std::size_t rows_of(hid_t loc, const std::string& name);
 
 void write_attribute(hid_t loc, const std::string& name, double value);
 void write_attribute(hid_t loc, const std::string& name, std::uint64_t value);

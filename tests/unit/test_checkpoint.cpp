@@ -73,6 +73,63 @@ TEST(Checkpoint, RoundTripKeepsEveryBit) {
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir.path()), {}), 1);
 }
 
+// An MPI rank reads its share of a checkpoint (read_checkpoint_rows): three pieces of rows hold,
+// together and in order, every array of the whole file, its wall history and its contact rows
+// (row starts from 0 in each piece, partners as slots of the whole file), bit for bit.
+TEST(Checkpoint, RowsReadInPiecesAreTheWholeCheckpoint) {
+  TempDir dir("checkpoint-rows");
+  const SceneConfig scene = output_scene();
+  const auto sim = settled_simulation(scene, kN);
+  const std::filesystem::path file = dir.path() / "state.h5";
+  write_checkpoint(file, sim->state(), scene.name);
+  const Checkpoint whole = read_checkpoint(file);
+  const SimulationState& w = whole.state;
+  const std::size_t n = whole.particles;
+  ASSERT_EQ(n, w.particles.size());
+  ASSERT_GT(n, 100u);
+  ASSERT_GT(w.contact_col.size(), 10u);
+  SimulationState joined = w;
+  joined.particles = Particles{};
+  joined.wall_history.clear();
+  joined.contact_row_start = {0};
+  joined.contact_col.clear();
+  joined.contact_history.clear();
+  const std::size_t a = n / 3, b = 2 * n / 3 + 7;
+  for (const auto& [first, count] :
+       {std::pair<std::size_t, std::size_t>{0, a}, {a, b - a}, {b, n - b}}) {
+    const Checkpoint piece = read_checkpoint_rows(file, first, count);
+    const SimulationState& p = piece.state;
+    EXPECT_EQ(piece.particles, n);
+    ASSERT_EQ(p.particles.size(), count);
+    ASSERT_EQ(p.contact_row_start.size(), count + 1);
+    EXPECT_EQ(p.contact_row_start.front(), 0u);
+    EXPECT_EQ(p.time, w.time);
+    EXPECT_EQ(p.steps, w.steps);
+    for (std::size_t i = 0; i < count; ++i) {
+      joined.particles.add(p.particles.position[i], p.particles.radius[i], 1.0,
+                           p.particles.size_class[i]);
+      const std::size_t k = joined.particles.size() - 1;
+      joined.particles.velocity[k] = p.particles.velocity[i];
+      joined.particles.omega[k] = p.particles.omega[i];
+      joined.particles.force[k] = p.particles.force[i];
+      joined.particles.torque[k] = p.particles.torque[i];
+      joined.particles.mass[k] = p.particles.mass[i];
+      joined.particles.inv_mass[k] = p.particles.inv_mass[i];
+      joined.particles.inv_inertia[k] = p.particles.inv_inertia[i];
+      joined.particles.id[k] = p.particles.id[i];
+      joined.wall_history.push_back(p.wall_history[i]);
+      joined.contact_row_start.push_back(joined.contact_col.size() + p.contact_row_start[i + 1] -
+                                         p.contact_row_start[i]);
+      for (std::size_t e = p.contact_row_start[i]; e < p.contact_row_start[i + 1]; ++e) {
+        joined.contact_col.push_back(p.contact_col[e]);
+        joined.contact_history.push_back(p.contact_history[e]);
+      }
+    }
+  }
+  expect_same_state(w, joined);
+  EXPECT_THROW(read_checkpoint_rows(file, n - 50, 100), InputError);
+}
+
 TEST(Checkpoint, RestartAfterNStepsIsBitIdenticalToTwoN) {
   TempDir dir("checkpoint-restart");
   const SceneConfig scene = output_scene();
