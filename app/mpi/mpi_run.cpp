@@ -32,13 +32,46 @@ void broadcast(MPI_Comm comm, std::string& text) {
   MPI_Bcast(text.data(), length, MPI_CHAR, 0, comm);
 }
 
-/// How the run starts: the scene as run and the plan on every rank, the whole state on rank 0 only.
+/// How the run starts: the scene as run and the plan on every rank; the whole state on rank 0
+/// only, or every rank's share of a checkpoint.
 struct Start {
   SceneConfig scene;
   SessionPlan plan;
   std::optional<SimulationState> full;
   std::string search_reason;  ///< how "auto" chose, if it did
+  SimulationState share;      ///< rows [first, first + its size) of the checkpoint's total
+  std::uint64_t first = 0, total = 0;
 };
+
+/// A restart with a search method named (not "auto", which times the candidates on the whole
+/// state) is read in shares: every rank reads its rows of the checkpoint.
+bool spread_restart(const SceneConfig& scene, const SessionOptions& o) {
+  const std::string method = o.method.empty() ? scene.search_method : o.method;
+  return !o.restart.empty() && method != "auto";
+}
+
+/// Every rank reads rows [N r / R, N (r + 1) / R) of the checkpoint; --method replaces its search
+/// method, as RunSession does. Bad input met by any rank is thrown on every rank.
+Start read_shares(MpiComm& comm, const SceneConfig& scene, const SessionOptions& o) {
+  Start s;
+  s.scene = scene_with_options(scene, o);
+  std::string error;
+  try {
+    s.total = read_checkpoint_rows(o.restart, 0, 0).particles;
+    const auto r = static_cast<std::uint64_t>(comm.rank());
+    const auto n = static_cast<std::uint64_t>(comm.size());
+    s.first = s.total * r / n;
+    Checkpoint c = read_checkpoint_rows(o.restart, s.first, s.total * (r + 1) / n - s.first);
+    if (!o.method.empty()) c.state.search_method = o.method;
+    s.plan = session_plan(s.scene, o, c.state.dt, true);
+    s.share = std::move(c.state);
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  error = comm.first_error(error);
+  if (!error.empty()) throw InputError(error);
+  return s;
+}
 
 /// Rank 0 alone fills the scene or reads the checkpoint (and resolves "auto"); the others get the
 /// method and the plan from it and apply the same options to the scene. Bad input met by rank 0
@@ -191,12 +224,16 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
   MpiComm io_comm(comm);
   open_series(io_comm, out);  // checked before the fill, written from the turn
   MpiRunSummary s;
-  Start start = start_run(comm, rank, scene, o.session);
+  const bool shares = spread_restart(scene, o.session);
+  Start start =
+      shares ? read_shares(io_comm, scene, o.session) : start_run(comm, rank, scene, o.session);
   s.search_reason = std::move(start.search_reason);
   const SessionPlan plan = start.plan;
   const SceneConfig& run_scene = start.scene;
   MpiDomain domain(comm, domain_options(run_scene, o));
-  std::unique_ptr<Simulation> sim = domain.distribute(run_scene, std::move(start.full));
+  std::unique_ptr<Simulation> sim =
+      shares ? domain.distribute_shares(run_scene, std::move(start.share), start.first, start.total)
+             : domain.distribute(run_scene, std::move(start.full));
   s.particles = domain.particles();
   MPI_Barrier(comm);
   const double t0 = MPI_Wtime();

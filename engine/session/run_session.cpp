@@ -77,36 +77,39 @@ std::uint64_t RunSession::settle_steps() const {
   return static_cast<std::uint64_t>(std::ceil(t / sim_->dt()));
 }
 
-SessionPlan RunSession::plan() const {
+SessionPlan session_plan(const SceneConfig& scene, const SessionOptions& options, double dt,
+                         bool restart) {
   SessionPlan p;
-  p.settle_time = restart_                      ? 0.0
-                  : options_.settle_time >= 0.0 ? options_.settle_time
-                                                : scene_.fill.settle_time;
-  p.settle_steps = settle_steps();
-  const double dt = sim_->dt();
-  if (options_.steps) {  // 0 too: fill and settle only, as LAMMPS's `run 0`
-    p.turn_steps = *options_.steps;
+  p.settle_time = restart                      ? 0.0
+                  : options.settle_time >= 0.0 ? options.settle_time
+                                               : scene.fill.settle_time;
+  p.settle_steps = restart ? 0 : static_cast<std::uint64_t>(std::ceil(p.settle_time / dt));
+  if (options.steps) {  // 0 too: fill and settle only, as LAMMPS's `run 0`
+    p.turn_steps = *options.steps;
     return p;
   }
-  const double omega = std::abs(scene_.drum.omega);
+  const double omega = std::abs(scene.drum.omega);
   double seconds = 0.0;
-  if (options_.revolutions > 0.0 || scene_.time.revolutions) {
-    const double revs =
-        options_.revolutions > 0.0 ? options_.revolutions : *scene_.time.revolutions;
+  if (options.revolutions > 0.0 || scene.time.revolutions) {
+    const double revs = options.revolutions > 0.0 ? options.revolutions : *scene.time.revolutions;
     if (omega == 0.0) {
       throw InputError(
-          fmt::format("{}: drum.omega: revolutions need a turning drum", options_.scene_file));
+          fmt::format("{}: drum.omega: revolutions need a turning drum", options.scene_file));
     }
     seconds = revs * 2.0 * std::numbers::pi / omega;
-  } else if (scene_.time.duration) {
-    seconds = *scene_.time.duration;
+  } else if (scene.time.duration) {
+    seconds = *scene.time.duration;
   } else {
     throw InputError(fmt::format(
         "{}: time: set duration or revolutions in the scene, or pass --steps/--revolutions",
-        options_.scene_file));
+        options.scene_file));
   }
   p.turn_steps = static_cast<std::uint64_t>(std::ceil(seconds / dt));
   return p;
+}
+
+SessionPlan RunSession::plan() const {
+  return session_plan(scene_, options_, sim_->dt(), restart_.has_value());
 }
 
 std::uint64_t RunSession::advance_chunked(std::uint64_t n, std::uint64_t every,

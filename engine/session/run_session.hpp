@@ -72,6 +72,12 @@ struct TurnResult {
 /// RunSession runs, but for "auto", which it resolves on its particles.
 SceneConfig scene_with_options(SceneConfig scene, const SessionOptions& options);
 
+/// Settle and turn steps of a run with time step `dt` (a restart settles none): --steps,
+/// --revolutions, or the scene's duration/revolutions. Throws InputError (naming the scene file)
+/// when none gives the turning phase a length.
+SessionPlan session_plan(const SceneConfig& scene, const SessionOptions& options, double dt,
+                         bool restart);
+
 /// If the scene's search is "auto", replaces it by the method chosen for these particles with
 /// time step `dt` and returns the choice (method and reason); otherwise returns nothing.
 std::optional<SearchChoice> resolve_auto_search(SceneConfig& scene, const Particles& particles,

@@ -251,19 +251,22 @@ TEST_F(MpiRun, ParallelCheckpointHoldsTheSerialRunsDatasets) {
                     "3 ranks -> serial");
 }
 
-// Only rank 0 reads the checkpoint (or fills the scene): a checkpoint it cannot read stops every
-// rank with exit 2 and one line naming the file, as a bad scene does, and no rank waits forever.
-TEST_F(MpiRun, CheckpointRankZeroCannotReadStopsEveryRankWithOneLine) {
+// A checkpoint that cannot be read stops every rank with exit 2 and one line naming the file, as a
+// bad scene does, and no rank waits forever: read in shares by every rank (a named search method)
+// or by rank 0 alone ("auto", which times the candidates on the whole state).
+TEST_F(MpiRun, UnreadableCheckpointStopsEveryRankWithOneLine) {
   const std::string scene = dir.write("scene.toml", scene_text("verlet:m2", "", ""));
   const std::string garbage = dir.write("garbage.h5", "not an HDF5 file\n");
   for (const std::string& ck : {dir.file("missing.h5"), garbage}) {
-    const Ran r =
-        shell(mpirun(3) + "--timeout 60 " + DRUMLAB_MPI_CLI + " run " + scene + " --restart " + ck);
-    EXPECT_EQ(r.exit_code, 2) << r.output;
-    const std::size_t first = r.output.find("drumlab-mpi: error: ");
-    ASSERT_NE(first, std::string::npos) << r.output;
-    EXPECT_EQ(r.output.find("drumlab-mpi: error: ", first + 1), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find(ck), std::string::npos) << r.output;
+    for (const std::string method : {"", " --method auto"}) {
+      const Ran r = shell(mpirun(3) + "--timeout 60 " + DRUMLAB_MPI_CLI + " run " + scene +
+                          " --restart " + ck + method);
+      EXPECT_EQ(r.exit_code, 2) << r.output;
+      const std::size_t first = r.output.find("drumlab-mpi: error: ");
+      ASSERT_NE(first, std::string::npos) << r.output;
+      EXPECT_EQ(r.output.find("drumlab-mpi: error: ", first + 1), std::string::npos) << r.output;
+      EXPECT_NE(r.output.find(ck), std::string::npos) << r.output;
+    }
   }
 }
 

@@ -165,15 +165,50 @@ std::vector<std::vector<std::byte>> MpiComm::gather(std::span<const std::byte> m
   return out;
 }
 
-void MpiComm::broadcast(std::vector<std::byte>& bytes) {
+void MpiComm::broadcast(std::vector<std::byte>& bytes, int root) {
   Timed t(seconds_);
   auto n = static_cast<std::uint64_t>(bytes.size());
-  MPI_Bcast(&n, 1, MPI_UINT64_T, 0, comm_);
+  MPI_Bcast(&n, 1, MPI_UINT64_T, root, comm_);
   bytes.resize(static_cast<std::size_t>(n));
   for (std::size_t at = 0; at < bytes.size(); at += kPiece) {
     const auto count = static_cast<int>(std::min(kPiece, bytes.size() - at));
-    MPI_Bcast(bytes.data() + at, count, MPI_BYTE, 0, comm_);
+    MPI_Bcast(bytes.data() + at, count, MPI_BYTE, root, comm_);
   }
+}
+
+std::vector<std::byte> MpiComm::send_receive(int to, std::span<const std::byte> bytes, int from) {
+  Timed t(seconds_);
+  const auto out = static_cast<std::uint64_t>(bytes.size());
+  std::uint64_t in = 0;
+  MPI_Sendrecv(&out, 1, MPI_UINT64_T, to, 12, &in, 1, MPI_UINT64_T, from, 12, comm_,
+               MPI_STATUS_IGNORE);
+  std::vector<std::byte> got(static_cast<std::size_t>(in));
+  std::vector<MPI_Request> requests;
+  for (std::size_t at = 0; at < got.size(); at += kPiece) {
+    requests.emplace_back();
+    MPI_Irecv(got.data() + at, static_cast<int>(std::min(kPiece, got.size() - at)), MPI_BYTE, from,
+              13, comm_, &requests.back());
+  }
+  for (std::size_t at = 0; at < bytes.size(); at += kPiece) {
+    requests.emplace_back();
+    MPI_Isend(bytes.data() + at, static_cast<int>(std::min(kPiece, bytes.size() - at)), MPI_BYTE,
+              to, 13, comm_, &requests.back());
+  }
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  return got;
+}
+
+std::string MpiComm::first_error(const std::string& mine) {
+  int me = mine.empty() ? size_ : rank_, first = size_;
+  {
+    Timed t(seconds_);
+    MPI_Allreduce(&me, &first, 1, MPI_INT, MPI_MIN, comm_);
+  }
+  if (first == size_) return {};
+  const auto* b = reinterpret_cast<const std::byte*>(mine.data());
+  std::vector<std::byte> bytes(b, b + (rank_ == first ? mine.size() : 0));
+  broadcast(bytes, first);
+  return std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size());
 }
 
 void MpiComm::send(int to, std::span<const std::byte> bytes) {

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace drumlab {
@@ -37,12 +38,17 @@ class MpiComm {
   std::vector<std::byte> all_gather(std::span<const std::byte> mine);
   /// Every rank's bytes on rank 0, by rank (empty elsewhere).
   std::vector<std::vector<std::byte>> gather(std::span<const std::byte> mine);
-  /// Rank 0's `bytes` on every rank (resized to fit).
-  void broadcast(std::vector<std::byte>& bytes);
+  /// Rank `root`'s `bytes` on every rank (resized to fit).
+  void broadcast(std::vector<std::byte>& bytes, int root = 0);
+  /// The message of the lowest rank whose `mine` is not empty ("" if none): an error met by some
+  /// ranks, to be thrown alike on all.
+  std::string first_error(const std::string& mine);
   /// Point-to-point bytes of any length (in pieces of at most 1 GiB): send to rank `to`, and what
   /// rank `from` sent here.
   void send(int to, std::span<const std::byte> bytes);
   std::vector<std::byte> receive(int from);
+  /// Sends `bytes` to rank `to` and returns what rank `from` sends here at the same time.
+  std::vector<std::byte> send_receive(int to, std::span<const std::byte> bytes, int from);
   /// Point-to-point doubles: send[q] to q and recv[q].size() doubles from q, for every q with a
   /// non-empty buffer.
   void exchange(const std::vector<std::vector<double>>& send,

@@ -26,6 +26,7 @@
 #include "engine/parallel/mpi/mpi_comm.hpp"
 #include "engine/parallel/particle_pack.hpp"
 #include "engine/parallel/rcb.hpp"
+#include "engine/parallel/start_message.hpp"
 #include "engine/simulation.hpp"
 
 namespace drumlab {
@@ -75,6 +76,14 @@ class MpiDomain final : public DomainHooks {
   /// sends each rank its part (engine/parallel/start_message.hpp) and frees it. Collective.
   std::unique_ptr<Simulation> distribute(const SceneConfig& scene,
                                          std::optional<SimulationState> full);
+  /// This rank's part of a checkpoint that every rank read a share of (no rank holds the whole
+  /// state): `share` holds the rows [first, first + its size) of the file's `total` particles
+  /// (read_checkpoint_rows), with the scalars; the ranks cut all shares by rcb_decompose_mpi and
+  /// send each particle to its owner and to the ranks that hold it as a ghost, and each contact
+  /// record to the ranks that hold its row's particle. Bad input met by any rank (its part
+  /// refused by Simulation) is thrown on every rank. Collective.
+  std::unique_ptr<Simulation> distribute_shares(const SceneConfig& scene, SimulationState share,
+                                                std::uint64_t first, std::uint64_t total);
   /// Particles of the whole state at the distribution.
   std::uint64_t particles() const { return particles_; }
   /// The whole state on rank 0, particles in the serial run's order (nothing elsewhere): what a
@@ -99,6 +108,11 @@ class MpiDomain final : public DomainHooks {
   const std::vector<std::uint64_t>& slots() const { return slot_; }
 
  private:
+  /// The Simulation of this rank's part (owned particles packed, ghosts by owner, records) with
+  /// the state's scalars (`scalars`, whose particles register the extra arrays), wired to this
+  /// domain; decomposition_ and cell_ set.
+  std::unique_ptr<Simulation> start_local(const SceneConfig& scene, SimulationState scalars,
+                                          StartPart part);
   /// Migration, optional re-balance and a new ghost layer; replaces sim's particles.
   void exchange(Simulation& sim);
   void forward(Simulation& sim);
