@@ -94,9 +94,11 @@ void read_contacts(hid_t file, const std::string& label, std::size_t n, const h5
   const std::size_t rows = range.all ? n : static_cast<std::size_t>(range.count);
   h5::Handle g = h5::open_group(file, "contacts");
   const std::size_t m = h5::rows_of(g.get(), "col");
-  std::vector<std::uint64_t> starts =
-      h5::read_u64(g.get(), "row_start", h5::kAnySize,
-                   range.all ? range : h5::RowRange::of(range.first, range.count + 1));
+  // An empty row_start (a state whose contact list was never built) has no rows to range over.
+  const bool listed = h5::rows_of(g.get(), "row_start") > 0;
+  std::vector<std::uint64_t> starts = h5::read_u64(
+      g.get(), "row_start", h5::kAnySize,
+      range.all || !listed ? h5::RowRange{} : h5::RowRange::of(range.first, range.count + 1));
   h5::RowRange records;  // all, or the rows' records
   if (!range.all && !starts.empty()) {
     if (starts.front() > starts.back() || starts.back() > m) {

@@ -128,6 +128,16 @@ TEST(Checkpoint, RowsReadInPiecesAreTheWholeCheckpoint) {
   }
   expect_same_state(w, joined);
   EXPECT_THROW(read_checkpoint_rows(file, n - 50, 100), InputError);
+  // A state whose contact list was never built (no row starts) reads in rows without contacts.
+  SimulationState bare = w;
+  bare.contact_row_start.clear();
+  bare.contact_col.clear();
+  bare.contact_history.clear();
+  write_checkpoint(dir.path() / "bare.h5", bare, scene.name);
+  const Checkpoint piece = read_checkpoint_rows(dir.path() / "bare.h5", 10, 20);
+  EXPECT_EQ(piece.state.particles.size(), 20u);
+  EXPECT_TRUE(piece.state.contact_row_start.empty());
+  EXPECT_TRUE(piece.state.contact_col.empty());
 }
 
 TEST(Checkpoint, RestartAfterNStepsIsBitIdenticalToTwoN) {
