@@ -319,6 +319,7 @@ std::unique_ptr<Simulation> MpiDomain::distribute_shares(const SceneConfig& scen
   ContactRecords rows;  // record e is the share's contact e
   rows.state_size = share.contact_state_size;
   std::vector<std::size_t> row_at = std::move(share.contact_row_start);
+  if (row_at.empty()) row_at.assign(p.size() + 1, 0);  // a list never built: no rows
   for (std::size_t i = 0; i + 1 < row_at.size(); ++i) {
     for (std::size_t e = row_at[i]; e < row_at[i + 1]; ++e) {
       rows.add(first + i, share.contact_col[e], share.contact_history[e],
@@ -346,8 +347,7 @@ std::unique_ptr<Simulation> MpiDomain::distribute_shares(const SceneConfig& scen
       if (std::find(d.begin(), d.end(), to) == d.end()) continue;
       pack_particle(p, i, first + i, share.wall_history[i], d.front() == to ? owned : ghosts);
       ++counts[d.front() == to ? 0 : 1];
-      for (std::size_t e = row_at.empty() ? 0 : row_at[i]; e < (row_at.empty() ? 0 : row_at[i + 1]);
-           ++e) {
+      for (std::size_t e = row_at[i]; e < row_at[i + 1]; ++e) {
         rows.pack(e, recs);
         ++counts[2];
       }
