@@ -7,7 +7,6 @@
 
 #include <fmt/format.h>
 
-#include "engine/contact/cohesion_loops.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/io/h5_file.hpp"
 
@@ -86,6 +85,20 @@ H5Series::Access H5Series::serial_access() {
   return a;
 }
 
+void SeriesBondRows::push_back(std::uint32_t a, std::uint32_t b, const Bond& bond) {
+  id_a.push_back(a);
+  id_b.push_back(b);
+  volume.push_back(bond.volume);
+  force.push_back(bond.force);
+  age.push_back(bond.age);
+}
+
+SeriesBondRows series_bond_rows(const Particles& p, std::span<const Bond> bonds) {
+  SeriesBondRows r;
+  for (const Bond& b : bonds) r.push_back(p.id[b.i], p.id[b.j], b);
+  return r;
+}
+
 void H5Series::set_rows(h5::Rows rows) {
   impl_->access.rows = std::move(rows);
 }
@@ -141,34 +154,26 @@ void H5Series::write_sidecar() const {
 
 namespace {
 
-void write_bond_frame(hid_t g, const Particles& p, const SeriesBondFrame& b) {
+void write_bond_frame(hid_t g, const Particles& p, const SeriesBondFrame& b, const h5::Rows& rows) {
   h5::write_attribute(g, "period_z", b.period);
   h5::write_attribute(g, "drum_omega", b.drum_omega);
-  h5::write_attribute(g, "wall_bridge_liquid", wall_bridge_liquid(p));
-  h5::write(g, "mass", p.mass, {p.size()});
+  h5::write_attribute(g, "wall_bridge_liquid", b.wall_liquid);
+  h5::write(g, "mass", p.mass, {p.size()}, rows);
   const std::vector<double>* film = p.find_array(kLiquidFilmArray);
   const std::vector<double> no_film(film ? 0 : p.size(), 0.0);
-  h5::write(g, "liquid_volume", film ? *film : no_film, {p.size()});
+  h5::write(g, "liquid_volume", film ? *film : no_film, {p.size()}, rows);
   if (b.agglomerate_id.size() != p.size()) {
     throw std::invalid_argument("H5Series: agglomerate_id does not match the particles");
   }
-  h5::write(g, "agglomerate_id", b.agglomerate_id);
-  const std::size_t n = b.bonds.size();
-  std::vector<std::uint32_t> id_a(n), id_b(n);
-  std::vector<double> volume(n), force(n), age(n);
-  for (std::size_t k = 0; k < n; ++k) {
-    id_a[k] = p.id[b.bonds[k].i];
-    id_b[k] = p.id[b.bonds[k].j];
-    volume[k] = b.bonds[k].volume;
-    force[k] = b.bonds[k].force;
-    age[k] = b.bonds[k].age;
-  }
+  h5::write(g, "agglomerate_id", b.agglomerate_id, rows);
+  const SeriesBondRows& r = b.bonds;
+  const std::size_t n = r.size();
   h5::Handle bonds = h5::create_group(g, "bonds");
-  h5::write(bonds.get(), "id_a", std::span<const std::uint32_t>(id_a));
-  h5::write(bonds.get(), "id_b", std::span<const std::uint32_t>(id_b));
-  h5::write(bonds.get(), "volume", volume, {n});
-  h5::write(bonds.get(), "force", force, {n});
-  h5::write(bonds.get(), "age", age, {n});
+  h5::write(bonds.get(), "id_a", std::span<const std::uint32_t>(r.id_a), b.bond_rows);
+  h5::write(bonds.get(), "id_b", std::span<const std::uint32_t>(r.id_b), b.bond_rows);
+  h5::write(bonds.get(), "volume", r.volume, {n}, b.bond_rows);
+  h5::write(bonds.get(), "force", r.force, {n}, b.bond_rows);
+  h5::write(bonds.get(), "age", r.age, {n}, b.bond_rows);
 }
 
 }  // namespace
@@ -190,8 +195,7 @@ void H5Series::write_frame(const Particles& p, double time, std::uint64_t step,
       h5::write(g.get(), "radius", p.radius, {p.size()}, rows);
       h5::write(g.get(), "id", std::span<const std::uint32_t>(p.id), rows);
       h5::write(g.get(), "size_class", std::span<const std::uint8_t>(p.size_class), rows);
-      if (bonds && !rows.all) throw std::logic_error("H5Series: bonds in a parallel series");
-      if (bonds) write_bond_frame(g.get(), p, *bonds);
+      if (bonds) write_bond_frame(g.get(), p, *bonds, rows);
     }
     // The frame counts once its time is listed; then it goes to disk.
     h5::append(h5::open_dataset(f, "time").get(), time, impl_->access.scalar);

@@ -33,12 +33,26 @@
 
 namespace drumlab {
 
+/// A frame's bond graph as the series stores it: one row per bond, its ends as stable ids.
+struct SeriesBondRows {
+  std::vector<std::uint32_t> id_a, id_b;
+  std::vector<double> volume, force, age;
+  std::size_t size() const { return id_a.size(); }
+  void push_back(std::uint32_t a, std::uint32_t b, const Bond& bond);
+};
+/// The rows of `bonds` (ends: storage slots of `p`), in their order.
+SeriesBondRows series_bond_rows(const Particles& p, std::span<const Bond> bonds);
+
 /// The bond graph and agglomerate labels of a frame (scenes with bonds only).
 struct SeriesBondFrame {
-  std::span<const Bond> bonds;                    ///< storage slots
-  std::span<const std::uint32_t> agglomerate_id;  ///< per particle, storage order
+  SeriesBondRows bonds;                           ///< this process's rows of the bond list
+  std::span<const std::uint32_t> agglomerate_id;  ///< per particle, as the particles
   double period = 0.0;                            ///< z period of periodic ends, 0: none
   double drum_omega = 0.0;                        ///< rad/s
+  double wall_liquid = 0.0;  ///< liquid in bridges with the wall, of all particles (m^3)
+  /// Serial: all rows. Parallel: this rank's rows of the frame's bond list (increasing, the rows
+  /// of `bonds` in their order), every rank passing the same scalars.
+  h5::Rows bond_rows = h5::all_rows();
 };
 
 class H5Series {

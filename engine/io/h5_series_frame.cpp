@@ -14,7 +14,8 @@ void write_series_frame(H5Series& series, const Simulation& sim, double granule_
   const double omega = sim.scene().drum.omega;
   const AgglomerateInput in = agglomerate_input(sim, bonds);
   const AgglomerateFrame frame = find_agglomerates(in, granule_options(omega, granule_age));
-  const SeriesBondFrame b{bonds, frame.label, in.period, omega};
+  const SeriesBondFrame b{series_bond_rows(sim.particles(), bonds), frame.label, in.period, omega,
+                          in.wall_liquid};
   series.write_frame(sim.particles(), sim.time(), sim.steps(), &b);
 }
 

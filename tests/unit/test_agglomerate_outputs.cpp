@@ -47,7 +47,8 @@ TEST(AgglomerateOutputs, SeriesStoresTheBondGraphOfAWetDrum) {
   const auto file = dir.path() / "wet.h5";
   {
     H5Series series(file);
-    const SeriesBondFrame b{bonds, frame.label, 0.0, scene.drum.omega};
+    const SeriesBondFrame b{series_bond_rows(sim->particles(), bonds), frame.label, 0.0,
+                            scene.drum.omega};
     series.write_frame(sim->particles(), sim->time(), sim->steps(), &b);
     series.finish();
   }
@@ -81,7 +82,8 @@ TEST(AgglomerateOutputs, SeriesStoresTheBondGraphOfAWetDrum) {
   for (std::size_t i = 0; i < film.size(); ++i) film[i] = 1e-12 * static_cast<double>(i);
   {
     H5Series series(dir.path() / "film.h5");
-    const SeriesBondFrame b{bonds, frame.label, 0.0, scene.drum.omega};
+    const SeriesBondFrame b{series_bond_rows(sim->particles(), bonds), frame.label, 0.0,
+                            scene.drum.omega};
     series.write_frame(with_film, sim->time(), sim->steps(), &b);
     series.finish();
   }
