@@ -7,40 +7,13 @@
 
 #include <fmt/format.h>
 
+#include "engine/analysis/disjoint_sets.hpp"
 #include "engine/contact/cohesion_loops.hpp"
 #include "engine/periodic.hpp"
 #include "engine/simulation.hpp"
 
 namespace drumlab {
 namespace {
-
-/// Union-find over storage slots (path halving, union by size).
-class DisjointSets {
- public:
-  explicit DisjointSets(std::size_t n) : parent_(n), size_(n, 1) {
-    for (std::size_t i = 0; i < n; ++i) parent_[i] = i;
-  }
-  std::size_t find(std::size_t i) {
-    while (parent_[i] != i) {
-      parent_[i] = parent_[parent_[i]];
-      i = parent_[i];
-    }
-    return i;
-  }
-  void unite(std::size_t a, std::size_t b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return;
-    if (size_[a] < size_[b]) std::swap(a, b);
-    parent_[b] = a;
-    size_[a] += size_[b];
-  }
-  std::size_t size_of_root(std::size_t root) const { return size_[root]; }
-
- private:
-  std::vector<std::size_t> parent_;
-  std::vector<std::size_t> size_;
-};
 
 void check_input(const AgglomerateInput& in) {
   const std::size_t n = in.position.size();
@@ -54,10 +27,6 @@ void check_input(const AgglomerateInput& in) {
           "find_agglomerates: bond ({}, {}) out of range of {} particles", b.i, b.j, n));
     }
   }
-}
-
-bool joins(const Bond& b, const AgglomerateOptions& o) {
-  return o.min_bond_age <= 0.0 || b.age >= o.min_bond_age;
 }
 
 /// Mass-weighted percentile q of the diameters: the smallest diameter at which the cumulative
@@ -114,6 +83,10 @@ std::vector<Vec3> unwrapped_positions(const AgglomerateInput& in,
 
 }  // namespace
 
+bool bond_joins(const Bond& b, const AgglomerateOptions& o) {
+  return o.min_bond_age <= 0.0 || b.age >= o.min_bond_age;
+}
+
 AgglomerateFrame find_agglomerates(const AgglomerateInput& in, const AgglomerateOptions& options) {
   check_input(in);
   const std::size_t n = in.position.size();
@@ -131,7 +104,7 @@ AgglomerateFrame find_agglomerates(const AgglomerateInput& in, const Agglomerate
   std::vector<const Bond*> used;
   for (const Bond& b : in.bonds) {
     plain.unite(b.i, b.j);
-    if (joins(b, options)) {
+    if (bond_joins(b, options)) {
       sets.unite(b.i, b.j);
       used.push_back(&b);
     }

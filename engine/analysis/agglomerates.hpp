@@ -89,6 +89,9 @@ struct AgglomerateFrame {
   AgglomerateStats stats;
 };
 
+/// Whether bond `b` joins its two particles under the criterion `options` (its age).
+bool bond_joins(const Bond& b, const AgglomerateOptions& options);
+
 /// Finds the agglomerates of one frame with the given criterion. Throws std::invalid_argument if
 /// the spans disagree in length or a bond names a slot out of range.
 AgglomerateFrame find_agglomerates(const AgglomerateInput& in, const AgglomerateOptions& options);

@@ -504,6 +504,21 @@ void MpiDomain::forward(Simulation& sim) {
   }
 }
 
+void MpiDomain::copy_to_ghosts(std::span<std::uint64_t> values) {
+  if (values.size() != slot_.size()) {
+    throw std::logic_error("copy_to_ghosts: not one value per local particle");
+  }
+  std::vector<std::vector<std::uint64_t>> out(send_.size()), in(recv_.size());
+  for (std::size_t q = 0; q < send_.size(); ++q) {
+    for (const Index i : send_[q]) out[q].push_back(values[i]);
+    in[q].resize(recv_[q].size());
+  }
+  comm_.exchange(out, in);
+  for (std::size_t q = 0; q < recv_.size(); ++q) {
+    for (std::size_t k = 0; k < recv_[q].size(); ++k) values[recv_[q][k]] = in[q][k];
+  }
+}
+
 bool MpiDomain::balance_check(const Simulation& sim) {
   last_balance_ = sim.steps() + 1;
   // This rank's work in the window: its wall time outside MPI (the waits for slower ranks are

@@ -106,6 +106,10 @@ class MpiDomain final : public DomainHooks {
 
   MpiComm& comm() { return comm_; }
   const std::vector<std::uint64_t>& slots() const { return slot_; }
+  /// Gives every ghost of the current local set its owner's value of a per-particle array
+  /// (`values`, local order, one per local particle), as the step refreshes ghost motion.
+  /// Collective.
+  void copy_to_ghosts(std::span<std::uint64_t> values);
 
  private:
   /// The Simulation of this rank's part (owned particles packed, ghosts by owner, records) with
