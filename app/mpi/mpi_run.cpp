@@ -121,8 +121,7 @@ MpiDomainOptions domain_options(const SceneConfig& scene, const MpiRunOptions& o
 
 /// Checkpoints and the series: written by every rank into one file (parallel HDF5, the serial
 /// layout), or with --gather-output gathered on rank 0 and written there by the serial writer;
-/// each write timed on this rank. The series of a scene with bonds is always gathered: its frames
-/// carry the bond graph and the agglomerate labels, which the analysis finds on the whole graph.
+/// each write timed on this rank.
 struct Output {
   const MpiRunOptions& o;
   bool gather_series = false;
@@ -157,7 +156,7 @@ void write_series_frame(MpiDomain& domain, Simulation& sim, Output& out) {
       write_series_frame(*out.series, whole, out.o.granule_age, out.bonds);
     });
   } else {
-    write_frame_mpi(*out.series, domain.comm(), sim, domain.slots());
+    write_frame_mpi(*out.series, domain, sim, out.o.granule_age);
   }
   out.frame_seconds += MPI_Wtime() - t0;
   ++out.frames;
@@ -220,7 +219,7 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
       std::filesystem::weakly_canonical(o.h5) == std::filesystem::weakly_canonical(o.checkpoint)) {
     throw InputError(fmt::format("--h5 and --checkpoint both name {}", o.h5));
   }
-  Output out{o, o.gather_output || scene_has_bonds(scene), {}, {}};
+  Output out{o, o.gather_output, {}, {}};
   MpiComm io_comm(comm);
   open_series(io_comm, out);  // checked before the fill, written from the turn
   MpiRunSummary s;

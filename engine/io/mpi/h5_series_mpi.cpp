@@ -1,6 +1,7 @@
 #include "engine/io/mpi/h5_series_mpi.hpp"
 
 #include "engine/io/mpi/h5_mpi.hpp"
+#include "engine/parallel/mpi/bond_frame_mpi.hpp"
 
 namespace drumlab {
 
@@ -19,12 +20,25 @@ H5Series::Access mpi_series_access(MpiComm& comm, const std::filesystem::path& f
   return a;
 }
 
-void write_frame_mpi(H5Series& series, MpiComm& comm, const Simulation& sim,
-                     std::span<const std::uint64_t> slots) {
+void write_frame_mpi(H5Series& series, MpiDomain& domain, const Simulation& sim,
+                     double granule_age) {
+  MpiComm& comm = domain.comm();
   const SimulationState local = sim.state();
-  const h5::OwnedParticles o = h5::owned_particles(comm, local, sim.ghost_mask(), slots);
+  const h5::OwnedParticles o = h5::owned_particles(comm, local, sim.ghost_mask(), domain.slots());
   series.set_rows(h5::rows_of(comm.comm(), h5::collective_transfer(), o.slot, o.total));
-  series.write_frame(o.particles, local.time, local.steps);
+  if (!scene_has_bonds(sim.scene())) {
+    series.write_frame(o.particles, local.time, local.steps);
+    return;
+  }
+  const double omega = sim.scene().drum.omega;
+  MpiBondFrame f = mpi_bond_frame(domain, sim, granule_options(omega, granule_age));
+  const SeriesBondFrame b{std::move(f.bonds),
+                          f.label,
+                          sim.search_input().period_z.value_or(0.0),
+                          omega,
+                          f.wall_liquid,
+                          h5::rows_of(comm.comm(), h5::collective_transfer(), f.row, f.total)};
+  series.write_frame(o.particles, local.time, local.steps, &b);
 }
 
 }  // namespace drumlab

@@ -4,12 +4,12 @@
 // Access): frame by frame, every rank writes its owned particles' rows (a particle's row is its
 // serial slot), rank 0 the appended /time and /step values; the file is flushed and closed after
 // each frame (collectively), so a killed run keeps its complete frames; rank 0 writes the XDMF
-// sidecar from the particle count all ranks agree on.
+// sidecar from the particle count all ranks agree on. A scene with bonds adds the bond graph
+// (each rank its rows of the bond list) and the agglomerate labels, found without gathering.
 #include <filesystem>
-#include <span>
 
 #include "engine/io/h5_series.hpp"
-#include "engine/parallel/mpi/mpi_comm.hpp"
+#include "engine/parallel/mpi/mpi_domain.hpp"
 #include "engine/simulation.hpp"
 
 namespace drumlab {
@@ -18,9 +18,12 @@ namespace drumlab {
 /// `file` can be written and every rank throws InputError alike if not.
 H5Series::Access mpi_series_access(MpiComm& comm, const std::filesystem::path& file);
 
-/// Appends the decomposed run's current state (local particles' serial slots `slots`) as a
-/// frame of `series` (made with mpi_series_access). Collective; throws on every rank alike.
-void write_frame_mpi(H5Series& series, MpiComm& comm, const Simulation& sim,
-                     std::span<const std::uint64_t> slots);
+/// Appends the current state of `sim` (the local set of `domain`) as a frame of `series` (made
+/// with mpi_series_access), as write_series_frame would the serial run's: for a scene with bonds
+/// with its bond graph and agglomerate labels under the criterion for `granule_age`
+/// (granule_options), found where the particles are (engine/parallel/mpi/bond_frame_mpi.hpp).
+/// Collective; throws on every rank alike.
+void write_frame_mpi(H5Series& series, MpiDomain& domain, const Simulation& sim,
+                     double granule_age);
 
 }  // namespace drumlab
