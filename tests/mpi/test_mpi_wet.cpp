@@ -231,12 +231,15 @@ void expect_same_frame(const SeriesFrame& a, const SeriesFrame& b) {
 // The series of a wet scene written by 2 and 3 ranks (each its rows, the agglomerates found
 // without gathering) is the serial run's series: every frame's particles, films, bond graph
 // (pairs, volumes, forces, ages, in the file's order) and agglomerate labels bit for bit, under
-// the granule criterion and as plain components (which join the bed across the ranks' parts);
-// and `drumlab analyze` reads the same agglomerates from them.
+// the granule criterion and as plain components (which join the bed across the ranks' parts),
+// with caps and with periodic ends; and `drumlab analyze` reads the same agglomerates from them.
 TEST_F(MpiWet, SeriesOfAWetSceneIsTheSerialRunsSeries) {
-  const std::string scene = dir.write("wet.toml", scene_text(wet_law()));
-  for (const std::string age : {"0.0005", "0"}) {
-    SCOPED_TRACE("granule age " + age);
+  struct Case {
+    std::string ends, age;
+  };
+  for (const auto& [ends, age] : {Case{"", "0.0005"}, Case{"", "0"}, Case{"periodic", "0"}}) {
+    SCOPED_TRACE("ends '" + ends + "', granule age " + age);
+    const std::string scene = dir.write("wet.toml", scene_text(wet_law(), ends));
     const std::string h5 = " --steps 60 --every 30 --granule-age " + age + " --h5 ";
     serial(scene, h5 + dir.file("serial_series.h5"), "s.h5");
     const SeriesInfo want = read_series_info(dir.file("serial_series.h5"));
