@@ -49,8 +49,8 @@ void add_run(CLI::App& app, MpiRunOptions& o, std::optional<std::uint64_t>& step
   run->add_option("--checkpoint-every", o.checkpoint_every, "also every K turning steps")
       ->check(CLI::PositiveNumber);
   run->add_option("--h5", o.h5,
-                  "HDF5 series (+ XDMF) in the serial layout, parallel HDF5 (a scene with bonds: "
-                  "gathered on rank 0)");
+                  "HDF5 series (+ XDMF) in the serial layout, parallel HDF5 (a scene with bonds "
+                  "adds its bond graph and agglomerate labels)");
   run->add_option("--granule-age", o.granule_age,
                   "granule criterion of the series' agglomerate labels: bonds older than T s join "
                   "(0: plain components; default: one drum revolution)")
