@@ -17,31 +17,13 @@
 #include "engine/simulation.hpp"
 #include "render/image.hpp"
 #include "render/palette.hpp"
+#include "render/particle_colors.hpp"
 #include "render/render_target.hpp"
 
 namespace drumlab::render {
 
-enum class ColorBy { size, speed, omega, id, coordination, agglomerate };
 enum class CameraMode { axis, iso };
 
-/// Every colour mode with its name on the command line and in the GUI, in menu order (the one
-/// table: a new ColorBy value is one more row in drum_view.cpp).
-struct ColorByName {
-  ColorBy value;
-  std::string_view name;
-};
-std::span<const ColorByName> color_by_names();
-std::string_view color_by_name(ColorBy by);
-/// Parses a name of color_by_names() ("size", "speed", ...); throws InputError otherwise.
-ColorBy parse_color_by(std::string_view s);
-/// The value each particle (in storage order) is coloured by: radius (mm), speed (m/s), |omega|
-/// (rad/s), stable id, or coordination (Simulation::coordination_numbers, periodic ends included,
-/// the same count as the VTU's coordination array), or agglomerate: 0 for a particle alone in
-/// its agglomerate (grey), else 1 + (agglomerate id mod 7), the colour of the categorical palette
-/// (agglomerate_labels with granule_age, the VTU's agglomerate_id; an agglomerate keeps its
-/// colour while it keeps its id).
-std::vector<double> particle_color_values(const Simulation& sim, ColorBy by,
-                                          double granule_age = -1.0);
 /// Parses "axis" or "iso"; throws InputError otherwise.
 CameraMode parse_camera(std::string_view s);
 
