@@ -89,7 +89,7 @@ void write_raw(hid_t loc, const std::string& name, hid_t file_type, hid_t mem_ty
   bool ok = true;
   if (rows.all) {
     ok = H5Dwrite(set.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data ? data : &dummy) >= 0;
-  } else {
+  } else if (rows.total > 0) {  // a dataset of no rows (a frame without bonds) has nothing to write
     std::vector<hsize_t> mem_dims = local;
     mem_dims[0] = std::max<hsize_t>(local[0], 1);  // a selection of none in a space of one row
     Handle mem(H5Screate_simple(static_cast<int>(dims.size()), mem_dims.data(), nullptr), H5Sclose);

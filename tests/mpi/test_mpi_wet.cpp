@@ -272,5 +272,25 @@ TEST_F(MpiWet, SeriesOfAWetSceneIsTheSerialRunsSeries) {
   }
 }
 
+// A frame of a wet scene before any bond forms (the loose fill) has an empty bond list, which
+// every rank writes as a dataset of no rows: the series equals the serial run's.
+TEST_F(MpiWet, SeriesFramesWithoutBondsAreTheSerialRunsFrames) {
+  const std::string scene = dir.write("wet.toml", scene_text(wet_law()));
+  const std::string h5 = " --settle-time 0 --steps 60 --every 30 --h5 ";
+  serial(scene, h5 + dir.file("serial_series.h5"), "s.h5");
+  parallel(2, scene, h5 + dir.file("mpi_series.h5"), "m.h5");
+  const SeriesInfo got = read_series_info(dir.file("mpi_series.h5"));
+  ASSERT_EQ(got.frames, 3u);
+  EXPECT_TRUE(got.has_bonds && got.complete);
+  for (std::size_t k = 0; k < got.frames; ++k) {
+    SCOPED_TRACE("frame " + std::to_string(k));
+    const SeriesFrame a = read_series_frame(dir.file("serial_series.h5"), k);
+    if (k == 0) {
+      EXPECT_TRUE(a.bonds.empty());
+    }
+    expect_same_frame(a, read_series_frame(dir.file("mpi_series.h5"), k));
+  }
+}
+
 }  // namespace
 }  // namespace drumlab::test
