@@ -79,6 +79,7 @@ struct Simulation::Impl {
   ContactModel model;
   ContactList contacts;
   std::vector<IndexPair> pairs;
+  std::vector<IndexPair> computed;  ///< a rank's found pairs without those of two ghosts
   WallHistory wall_history;
   PairForceBuffers pair_buffers;
   /// The active search if it is a Verlet list: the simulation then keeps the history on the
@@ -343,6 +344,16 @@ SearchInput Simulation::search_input() const {
   return in;
 }
 
+std::span<const IndexPair> Simulation::computed_pairs(std::span<const IndexPair> found) {
+  if (ghost_.empty()) return found;
+  std::vector<IndexPair>& kept = impl_->computed;
+  kept.clear();
+  for (const IndexPair& q : found) {
+    if (ghost_[q.i] == 0 || ghost_[q.j] == 0) kept.push_back(q);
+  }
+  return kept;
+}
+
 void Simulation::compute_forces(double history_dt, bool count) {
   const auto t0 = Clock::now();
   const SearchInput in = search_input();
@@ -351,11 +362,11 @@ void Simulation::compute_forces(double history_dt, bool count) {
     if (impl_->verlet != nullptr) {
       // The contact list is the Verlet list itself: it changes only when the list is rebuilt.
       if (impl_->verlet->refresh(in, impl_->moved)) {
-        contacts.update(impl_->verlet->list(), particles_.size());
+        contacts.update(computed_pairs(impl_->verlet->list()), particles_.size());
       }
     } else {
       search_->find_pairs(in, impl_->pairs);
-      contacts.update(impl_->pairs, particles_.size());
+      contacts.update(computed_pairs(impl_->pairs), particles_.size());
     }
   } catch (const InputError& e) {
     if (!count) throw;  // initial state: the input is at fault

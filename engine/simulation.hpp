@@ -166,6 +166,10 @@ class Simulation {
   /// which must bring them).
   void register_liquid_arrays(bool fresh);
   void choose_time_step(const SimulationOptions& options);
+  /// The found pairs the force loop computes: all of them serially; on a rank of a decomposed
+  /// run all but those of two ghosts, whose forces would be discarded and whose state no owner
+  /// keeps (a pair's record travels only from a rank that owns one of its particles).
+  std::span<const IndexPair> computed_pairs(std::span<const IndexPair> found);
   /// Search, contact list update, pair and wall forces. history_dt: time since the last call
   /// (0 for the initial state); count: add to the timers and search totals.
   void compute_forces(double history_dt, bool count);
