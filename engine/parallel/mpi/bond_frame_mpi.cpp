@@ -14,10 +14,9 @@ namespace drumlab {
 namespace {
 
 /// The smallest stable id of each local particle's component (see the header); ghosts' labels as
-/// their owners'. Returns the rounds of copies.
-std::uint64_t label_components(MpiDomain& domain, const Simulation& sim,
-                               const std::vector<Bond>& bonds, const AgglomerateOptions& options,
-                               std::vector<std::uint64_t>& label) {
+/// their owners'.
+void label_components(MpiDomain& domain, const Simulation& sim, const std::vector<Bond>& bonds,
+                      const AgglomerateOptions& options, std::vector<std::uint64_t>& label) {
   const Particles& p = sim.particles();
   const std::size_t n = p.size();
   DisjointSets sets(n);
@@ -28,14 +27,14 @@ std::uint64_t label_components(MpiDomain& domain, const Simulation& sim,
   for (std::size_t i = 0; i < n; ++i) root[i] = sets.find(i);
   label.assign(p.id.begin(), p.id.end());
   std::vector<std::uint64_t> least(n), before(n);
-  for (std::uint64_t rounds = 1;; ++rounds) {
+  for (;;) {
     std::fill(least.begin(), least.end(), UINT64_MAX);
     for (std::size_t i = 0; i < n; ++i) least[root[i]] = std::min(least[root[i]], label[i]);
     for (std::size_t i = 0; i < n; ++i) label[i] = least[root[i]];
     before = label;
     domain.copy_to_ghosts(label);
     const bool changed = !std::equal(label.begin(), label.end(), before.begin());
-    if (domain.comm().sum(std::uint64_t{changed}) == 0) return rounds;
+    if (domain.comm().sum(std::uint64_t{changed}) == 0) return;
   }
 }
 
@@ -89,7 +88,7 @@ MpiBondFrame mpi_bond_frame(MpiDomain& domain, const Simulation& sim,
   sim.bonds(bonds);
   MpiBondFrame f;
   std::vector<std::uint64_t> label;
-  f.rounds = label_components(domain, sim, bonds, options, label);
+  label_components(domain, sim, bonds, options, label);
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (!sim.is_ghost(i)) f.label.push_back(static_cast<std::uint32_t>(label[i]));
   }

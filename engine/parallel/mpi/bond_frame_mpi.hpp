@@ -29,7 +29,6 @@ struct MpiBondFrame {
   std::vector<std::uint64_t> row;    ///< their rows in the frame's bond list (increasing)
   std::uint64_t total = 0;           ///< bonds over all ranks
   double wall_liquid = 0.0;          ///< m^3, the same on every rank
-  std::uint64_t rounds = 0;          ///< label copies to the ghosts until none changed
 };
 
 /// The frame of `sim` (the local set of `domain`) under the criterion `options`. Collective.

@@ -663,15 +663,7 @@ void MpiDomain::reorder(Simulation& sim) {
   for (std::size_t i = 0, k = 0; i < p.size(); ++i) {
     if (!sim.is_ghost(i)) next[i] = ranked[k++];
   }
-  std::vector<std::vector<std::uint64_t>> out(send_.size()), in(recv_.size());
-  for (std::size_t q = 0; q < send_.size(); ++q) {
-    for (const Index i : send_[q]) out[q].push_back(next[i]);
-    in[q].resize(recv_[q].size());
-  }
-  comm_.exchange(out, in);
-  for (std::size_t q = 0; q < recv_.size(); ++q) {
-    for (std::size_t k = 0; k < recv_[q].size(); ++k) next[recv_[q][k]] = in[q][k];
-  }
+  copy_to_ghosts(next);
   std::vector<Index> order(p.size()), new_index(p.size());
   std::iota(order.begin(), order.end(), Index{0});
   std::sort(order.begin(), order.end(), [&](Index a, Index b) { return next[a] < next[b]; });
