@@ -1,8 +1,11 @@
 #include "app/mpi/mpi_run.hpp"
 
+#include <sched.h>
+
 #include <algorithm>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -207,6 +210,29 @@ void turn_drum(MpiDomain& domain, Simulation& sim, std::uint64_t steps, Output& 
   }
 }
 
+/// The cores this process may run on (its CPU affinity); 0 if unknown.
+int allowed_cores() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  return sched_getaffinity(0, sizeof set, &set) == 0 ? CPU_COUNT(&set) : 0;
+}
+
+/// Rank 0 warns (one line on stderr) when a rank may run on fewer cores than it has threads:
+/// mpirun binds each rank to one core by default, and the threads then share it (a run of
+/// `--threads 2` as slow as one thread, or slower). Collective.
+void warn_if_threads_share_cores(MPI_Comm comm, int rank, int threads) {
+  const int mine = allowed_cores();
+  int least = mine > 0 ? mine : std::numeric_limits<int>::max();
+  MPI_Allreduce(MPI_IN_PLACE, &least, 1, MPI_INT, MPI_MIN, comm);
+  if (rank == 0 && threads > least) {
+    fmt::print(stderr,
+               "drumlab-mpi: warning: a rank may run on {} core(s) but has {} threads, which "
+               "share them (mpirun binds each rank to one core: add --bind-to none, or --map-by "
+               "slot:PE={})\n",
+               least, threads, threads);
+  }
+}
+
 }  // namespace
 
 MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
@@ -214,6 +240,7 @@ MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &ranks);
   set_thread_count(o.threads);
+  warn_if_threads_share_cores(comm, rank, o.threads);
   SceneConfig scene = load_dynamic_scene(o.session.scene_file);
   if (!o.h5.empty() && !o.checkpoint.empty() &&
       std::filesystem::weakly_canonical(o.h5) == std::filesystem::weakly_canonical(o.checkpoint)) {

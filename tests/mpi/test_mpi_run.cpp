@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "engine/io/h5_file.hpp"
@@ -267,6 +268,25 @@ TEST_F(MpiRun, UnreadableCheckpointStopsEveryRankWithOneLine) {
       EXPECT_EQ(r.output.find("drumlab-mpi: error: ", first + 1), std::string::npos) << r.output;
       EXPECT_NE(r.output.find(ck), std::string::npos) << r.output;
     }
+  }
+}
+
+// A rank bound to one core (`--bind-to core`) with more threads than the cores it may use gets one
+// warning line from rank 0 naming the fix, and runs on; an unbound rank with as many cores as
+// threads gets none.
+TEST_F(MpiRun, ThreadsSharingABoundRanksCoreAreWarnedAbout) {
+  const std::string scene = dir.write("scene.toml", scene_text("m5", "", ""));
+  const std::string run = std::string(" ") + DRUMLAB_MPI_CLI + " run " + scene + " --steps 5";
+  const Ran bound = shell(mpirun(1) + "--bind-to core" + run + " --threads 3");
+  EXPECT_EQ(bound.exit_code, 0) << bound.output;
+  const std::size_t at = bound.output.find("drumlab-mpi: warning: a rank may run on ");
+  ASSERT_NE(at, std::string::npos) << bound.output;
+  EXPECT_EQ(bound.output.find("drumlab-mpi: warning:", at + 1), std::string::npos) << bound.output;
+  EXPECT_NE(bound.output.find("--bind-to none"), std::string::npos) << bound.output;
+  if (std::thread::hardware_concurrency() >= 2) {
+    const Ran free = shell(mpirun(1) + "--bind-to none" + run + " --threads 2");
+    EXPECT_EQ(free.exit_code, 0) << free.output;
+    EXPECT_EQ(free.output.find("warning"), std::string::npos) << free.output;
   }
 }
 
