@@ -1,19 +1,29 @@
 #!/bin/bash
 # drumlab against LAMMPS on the same drum, one after the other in one run (one core each, or two):
 #
-#   PEERS=DIR [CORES=1|2] bash app/bench/lammps_side_by_side.sh demo|deep [ROUNDS] [LAMMPS_STEPS]
+#   PEERS=DIR [CORES=1|2] [LAMMPS_DT=scene|peer] \
+#     bash app/bench/lammps_side_by_side.sh demo|deep|tilted|periodic [ROUNDS] [LAMMPS_STEPS]
 #
 # PEERS is the LAMMPS harness of the drum workload (lammps/drum_small.in, lammps/run.sh,
 # common/gen_drum.py, common/parse_log.py; default ../shared/peers, as on the development
-# machine). `demo` is scenes/drum_demo.toml against the harness's default drum; `deep` is
-# scenes/drum_deep.toml against gen_drum.py --depth-in-rmax 40 --nmin 64800 with
-# -var Hdrum 0.6. LAMMPS settles 8000 steps, then its timed stage turns the drum LAMMPS_STEPS
-# steps (default 6000 demo, 2000 deep); drumlab times 600 steps of its rolling state (bench
-# throughput, the method `auto` picks for the scene). Rounds alternate LAMMPS and drumlab.
-# CORES=2: LAMMPS on 2 MPI ranks (mpirun -np 2; the input sets `processors * 1 1`) against
-# drumlab on 2 OpenMP threads. Needs: apt-get install lammps.
+# machine). The drums, each a drumlab scene and the same spheres, walls and drum for LAMMPS:
+#   demo      scenes/drum_demo.toml: the harness's default drum
+#   deep      scenes/drum_deep.toml: gen_drum.py --depth-in-rmax 40 --nmin 64800, -var Hdrum 0.6
+#   tilted    scenes/tilted_drum.toml: gen_drum.py --drum-radius-in-rmax 10 --depth-in-rmax 20
+#             --nmin 3672, -var Rdrum 0.15 -var Hdrum 0.3 -var omega 1.5; the deck's gravity
+#             turned into the drum's frame (0, -g cos 20deg, g sin 20deg), as drumlab turns it
+#   periodic  the demo drum with periodic ends (its scene made here from drum_demo.toml); the
+#             deck's z boundary periodic, its box [0, H] in z and its cylinder's end caps open
+# The tilted and periodic scenes are run with search = "auto" (the method `auto` picks, printed);
+# demo sets verlet:m2 (auto's pick for it), deep sets auto. LAMMPS
+# settles 8000 steps, then its timed stage turns the drum LAMMPS_STEPS steps (default 6000; deep
+# 2000); drumlab times 600 steps of its rolling state (bench throughput). Rounds alternate LAMMPS
+# and drumlab. LAMMPS_DT=scene (default) runs LAMMPS at the scene's time step (`drumlab info`),
+# LAMMPS_DT=peer at the harness's 1e-4 s. CORES=2: LAMMPS on 2 MPI ranks (mpirun -np 2; the
+# input sets `processors * 1 1`) against drumlab on 2 OpenMP threads. Needs: apt-get install
+# lammps.
 set -euo pipefail
-drum=${1:?demo or deep}
+drum=${1:?demo, deep, tilted or periodic}
 rounds=${2:-1}
 cores=${CORES:-1}
 case "$cores" in
@@ -26,20 +36,70 @@ peers=$(cd "${PEERS:-$here/../shared/peers}" && pwd)
 bin=${DRUMLAB:-$here/build/bin/drumlab}
 cache=${CACHE:-$here/out/bench}
 command -v lmp >/dev/null || { echo "lammps_side_by_side: lmp not found (apt-get install lammps)" >&2; exit 2; }
-case "$drum" in
-  demo) scene=$here/scenes/drum_demo.toml gen=() lvars=() nrot=${3:-6000} ;;
-  deep) scene=$here/scenes/drum_deep.toml gen=(--depth-in-rmax 40 --nmin 64800)
-        lvars=(-var Hdrum 0.6) nrot=${3:-2000} ;;
-  *) echo "lammps_side_by_side: unknown drum '$drum' (demo or deep)" >&2; exit 2 ;;
-esac
-# The scene's method, `auto` resolved as `drumlab info` resolves it ("search method  auto -> M").
-method=$("$bin" info "$scene" | awk '/^search method/ {print ($3 == "auto" ? $5 : $3); exit}')
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+deck=$work/drum.in
+cp "$peers/lammps/drum_small.in" "$deck"
+
+# edit PATTERN REPLACEMENT: one sed substitution on the deck, which must match exactly once.
+edit() {
+  local n
+  n=$(grep -c -- "$1" "$deck" || true)
+  [ "$n" = 1 ] || { echo "lammps_side_by_side: '$1' found $n times in the peer deck" >&2; exit 2; }
+  sed -i "s|$1|$2|" "$deck"
+}
+# scene_from SRC NAME [KEY = VALUE lines]: SRC with search = "auto", the name NAME (its own
+# cached rolling state) and each top-level or [drum] key given replaced, written under $cache.
+scene_from() {
+  local src=$1 name=$2
+  shift 2
+  mkdir -p "$cache/scenes"
+  local out=$cache/scenes/$name.toml
+  sed -e "0,/^name = /s|^name = .*|name = \"$name\"|" -e 's|^search = .*|search = "auto"|' "$src" >"$out"
+  for kv in "$@"; do sed -i "s|^${kv%% =*} = .*|$kv|" "$out"; done
+  echo "$out"
+}
+
+nrot=${3:-6000} gen=() lvars=() zperiodic=0
+case "$drum" in
+  demo) scene=$here/scenes/drum_demo.toml ;;  # sets verlet:m2, the method auto picks for it
+  deep) scene=$here/scenes/drum_deep.toml      # sets auto
+        gen=(--depth-in-rmax 40 --nmin 64800) lvars=(-var Hdrum 0.6) nrot=${3:-2000} ;;
+  tilted)
+    scene=$(scene_from "$here/scenes/tilted_drum.toml" tilted_drum_auto)
+    gen=(--drum-radius-in-rmax 10 --depth-in-rmax 20 --nmin 3672)
+    lvars=(-var Rdrum 0.15 -var Hdrum 0.3 -var omega 1.5)
+    tilt=$(awk -F= '/^tilt_deg/ {print $2 + 0}' "$scene")
+    edit "vector 0.0 -1.0 0.0" \
+      "vector 0.0 $(python3 -c "import math; t = math.radians($tilt); print(-math.cos(t), math.sin(t))")"
+    ;;
+  periodic)
+    scene=$(scene_from "$here/scenes/drum_demo.toml" drum_demo_periodic 'ends = "periodic"')
+    zperiodic=1
+    edit "^boundary        f f f" "boundary        f f p"
+    edit 'side in units box &' 'side in open 1 open 2 units box \&'
+    ;;
+  *) echo "lammps_side_by_side: unknown drum '$drum' (demo, deep, tilted or periodic)" >&2; exit 2 ;;
+esac
+info=$("$bin" info "$scene")
+# `auto` resolved as `drumlab info` resolves it ("search method  auto -> M").
+method=$(awk '/^search method/ {print ($3 == "auto" ? $5 : $3); exit}' <<<"$info")
+dt=$(awk '/^time step/ {print $3; exit}' <<<"$info")
+case "${LAMMPS_DT:-scene}" in
+  scene) lvars+=(-var dt "$dt") ;;
+  peer) ;;
+  *) echo "lammps_side_by_side: LAMMPS_DT must be scene or peer, not '$LAMMPS_DT'" >&2; exit 2 ;;
+esac
+echo "drumlab: $scene, $(awk '/^particles/ {print $2; exit}' <<<"$info") particles, dt $dt s"
+echo "LAMMPS:  ${gen[*]:-(default drum)} ${lvars[*]}"
 printf '%-6s %-9s %-14s %14s  %s\n' round engine "method ($cores core(s))" "p-steps/s" load
 for ((r = 1; r <= rounds; ++r)); do
   (cd "$work" && python3 "$peers/common/gen_drum.py" --prefix drum "${gen[@]}" >/dev/null &&
-    "${launch[@]}" -in "$peers/lammps/drum_small.in" -log log.lammps -var datafile drum.lammps.data \
+    if [ "$zperiodic" = 1 ]; then  # the box's z extent is the drum's depth (the period)
+      sed -i -E "s|^\S+ \S+ zlo zhi|0.000000 $(awk '/^depth/ {print $3}' "$scene") zlo zhi|" \
+        drum.lammps.data
+    fi &&
+    "${launch[@]}" -in "$deck" -log log.lammps -var datafile drum.lammps.data \
       -var nrot "$nrot" -var dumpevery 0 "${lvars[@]}" >screen.txt)
   rate=$(python3 "$peers/common/parse_log.py" "$work/log.lammps" |
     awk '/run rotate/ {for (k = 1; k < NF; ++k) if ($k == "->") print $(k + 1)}')
