@@ -9,6 +9,7 @@
 
 #include "engine/fill/file_fill.hpp"
 #include "engine/io/checkpoint.hpp"
+#include "engine/threads.hpp"
 
 namespace drumlab {
 
@@ -116,11 +117,23 @@ std::uint64_t RunSession::advance_chunked(std::uint64_t n, std::uint64_t every,
                                           const std::function<void()>& at_every,
                                           const SessionProgress& progress) {
   const std::uint64_t chunk = std::max<std::uint64_t>(1, sim_->scene().output.diagnostics_every);
+  if (options_.adaptive_team && !team_ && max_threads() > 1) team_.emplace(max_threads());
   std::uint64_t done = 0;
   while (done < n) {
     std::uint64_t k = std::min(chunk, n - done);
     if (every > 0) k = std::min(k, every - done % every);
-    sim_->advance(k);
+    if (team_) {  // a window of steps with the chosen team, timed
+      k = std::min(k, TeamChooser::kWindowSteps);
+      set_thread_count(team_->team());
+      const auto t0 = std::chrono::steady_clock::now();
+      sim_->advance(k);
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      set_thread_count(team_->threads());
+      team_->record(seconds, k);
+    } else {
+      sim_->advance(k);
+    }
     done += k;
     if (every > 0 && done % every == 0) at_every();
     if (progress && !progress(done, n)) break;

@@ -15,6 +15,7 @@
 
 #include "engine/search/auto_select.hpp"
 #include "engine/session/phase_meter.hpp"
+#include "engine/session/team_chooser.hpp"
 #include "engine/simulation.hpp"
 
 namespace drumlab {
@@ -43,6 +44,9 @@ struct SessionOptions {
   std::optional<std::uint64_t> steps;  ///< turning steps (0: fill and settle only)
   double revolutions = 0.0;            ///< > 0: turning length in drum revolutions
   std::string restart;                 ///< checkpoint file: no fill, no settling, its state and dt
+  /// With more than one OpenMP thread: let a TeamChooser pick the team (N or 1 thread) for each
+  /// window of steps by timing both (the same bits either way).
+  bool adaptive_team = false;
 };
 
 /// What a restart read from its checkpoint.
@@ -96,6 +100,8 @@ class RunSession {
   const SessionOptions& options() const { return options_; }
   Simulation& simulation() { return *sim_; }
   const Simulation& simulation() const { return *sim_; }
+  /// The team chooser (options.adaptive_team with more than one thread), or null.
+  const TeamChooser* team_chooser() const { return team_ ? &*team_ : nullptr; }
   /// Hands the simulation over (the session is then spent).
   std::unique_ptr<Simulation> release_simulation() { return std::move(sim_); }
   /// How "auto" was resolved (at construction or by the last set_search_method("auto")).
@@ -128,6 +134,7 @@ class RunSession {
   SceneConfig scene_;
   SessionOptions options_;
   std::unique_ptr<Simulation> sim_;
+  std::optional<TeamChooser> team_;
   std::optional<SearchChoice> auto_choice_;
   std::optional<RestartInfo> restart_;
 };
