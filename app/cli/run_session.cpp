@@ -29,6 +29,10 @@ void add_run_options(CLI::App* cmd, RunOptions& opt) {
   cmd->add_option("--settle-time", opt.settle_time, "seconds of settling (default: the scene's)")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--threads", opt.threads, "OpenMP threads")->check(CLI::Range(1, 1024));
+  cmd->add_option("--team", opt.team,
+                  "with --threads N > 1: adaptive (time N and 1 thread now and then, run the "
+                  "faster; the same results) or fixed (always N)")
+      ->check(CLI::IsMember({"adaptive", "fixed"}));
   cmd->add_flag("--unsafe-dt", opt.unsafe_dt, "allow a time step above the Rayleigh time");
   cmd->add_option("--sort-every", opt.sort_every,
                   "re-order particles in memory every K steps, 0: never (overrides the scene)")
@@ -65,6 +69,7 @@ SessionOptions session_options(const RunOptions& opt) {
   o.steps = opt.steps;
   o.revolutions = opt.revolutions;
   o.restart = opt.restart;
+  o.adaptive_team = opt.team == "adaptive";
   return o;
 }
 
@@ -128,6 +133,14 @@ void run_session(const RunOptions& opt, std::span<FrameObserver* const> extra_ob
   bar.finish();
   fmt::print("-- turning phase --\n");
   print_summary(sim, turn.stats);
+  if (const TeamChooser* t = session.team_chooser()) {
+    const std::uint64_t all = t->full_windows() + t->single_windows();
+    fmt::print(
+        "team              adaptive: {} thread(s) in {} of {} windows of {} steps, 1 in {} "
+        "(settling and turning; the faster team runs; `--team fixed`: always {})\n",
+        t->threads(), t->full_windows(), all, TeamChooser::kWindowSteps, t->single_windows(),
+        t->threads());
+  }
 }
 
 }  // namespace drumlab::cli

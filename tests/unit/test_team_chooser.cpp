@@ -1,0 +1,99 @@
+// The adaptive OpenMP team (engine/session/team_chooser.hpp): which team runs after which
+// timings, and that a run whose team changes between windows gives the same bits as one thread.
+#include <gtest/gtest.h>
+
+#include "engine/io/checkpoint.hpp"
+#include "engine/session/team_chooser.hpp"
+#include "tests/same_bits.hpp"
+#include "tests/unit/cli_runner.hpp"
+#include "tests/unit/output_test_scene.hpp"
+
+namespace drumlab::test {
+namespace {
+
+constexpr std::uint64_t kWindow = TeamChooser::kWindowSteps;
+
+// Runs one window with the chooser's team at `seconds_per_step`; returns the team it ran.
+int window(TeamChooser& c, double seconds_per_step) {
+  const int team = c.team();
+  c.record(seconds_per_step * static_cast<double>(kWindow), kWindow);
+  return team;
+}
+
+TEST(TeamChooser, TimesBothTeamsThenRunsTheFasterAndProbesTheOther) {
+  TeamChooser c(2, 3);
+  EXPECT_EQ(window(c, 1.0), 2);  // the full team first
+  EXPECT_EQ(window(c, 0.5), 1);  // then one thread, faster: it runs
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(window(c, 0.5), 1);
+  EXPECT_EQ(window(c, 0.3), 2);  // the probe: now the full team is faster
+  EXPECT_EQ(c.team(), 2);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(window(c, 0.3), 2);
+  EXPECT_EQ(window(c, 0.6), 1);  // probe: slower, the full team stays
+  EXPECT_EQ(c.team(), 2);
+  EXPECT_EQ(c.full_windows(), 1u + 1u + 3u);
+  EXPECT_EQ(c.single_windows(), 1u + 3u + 1u);
+}
+
+TEST(TeamChooser, KeepsItsTeamWhenTheOtherIsFasterByLessThanTheMargin) {
+  TeamChooser c(4, 2, 0.05);
+  EXPECT_EQ(window(c, 1.0), 4);
+  EXPECT_EQ(window(c, 0.97), 1);  // 3 % faster: not enough
+  EXPECT_EQ(c.team(), 4);
+}
+
+TEST(TeamChooser, AWindowClosesOnlyOnceItHoldsEnoughSteps) {
+  TeamChooser c(2);
+  const std::uint64_t part = kWindow / 4 + 1;  // four parts close the window, three do not
+  for (int k = 0; k < 3; ++k) c.record(1.0, part);
+  EXPECT_EQ(c.team(), 2);
+  EXPECT_EQ(c.full_windows(), 0u);
+  c.record(1.0, part);
+  EXPECT_EQ(c.full_windows(), 1u);
+  EXPECT_EQ(c.team(), 1);  // the probe of one thread
+}
+
+TEST(TeamChooser, OneThreadAskedIsOneThreadAlways) {
+  TeamChooser c(1);
+  for (int k = 0; k < 5; ++k) EXPECT_EQ(window(c, 1.0), 1);
+  EXPECT_EQ(c.full_windows() + c.single_windows(), 0u);
+}
+
+// `drumlab run --threads 2` (adaptive) runs its second window on one thread and chooses after
+// that: its checkpoint must equal the one-thread run's bit for bit.
+TEST(TeamChooser, ARunWhoseTeamChangesIsBitIdenticalToOneThread) {
+  TempDir dir("team-chooser");
+  const std::string scene = dir.write("drum.toml", output_scene_text()).string();
+  const std::string d = dir.path().string() + "/";
+  const std::string steps = " --settle-time 0 --steps 450";
+  auto r = run_cli("run " + scene + steps + " --threads 2 --checkpoint " + d + "adaptive.h5");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto line = r.output.find("team              adaptive: 2 thread(s) in ");
+  ASSERT_NE(line, std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find(", 1 in 0 "), std::string::npos) << r.output;  // one thread ran too
+  r = run_cli("run " + scene + steps + " --threads 1 --checkpoint " + d + "one.h5");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find("team    "), std::string::npos) << r.output;
+  r = run_cli("run " + scene + steps + " --threads 2 --team fixed --checkpoint " + d + "fixed.h5");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find("team    "), std::string::npos) << r.output;
+  const SimulationState a = read_checkpoint(d + "adaptive.h5").state;
+  for (const char* other : {"one.h5", "fixed.h5"}) {
+    const SimulationState b = read_checkpoint(d + other).state;
+    EXPECT_EQ(a.steps, b.steps) << other;
+    EXPECT_TRUE(same_bits(a.particles.position, b.particles.position)) << other;
+    EXPECT_TRUE(same_bits(a.particles.velocity, b.particles.velocity)) << other;
+    EXPECT_TRUE(same_bits(a.particles.omega, b.particles.omega)) << other;
+    EXPECT_TRUE(same_bits(a.contact_history, b.contact_history)) << other;
+  }
+}
+
+TEST(TeamChooser, AnUnknownTeamIsRefusedWithOneLine) {
+  TempDir dir("team-chooser-bad");
+  const std::string scene = dir.write("drum.toml", output_scene_text()).string();
+  const auto r = run_cli("run " + scene + " --steps 10 --team sometimes");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.output.find("--team"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace drumlab::test
