@@ -33,6 +33,9 @@ void add_run_options(CLI::App* cmd, RunOptions& opt) {
                   "with --threads N > 1: adaptive (time N and 1 thread now and then, run the "
                   "faster; the same results) or fixed (always N)")
       ->check(CLI::IsMember({"adaptive", "fixed"}));
+  cmd->add_option("--team-probe-every", opt.team_probe_every,
+                  "adaptive team: windows of 100 steps between two timings of the other team")
+      ->check(CLI::Range(1, 1000000));
   cmd->add_flag("--unsafe-dt", opt.unsafe_dt, "allow a time step above the Rayleigh time");
   cmd->add_option("--sort-every", opt.sort_every,
                   "re-order particles in memory every K steps, 0: never (overrides the scene)")
@@ -70,6 +73,7 @@ SessionOptions session_options(const RunOptions& opt) {
   o.revolutions = opt.revolutions;
   o.restart = opt.restart;
   o.adaptive_team = opt.team == "adaptive";
+  o.team_probe_every = opt.team_probe_every;
   return o;
 }
 

@@ -20,7 +20,8 @@ struct RunOptions {
   double revolutions = 0.0;
   double dt_factor = 0.0;
   int threads = 1;
-  std::string team = "adaptive";  ///< --team: adaptive or fixed (see TeamChooser)
+  std::string team = "adaptive";                    ///< --team: adaptive or fixed (see TeamChooser)
+  int team_probe_every = TeamChooser::kProbeEvery;  ///< --team-probe-every
   bool unsafe_dt = false;
   std::int64_t sort_every = -1;  ///< >= 0: overrides performance.sort_every
   double skin = 0.0;             ///< > 0: overrides performance.verlet_skin

@@ -117,7 +117,8 @@ std::uint64_t RunSession::advance_chunked(std::uint64_t n, std::uint64_t every,
                                           const std::function<void()>& at_every,
                                           const SessionProgress& progress) {
   const std::uint64_t chunk = std::max<std::uint64_t>(1, sim_->scene().output.diagnostics_every);
-  if (options_.adaptive_team && !team_ && max_threads() > 1) team_.emplace(max_threads());
+  if (options_.adaptive_team && !team_ && max_threads() > 1)
+    team_.emplace(max_threads(), options_.team_probe_every);
   std::uint64_t done = 0;
   while (done < n) {
     std::uint64_t k = std::min(chunk, n - done);

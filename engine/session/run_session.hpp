@@ -47,6 +47,8 @@ struct SessionOptions {
   /// With more than one OpenMP thread: let a TeamChooser pick the team (N or 1 thread) for each
   /// window of steps by timing both (the same bits either way).
   bool adaptive_team = false;
+  int team_probe_every =
+      TeamChooser::kProbeEvery;  ///< windows between two timings of the other team
 };
 
 /// What a restart read from its checkpoint.

@@ -58,18 +58,26 @@ TEST(TeamChooser, OneThreadAskedIsOneThreadAlways) {
   EXPECT_EQ(c.full_windows() + c.single_windows(), 0u);
 }
 
-// `drumlab run --threads 2` (adaptive) runs its second window on one thread and chooses after
-// that: its checkpoint must equal the one-thread run's bit for bit.
+// `drumlab run --threads 2` (adaptive, the other team timed after every window) runs windows on
+// 2, 1, then alternately the faster and the other team: both changes, 2 -> 1 and 1 -> 2, happen
+// in its 6 whole windows (650 steps). Its checkpoint must equal the one-thread run's bit for bit.
 TEST(TeamChooser, ARunWhoseTeamChangesIsBitIdenticalToOneThread) {
   TempDir dir("team-chooser");
   const std::string scene = dir.write("drum.toml", output_scene_text()).string();
   const std::string d = dir.path().string() + "/";
-  const std::string steps = " --settle-time 0 --steps 450";
-  auto r = run_cli("run " + scene + steps + " --threads 2 --checkpoint " + d + "adaptive.h5");
+  const std::string steps = " --settle-time 0 --steps 650";
+  auto r = run_cli("run " + scene + steps + " --threads 2 --team-probe-every 1 --checkpoint " + d +
+                   "adaptive.h5");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto line = r.output.find("team              adaptive: 2 thread(s) in ");
   ASSERT_NE(line, std::string::npos) << r.output;
-  EXPECT_EQ(r.output.find(", 1 in 0 "), std::string::npos) << r.output;  // one thread ran too
+  // 6 whole windows (the last 50 steps close none), at least 2 on each team
+  const std::string report = r.output.substr(line);
+  const auto full = std::stoul(report.substr(report.find(" in ") + 4));
+  const auto one = std::stoul(report.substr(report.find(", 1 in ") + 7));
+  EXPECT_EQ(full + one, 6u) << report;
+  EXPECT_GE(full, 2u) << report;
+  EXPECT_GE(one, 2u) << report;
   r = run_cli("run " + scene + steps + " --threads 1 --checkpoint " + d + "one.h5");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(r.output.find("team    "), std::string::npos) << r.output;
