@@ -189,10 +189,11 @@ void decompose(const DecomposeOptions& opt) {
       run.drum.ends == DrumEnds::periodic ? std::optional<double>(run.drum.depth) : std::nullopt;
   const auto parsed = parse_search_method(run.search_method);
   const bool verlet = parsed && parsed->verlet;
-  const double reach = ghost_reach(run);
+  const GhostReach reach = ghost_reach(run);
   fmt::print(
-      "reach             {:.6g} m = 2 r_max {:.6g} + pair range {:.3g}{}\n", reach,
-      2.0 * run.max_radius(), ContactModel(run).max_pair_range(),
+      "reach             r + {:.6g} m (r: the ghost's radius; largest {:.6g} m) = r + r_max {:.6g} "
+      "+ pair range {:.3g}{}\n",
+      reach.beyond, reach.largest(), run.max_radius(), ContactModel(run).max_pair_range(),
       verlet ? fmt::format(" + Verlet skin {:.3g}", run.performance.verlet_skin * run.min_radius())
              : std::string(" (no Verlet skin: not a list)"));
   fmt::print(
@@ -217,7 +218,7 @@ void decompose(const DecomposeOptions& opt) {
   for (const int r : ranks) {
     const auto start = std::chrono::steady_clock::now();
     const Decomposition d = rcb_decompose(positions, weights, domain, r);
-    const GhostLayer g = ghost_layer(d, positions, reach, period);
+    const GhostLayer g = ghost_layer(d, positions, sim.particles().radius, reach, period);
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     total_seconds += seconds;

@@ -9,11 +9,11 @@
 
 namespace drumlab {
 
-double ghost_reach(double max_radius, double pair_range, double verlet_skin) {
-  return 2.0 * max_radius + pair_range + kTouchTolerance + verlet_skin;
+GhostReach ghost_reach(double max_radius, double pair_range, double verlet_skin) {
+  return {max_radius + pair_range + kTouchTolerance + verlet_skin, max_radius};
 }
 
-double ghost_reach(const SceneConfig& scene) {
+GhostReach ghost_reach(const SceneConfig& scene) {
   const auto parsed = parse_search_method(scene.search_method);
   const bool verlet = parsed && parsed->verlet;
   const double skin = verlet ? scene.performance.verlet_skin * scene.min_radius() : 0.0;
@@ -63,7 +63,8 @@ void ranks_within(const Decomposition& d, const Vec3& x, double reach,
   std::sort(out.begin(), out.end());
 }
 
-GhostLayer ghost_layer(const Decomposition& d, std::span<const Vec3> position, double reach,
+GhostLayer ghost_layer(const Decomposition& d, std::span<const Vec3> position,
+                       std::span<const double> radius, GhostReach reach,
                        std::optional<double> period_z) {
   GhostLayer g;
   g.reach = reach;
@@ -75,7 +76,7 @@ GhostLayer ghost_layer(const Decomposition& d, std::span<const Vec3> position, d
     auto add = [&](int rank) {
       if (rank != own) g.ghosts[static_cast<std::size_t>(rank)].push_back(static_cast<Index>(i));
     };
-    ranks_near(d, 0, position[i], reach, period_z, add);
+    ranks_near(d, 0, position[i], reach.of(radius[i]), period_z, add);
   }
   for (std::size_t r = 0; r < ranks; ++r) {
     std::vector<int>& s = g.sources[r];

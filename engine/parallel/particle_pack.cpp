@@ -42,6 +42,12 @@ Vec3 packed_position(std::span<const std::byte> record) {
   return get_bytes<Vec3>(record, pos);
 }
 
+double packed_radius(std::span<const std::byte> record) {
+  // for_each_array visits position, velocity, omega, force, torque, then `radius`
+  std::size_t pos = 5 * sizeof(Vec3);
+  return get_bytes<double>(record, pos);
+}
+
 Particles empty_like(const Particles& p) {
   Particles q;
   for (const ParticleArray& a : p.extra) q.extra.push_back({a.name, {}, a.initial});

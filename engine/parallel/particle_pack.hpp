@@ -48,6 +48,8 @@ std::size_t packed_size(const Particles& p);
 std::uint64_t packed_slot(std::span<const std::byte> record);
 /// The position of the particle packed at `record` (its first array).
 Vec3 packed_position(std::span<const std::byte> record);
+/// The radius of the particle packed at `record` (its sixth array).
+double packed_radius(std::span<const std::byte> record);
 
 /// An empty Particles with the same extra arrays registered as p.
 Particles empty_like(const Particles& p);

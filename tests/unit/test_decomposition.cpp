@@ -154,11 +154,14 @@ void expect_ghosts_match_the_oracle(bool periodic) {
   const auto p = cylinder_points(3000, 0.5, depth, periodic ? 5 : 6);
   const std::optional<double> period =
       periodic ? std::optional<double>(depth) : std::optional<double>();
-  const double reach = 0.045;
+  // Three sizes: a particle's reach is its radius + 0.03 m, 0.035 to 0.045 m.
+  const GhostReach reach{0.03, 0.015};
+  std::vector<double> radius(p.size());
+  for (std::size_t j = 0; j < p.size(); ++j) radius[j] = 0.005 * static_cast<double>(1 + j % 3);
   for (const int ranks : {2, 3, 5, 8, 12}) {
     SCOPED_TRACE(ranks);
     const Decomposition d = rcb_decompose(p, {}, drum_domain(0.5, depth), ranks);
-    const GhostLayer g = ghost_layer(d, p, reach, period);
+    const GhostLayer g = ghost_layer(d, p, radius, reach, period);
     std::size_t wrapped = 0;
     for (int r = 0; r < ranks; ++r) {
       const Box& b = d.boxes[static_cast<std::size_t>(r)];
@@ -166,10 +169,11 @@ void expect_ghosts_match_the_oracle(bool periodic) {
       std::set<int> sources;
       for (std::size_t j = 0; j < p.size(); ++j) {
         if (d.owner[j] == r) continue;
-        if (oracle_distance(b, p[j], periodic ? depth : 0.0) <= reach) {
+        const double reach_j = 0.03 + radius[j];
+        if (oracle_distance(b, p[j], periodic ? depth : 0.0) <= reach_j) {
           expected.push_back(static_cast<Index>(j));
           sources.insert(d.owner[j]);
-          if (oracle_distance(b, p[j], 0.0) > reach) ++wrapped;
+          if (oracle_distance(b, p[j], 0.0) > reach_j) ++wrapped;
         }
       }
       EXPECT_EQ(g.ghosts[static_cast<std::size_t>(r)], expected) << "rank " << r;
@@ -195,8 +199,9 @@ TEST(Decomposition, OneRankHasNoGhosts) {
   const auto p = cylinder_points(2000, 0.5, 0.4, 7);
   for (const bool periodic : {false, true}) {
     const Decomposition d = rcb_decompose(p, {}, drum_domain(0.5, 0.4), 1);
-    const GhostLayer g =
-        ghost_layer(d, p, 0.1, periodic ? std::optional<double>(0.4) : std::nullopt);
+    const std::vector<double> radius(p.size(), 0.01);
+    const GhostLayer g = ghost_layer(d, p, radius, GhostReach{0.09, 0.01},
+                                     periodic ? std::optional<double>(0.4) : std::nullopt);
     ASSERT_EQ(g.ghosts.size(), 1u);
     EXPECT_TRUE(g.ghosts[0].empty());
     EXPECT_TRUE(g.sources[0].empty());
@@ -209,7 +214,8 @@ TEST(Decomposition, OneRankHasNoGhosts) {
 TEST(Decomposition, ExchangeCostFollowsTheGhostsAndTheNetwork) {
   const auto p = cylinder_points(4000, 0.5, 0.4, 8);
   const Decomposition d = rcb_decompose(p, {}, drum_domain(0.5, 0.4), 4);
-  const GhostLayer g = ghost_layer(d, p, 0.03, std::nullopt);
+  const GhostLayer g =
+      ghost_layer(d, p, std::vector<double>(p.size(), 0.01), GhostReach{0.02, 0.01}, std::nullopt);
   const NetworkModel net{1e9, 5e-6};
   const DecompositionCost c = decomposition_cost(d, g, 2e6, net);
   for (std::size_t r = 0; r < 4; ++r) {
@@ -226,18 +232,21 @@ TEST(Decomposition, ExchangeCostFollowsTheGhostsAndTheNetwork) {
   EXPECT_DOUBLE_EQ(w.step_compute, 0.5 * w.step_serial);
 }
 
-TEST(Decomposition, ReachIsTwoLargestRadiiPlusPairRangePlusSkin) {
+// A ghost of radius r must be seen within r + r_max + pair range + tolerance (+ the Verlet skin)
+// of a box: the largest reach is 2 r_max + ..., a small particle's shorter by r_max - r.
+TEST(Decomposition, ReachIsTheGhostsRadiusPlusTheLargestRadiusPlusPairRangePlusSkin) {
   SceneConfig scene = load_scene(std::filesystem::path(DRUMLAB_SCENES_DIR) / "drum_demo.toml");
   scene.search_method = "m5";
   const double range = ContactModel(scene).max_pair_range();
-  EXPECT_DOUBLE_EQ(ghost_reach(scene), 2.0 * 0.015 + range + kTouchTolerance);
+  EXPECT_DOUBLE_EQ(ghost_reach(scene).largest(), 2.0 * 0.015 + range + kTouchTolerance);
+  EXPECT_DOUBLE_EQ(ghost_reach(scene).of(0.005), 0.005 + 0.015 + range + kTouchTolerance);
   scene.search_method = "verlet:m2";
-  EXPECT_DOUBLE_EQ(ghost_reach(scene),
+  EXPECT_DOUBLE_EQ(ghost_reach(scene).largest(),
                    2.0 * 0.015 + range + kTouchTolerance + scene.performance.verlet_skin * 0.005);
   scene.liquid.enabled = true;  // rupture distance (1 + 0/2) V^(1/3) = 1 mm
   scene.liquid.surface_tension = scene.liquid.wall_surface_tension = 0.072;
   scene.liquid.bridge_volume = 1e-9;
-  EXPECT_NEAR(ghost_reach(scene) - (2.0 * 0.015 + scene.performance.verlet_skin * 0.005),
+  EXPECT_NEAR(ghost_reach(scene).largest() - (2.0 * 0.015 + scene.performance.verlet_skin * 0.005),
               1e-3 + kTouchTolerance, 1e-12);
 }
 

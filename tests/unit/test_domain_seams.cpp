@@ -39,6 +39,7 @@ TEST(ParticlePack, RoundTripKeepsEveryArrayAndTheWallHistory) {
   EXPECT_EQ(bytes.size(), packed_size(p));
   EXPECT_EQ(packed_slot(bytes), 42u);
   EXPECT_TRUE(packed_position(bytes) == p.position[1]);
+  EXPECT_EQ(packed_radius(bytes), p.radius[1]);
   double motion[9];
   ASSERT_EQ(sizeof(motion), kPackedMotionBytes);
   std::memcpy(motion, bytes.data(), kPackedMotionBytes);

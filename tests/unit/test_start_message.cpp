@@ -89,7 +89,7 @@ TEST(StartMessage, PartsHoldEveryParticleOnceTheGhostsAndThePairsHeld) {
   const Particles& p = s.particles;
   const int ranks = 3;
   const Decomposition d = rcb_decompose(p.position, {}, drum_domain(0.2, 0.3), ranks);
-  const GhostLayer g = ghost_layer(d, p.position, 0.03, std::nullopt);
+  const GhostLayer g = ghost_layer(d, p.position, p.radius, GhostReach{0.024, 0.006}, std::nullopt);
   std::vector<std::uint8_t> held(p.size(), 0);
   std::vector<int> owned_by(p.size(), -1);
   const std::size_t size = packed_size(p);

@@ -105,7 +105,8 @@ std::vector<std::vector<std::byte>> MpiDomain::ghost_packs(
   for (std::size_t k = 0; k < owned.size(); ++k) {
     const PackedPiece& e = owned[k];
     const Vec3 x = e.at != nullptr ? packed_position({e.at, size}) : p.position[e.local];
-    ranks_within(decomposition_, x, options_.reach, options_.period_z, near);
+    const double r = e.at != nullptr ? packed_radius({e.at, size}) : p.radius[e.local];
+    ranks_within(decomposition_, x, options_.reach.of(r), options_.period_z, near);
     for (const int q : near) {
       if (q == comm_.rank()) continue;
       const auto uq = static_cast<std::size_t>(q);
@@ -266,7 +267,8 @@ std::unique_ptr<Simulation> MpiDomain::distribute(const SceneConfig& scene,
     const Decomposition d = rcb_decompose(x, {}, options_.domain, comm_.size());
     header = pack_start_header(*full, d);
     comm_.broadcast(header);
-    const GhostLayer g = ghost_layer(d, x, options_.reach, options_.period_z);
+    const GhostLayer g =
+        ghost_layer(d, x, full->particles.radius, options_.reach, options_.period_z);
     std::vector<std::uint8_t> held(x.size(), 0);
     for (int q = 1; q < comm_.size(); ++q) {
       const StartPart p = start_part(*full, d, g, q, held);
@@ -309,7 +311,8 @@ std::unique_ptr<Simulation> MpiDomain::distribute_shares(const SceneConfig& scen
   for (std::size_t i = 0; i < p.size(); ++i) {
     const int owner = decomposition_.owner[i];
     dest.push_back(owner);
-    ranks_within(decomposition_, p.position[i], options_.reach, options_.period_z, near);
+    ranks_within(decomposition_, p.position[i], options_.reach.of(p.radius[i]), options_.period_z,
+                 near);
     for (const int q : near) {
       if (q != owner) dest.push_back(q);
     }

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "engine/parallel/domain_hooks.hpp"
+#include "engine/parallel/ghost_layer.hpp"
 #include "engine/parallel/local_set.hpp"
 #include "engine/parallel/mpi/mpi_bridge_events.hpp"
 #include "engine/parallel/mpi/mpi_comm.hpp"
@@ -38,8 +39,8 @@ namespace drumlab {
 enum class BalanceBy { count, time };
 
 struct MpiDomainOptions {
-  double reach = 0.0;  ///< ghost reach (m), ghost_reach() with the skin
-  double skin = 0.0;   ///< m: particles migrate when one moved more than half of it
+  GhostReach reach;   ///< ghost reach (m), ghost_reach() with the skin
+  double skin = 0.0;  ///< m: particles migrate when one moved more than half of it
   std::optional<double> period_z;
   Box domain;                         ///< drum_domain of the scene
   std::uint64_t rebalance_every = 0;  ///< steps between balance checks (0: never re-balance)
