@@ -9,7 +9,10 @@
 // The teams are N and 1, timed in windows of kWindowSteps steps. The first two windows time each;
 // after that the faster team runs `probe_every` windows, then the other team runs one, and the team
 // whose latest time per step is lower (by more than `margin`, against flip-flopping on noise) runs
-// next. Probing costs at most one window in probe_every + 1 run at the slower team's speed.
+// next. Each probe the other team loses doubles the windows before the next one, up to
+// kMaxBackoff x probe_every (a steadily busy machine then pays one slow window in 81, not in 21);
+// a change of team starts again from probe_every.
+#include <algorithm>
 #include <cstdint>
 
 namespace drumlab {
@@ -19,10 +22,14 @@ class TeamChooser {
   static constexpr std::uint64_t kWindowSteps = 100;
   static constexpr int kProbeEvery = 20;
   static constexpr double kMargin = 0.05;
+  static constexpr int kMaxBackoff = 4;
 
   /// threads: the team the user asked for (with 1 the chooser always answers 1).
   explicit TeamChooser(int threads, int probe_every = kProbeEvery, double margin = kMargin)
-      : full_(threads < 1 ? 1 : threads), probe_every_(probe_every), margin_(margin) {}
+      : full_(threads < 1 ? 1 : threads),
+        probe_every_(probe_every),
+        interval_(probe_every),
+        margin_(margin) {}
 
   /// The team for the next steps.
   int team() const { return full_ == 1 ? 1 : (probing_ ? other(current_) : current_); }
@@ -43,6 +50,8 @@ class TeamChooser {
   std::uint64_t full_windows() const { return full_windows_; }
   std::uint64_t single_windows() const { return one_windows_; }
   int threads() const { return full_; }
+  /// Windows of the current team between two probes now.
+  int probe_interval() const { return interval_; }
 
  private:
   int other(int team) const { return team == full_ ? 1 : full_; }
@@ -54,7 +63,8 @@ class TeamChooser {
     const int ran = team();
     (ran == full_ ? full_windows_ : one_windows_) += 1;
     double& time = ran == full_ ? full_time_ : one_time_;
-    time = probing_ || time < 0.0 ? per_step : 0.5 * (time + per_step);
+    const bool first_time = time < 0.0;
+    time = probing_ || first_time ? per_step : 0.5 * (time + per_step);
     if (probing_) {
       probing_ = false;
       since_probe_ = 0;
@@ -63,14 +73,18 @@ class TeamChooser {
       if (theirs < (1.0 - margin_) * mine) {
         current_ = other(current_);
         (current_ == full_ ? full_time_ : one_time_) = theirs;
+        interval_ = probe_every_;
+      } else if (!first_time) {
+        interval_ = std::min(2 * interval_, kMaxBackoff * probe_every_);
       }
-    } else if (++since_probe_ >= (full_time_ < 0.0 || one_time_ < 0.0 ? 1 : probe_every_)) {
+    } else if (++since_probe_ >= (full_time_ < 0.0 || one_time_ < 0.0 ? 1 : interval_)) {
       probing_ = true;
     }
   }
 
   int full_;
   int probe_every_;
+  int interval_;  ///< windows between probes now: probe_every_ to kMaxBackoff x probe_every_
   double margin_;
   int current_ = full_;
   bool probing_ = false;

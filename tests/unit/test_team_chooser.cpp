@@ -2,6 +2,8 @@
 // timings, and that a run whose team changes between windows gives the same bits as one thread.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "engine/io/checkpoint.hpp"
 #include "engine/session/team_chooser.hpp"
 #include "tests/same_bits.hpp"
@@ -32,6 +34,27 @@ TEST(TeamChooser, TimesBothTeamsThenRunsTheFasterAndProbesTheOther) {
   EXPECT_EQ(c.team(), 2);
   EXPECT_EQ(c.full_windows(), 1u + 1u + 3u);
   EXPECT_EQ(c.single_windows(), 1u + 3u + 1u);
+}
+
+// A probe that loses doubles the wait before the next, up to kMaxBackoff x probe_every; a change
+// of team starts from probe_every again.
+TEST(TeamChooser, WaitsLongerAfterEachLostProbeAndStartsAgainAfterAChange) {
+  TeamChooser c(2, 2);
+  EXPECT_EQ(window(c, 1.0), 2);
+  EXPECT_EQ(window(c, 0.5), 1);  // timing one thread: it runs, no back-off yet
+  EXPECT_EQ(c.probe_interval(), 2);
+  for (const int wait : {2, 4, 8, 8}) {
+    EXPECT_EQ(c.probe_interval(), wait);
+    for (int k = 0; k < wait; ++k) EXPECT_EQ(window(c, 0.5), 1);
+    EXPECT_EQ(window(c, 1.0), 2);  // the probe loses
+    EXPECT_EQ(c.probe_interval(), std::min(2 * wait, TeamChooser::kMaxBackoff * 2));
+  }
+  for (int k = 0; k < 8; ++k) EXPECT_EQ(window(c, 0.5), 1);
+  EXPECT_EQ(window(c, 0.2), 2);  // the probe wins: the full team runs, probes every 2 again
+  EXPECT_EQ(c.probe_interval(), 2);
+  EXPECT_EQ(window(c, 0.2), 2);
+  EXPECT_EQ(window(c, 0.2), 2);
+  EXPECT_EQ(window(c, 0.5), 1);  // its probe
 }
 
 TEST(TeamChooser, KeepsItsTeamWhenTheOtherIsFasterByLessThanTheMargin) {
