@@ -50,6 +50,7 @@ SessionOptions session_options(const GuiOptions& o) {
   s.scene_file = o.scene;
   s.method = o.method;
   s.settle_time = o.settle_time;
+  s.adaptive_team = o.team == "adaptive";
   return s;
 }
 

@@ -13,6 +13,7 @@
 
 #include "app/gui/gui_app.hpp"
 #include "engine/io/checkpoint.hpp"
+#include "engine/session/team_chooser.hpp"
 #include "engine/threads.hpp"
 
 namespace drumlab::gui {
@@ -101,6 +102,12 @@ void GuiApp::run() {
     const std::string file = options_.checkpoint;
     sim_->with_simulation(
         [&](const Simulation& sim) { write_checkpoint(file, sim.state(), sim.scene().name); });
+  }
+  if (const SimThread::TeamStatus t = sim_->team_status(); t.adaptive) {
+    const std::uint64_t windows = t.full_windows + t.single_windows;
+    fmt::print(
+        "team              adaptive: {} thread(s) in {} of {} windows of {} steps, 1 in {}\n",
+        t.threads, t.full_windows, windows, TeamChooser::kWindowSteps, t.single_windows);
   }
 }
 

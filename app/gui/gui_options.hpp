@@ -22,6 +22,7 @@ struct GuiOptions {
   double settle_time = -1.0;  ///< < 0: the scene's
   std::uint64_t steps_per_frame = 10;
   int threads = 1;
+  std::string team = "adaptive";  ///< with threads > 1: adaptive or fixed (TeamChooser)
   int width = 1400;
   int height = 900;
   // Headless driving.

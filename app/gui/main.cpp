@@ -29,6 +29,10 @@ int main(int argc, char** argv) {
   app.add_option("--steps-per-frame", o.steps_per_frame, "simulation steps per snapshot")
       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1000000}));
   app.add_option("--threads", o.threads, "simulation threads")->check(CLI::Range(1, 256));
+  app.add_option("--team", o.team,
+                 "with --threads N > 1: adaptive (time N and 1 thread now and then, run the "
+                 "faster; the same results) or fixed (always N)")
+      ->check(CLI::IsMember({"adaptive", "fixed"}));
   app.add_option("--size", o.width, "window width (height: --height)")
       ->check(CLI::Range(320, 8192));
   app.add_option("--height", o.height, "window height")->check(CLI::Range(240, 8192));

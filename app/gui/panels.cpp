@@ -67,6 +67,16 @@ void GuiApp::panel_run() {
   }
   ImGui::Text("%.1f frames/s   sim %.2f M particle-steps/s", fps_,
               sim_->particle_steps_per_second() / 1e6);
+  if (const SimThread::TeamStatus t = sim_->team_status(); t.threads > 1) {
+    if (t.adaptive) {
+      ImGui::Text("threads %d, adaptive: %d now", t.threads, t.now);
+      ImGui::Text("windows on %d / 1 thread: %llu / %llu", t.threads,
+                  static_cast<unsigned long long>(t.full_windows),
+                  static_cast<unsigned long long>(t.single_windows));
+    } else {
+      ImGui::Text("threads %d (fixed team)", t.threads);
+    }
+  }
   ImGui::End();
 }
 

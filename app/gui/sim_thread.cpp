@@ -27,6 +27,7 @@ SimThread::SimThread(SceneConfig scene, SessionOptions options, SnapshotWish wis
       step_limit_(step_limit),
       threads_(threads),
       wish_(std::move(wish)) {
+  team_.threads = team_.now = threads;
   if (wish_.view.focus_id) {  // an unknown id is bad input: one line, before any window opens
     render::index_of_id(session_->simulation().particles(), *wish_.view.focus_id);
   }
@@ -150,6 +151,20 @@ double SimThread::particle_steps_per_second() const {
 std::pair<double, double> SimThread::stepping_totals() const {
   std::lock_guard lock(mutex_);
   return {particle_steps_, step_seconds_};
+}
+
+SimThread::TeamStatus SimThread::team_status() const {
+  std::lock_guard lock(mutex_);
+  return team_;
+}
+
+void SimThread::note_team() {
+  const TeamChooser* chooser = session_->team_chooser();
+  if (chooser == nullptr) return;
+  team_.adaptive = true;
+  team_.now = chooser->team();
+  team_.full_windows = chooser->full_windows();
+  team_.single_windows = chooser->single_windows();
 }
 
 bool SimThread::settled() const {
@@ -281,6 +296,7 @@ void SimThread::loop() {
         if (pending_restart_ || quit_) continue;
         step_seconds_ += dt;
         particle_steps_ += n * static_cast<double>(settle_total_);
+        note_team();
         settled = true;
         settled_ = true;
         turn_start = session_->simulation().steps();
@@ -315,6 +331,7 @@ void SimThread::loop() {
       }
       step_seconds_ += dt;
       particle_steps_ += count * static_cast<double>(n);
+      note_team();
       if (step_limit_ > 0 && now >= step_limit_) {
         finished_ = true;
         running_ = false;

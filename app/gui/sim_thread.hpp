@@ -75,6 +75,15 @@ class SimThread {
   double particle_steps_per_second() const;
   /// Particle-steps made and wall seconds spent stepping, since the start.
   std::pair<double, double> stepping_totals() const;
+  /// The OpenMP team: threads asked for and, with an adaptive team (SessionOptions::adaptive_team),
+  /// the team of the last steps and the windows each team ran (TeamChooser).
+  struct TeamStatus {
+    int threads = 1;
+    bool adaptive = false;
+    int now = 1;
+    std::uint64_t full_windows = 0, single_windows = 0;
+  };
+  TeamStatus team_status() const;
   /// True once the settling phase is over.
   bool settled() const;
   /// Waits until finished() (headless runs).
@@ -85,6 +94,7 @@ class SimThread {
   bool settle_progress();  // called by RunSession::settle between chunks
   void publish();          // takes a snapshot (sim thread, lock not held)
   void apply_commands(std::unique_lock<std::mutex>& lock);
+  void note_team();  // copies the session's team into team_ (sim thread, lock held)
 
   SessionOptions options_;
   std::unique_ptr<RunSession> session_;
@@ -113,6 +123,7 @@ class SimThread {
   std::string error_;
   double step_seconds_ = 0.0;
   double particle_steps_ = 0.0;
+  TeamStatus team_;
   std::thread thread_;
 };
 
