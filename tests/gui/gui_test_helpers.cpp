@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <map>
 #include <system_error>
 #include <vector>
 
@@ -55,6 +56,21 @@ std::filesystem::path fresh_dir(const std::string& name) {
   std::filesystem::create_directories(dir);
   made_dirs.dirs.push_back(dir);
   return dir;
+}
+
+std::size_t differing_motion(const Particles& a, const Particles& b) {
+  std::map<Index, std::size_t> slot;
+  for (std::size_t i = 0; i < b.size(); ++i) slot[b.id[i]] = i;
+  std::size_t differing = 0;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    const std::size_t i = slot.at(a.id[k]);
+    for (int c = 0; c < 3; ++c) {
+      differing += a.position[k][c] != b.position[i][c];
+      differing += a.velocity[k][c] != b.velocity[i][c];
+      differing += a.omega[k][c] != b.omega[i][c];
+    }
+  }
+  return differing;
 }
 
 std::filesystem::path write_small_drum(const std::filesystem::path& dir,

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <string>
 
+#include "engine/particles.hpp"
 #include "render/image.hpp"
 
 namespace drumlab::test {
@@ -27,6 +28,9 @@ bool have_xvfb();
 std::filesystem::path fresh_dir(const std::string& name);
 /// Writes the small two-size test drum (tests/small_drum_text.hpp) with `search` to DIR/NAME.
 std::filesystem::path write_small_drum(const std::filesystem::path& dir, const std::string& search);
+/// Position, velocity and angular velocity components of `a` that differ in any bit from those of
+/// the particle with the same id in `b` (the same particles, in any order).
+std::size_t differing_motion(const Particles& a, const Particles& b);
 /// Reads a PNG (RGB rows top to bottom); an empty image if it cannot.
 render::Image read_png(const std::filesystem::path& file);
 /// Pixels within `tolerance` levels of `rgb` (components in [0, 1]) in every channel.

@@ -3,8 +3,6 @@
 // snapshots between them: none of that may change the trajectory).
 #include <gtest/gtest.h>
 
-#include <map>
-
 #include "engine/io/checkpoint.hpp"
 #include "engine/session/run_session.hpp"
 #include "tests/gui/gui_test_helpers.hpp"
@@ -40,19 +38,9 @@ TEST(GuiSwitch, SwitchAtStepIsBitIdenticalToAHeadlessRun) {
 
   EXPECT_EQ(gui.state.steps, sim.steps());
   EXPECT_EQ(gui.state.search_method, "verlet:m2");
-  const Particles& p = sim.particles();
-  ASSERT_EQ(gui.state.particles.size(), p.size());
-  std::map<Index, std::size_t> slot;
-  for (std::size_t i = 0; i < p.size(); ++i) slot[p.id[i]] = i;
-  std::size_t differing = 0;
-  for (std::size_t k = 0; k < p.size(); ++k) {
-    const std::size_t i = slot.at(gui.state.particles.id[k]);
-    for (int c = 0; c < 3; ++c) {
-      differing += gui.state.particles.position[k][c] != p.position[i][c];
-      differing += gui.state.particles.velocity[k][c] != p.velocity[i][c];
-    }
-  }
-  EXPECT_EQ(differing, 0u) << "position/velocity components that differ in any bit";
+  ASSERT_EQ(gui.state.particles.size(), sim.particles().size());
+  EXPECT_EQ(differing_motion(gui.state.particles, sim.particles()), 0u)
+      << "position/velocity/omega components that differ in any bit";
 }
 
 }  // namespace

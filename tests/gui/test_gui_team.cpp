@@ -2,7 +2,6 @@
 // on 1 thread and still gives the bits of a one-thread headless RunSession.
 #include <gtest/gtest.h>
 
-#include <map>
 #include <string>
 
 #include "engine/io/checkpoint.hpp"
@@ -44,18 +43,8 @@ TEST(GuiTeam, AnAdaptiveTeamGivesTheBitsOfOneThread) {
   const Particles& p = session.simulation().particles();
   EXPECT_EQ(gui.state.steps, session.simulation().steps());
   ASSERT_EQ(gui.state.particles.size(), p.size());
-  std::map<Index, std::size_t> slot;
-  for (std::size_t i = 0; i < p.size(); ++i) slot[p.id[i]] = i;
-  std::size_t differing = 0;
-  for (std::size_t k = 0; k < p.size(); ++k) {
-    const std::size_t i = slot.at(gui.state.particles.id[k]);
-    for (int c = 0; c < 3; ++c) {
-      differing += gui.state.particles.position[k][c] != p.position[i][c];
-      differing += gui.state.particles.velocity[k][c] != p.velocity[i][c];
-      differing += gui.state.particles.omega[k][c] != p.omega[i][c];
-    }
-  }
-  EXPECT_EQ(differing, 0u) << "position/velocity/omega components that differ in any bit";
+  EXPECT_EQ(differing_motion(gui.state.particles, p), 0u)
+      << "position/velocity/omega components that differ in any bit";
 }
 
 }  // namespace
