@@ -211,9 +211,11 @@ void decompose(const DecomposeOptions& opt) {
       "velocity, omega; pairs across a boundary computed on both sides, no forces back)\n",
       opt.bandwidth_gbs, opt.latency_us, kGhostBytesPerStep);
   fmt::print(
-      "\n{:>6} {:>25} {:>6} {:>6} {:>25} {:>7} {:>5} {:>8} {:>8} {:>8} {:>6} {:>7} {:>10} {:>6}\n",
+      "\n{:>6} {:>25} {:>6} {:>6} {:>25} {:>7} {:>5} {:>8} {:>8} {:>6} {:>8} {:>6} {:>7} {:>10} "
+      "{:>6}\n",
       "ranks", "owned min/mean/max", "imbal", "work", "ghosts min/mean/max", "gh/own", "nbrs",
-      "MB/step", "comm us", "comp ms", "c/c", "speedup", "cuts", "time s");
+      "MB/step", "comm us", "twice", "comp ms", "c/c", "speedup", "cuts", "time s");
+  const ContactList& listed = sim.contacts();
   double total_seconds = 0.0;
   for (const int r : ranks) {
     const auto start = std::chrono::steady_clock::now();
@@ -223,20 +225,21 @@ void decompose(const DecomposeOptions& opt) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     total_seconds += seconds;
     const std::vector<double> rank_work = rank_sums(d, work);
-    const DecompositionCost c = decomposition_cost(d, g, rate, net, rank_work);
+    const PairsAcross across = pairs_across(d, listed.row_start(), listed.col());
+    const DecompositionCost c = decomposition_cost(d, g, rate, net, rank_work, &across);
     const Stat owned = stat_of(c, [](const RankCost& x) { return double(x.owned); });
     const Stat ghosts = stat_of(c, [](const RankCost& x) { return double(x.ghosts); });
     const Stat nbrs = stat_of(c, [](const RankCost& x) { return double(x.neighbours); });
     const Stat bytes = stat_of(c, [](const RankCost& x) { return x.bytes; });
     const double work_imbalance = max_over_mean(rank_work);
     fmt::print(
-        "{:>6} {:>25} {:>6.3f} {:>6.3f} {:>25} {:>7.3f} {:>5.0f} {:>8.3f} {:>8.1f} {:>8.3f} "
-        "{:>6.3f} {:>7.1f} {:>10} {:>6.2f}\n",
+        "{:>6} {:>25} {:>6.3f} {:>6.3f} {:>25} {:>7.3f} {:>5.0f} {:>8.3f} {:>8.1f} {:>6.3f} "
+        "{:>8.3f} {:>6.3f} {:>7.1f} {:>10} {:>6.2f}\n",
         r, fmt::format("{:.0f}/{:.0f}/{:.0f}", owned.min, owned.mean, owned.max),
         owned.mean > 0 ? owned.max / owned.mean : 0.0, work_imbalance,
         fmt::format("{:.0f}/{:.0f}/{:.0f}", ghosts.min, ghosts.mean, ghosts.max),
         owned.mean > 0 ? ghosts.mean / owned.mean : 0.0, nbrs.max, bytes.max / 1e6,
-        c.step_comm * 1e6, c.step_compute * 1e3,
+        c.step_comm * 1e6, c.duplicated, c.step_compute * 1e3,
         c.step_compute > 0 ? c.step_comm / c.step_compute : 0.0, c.speedup(), cut_axes(d), seconds);
     if (opt.per_rank || (ranks.size() == 1 && r <= 16)) print_per_rank(d, c);
   }
@@ -244,8 +247,11 @@ void decompose(const DecomposeOptions& opt) {
       "\nimbal: max/mean owned; work: max/mean of the work 1 + pairs tested per particle "
       "(whatever --weight balances); gh/own: mean ghosts per owned particle; nbrs: most ranks one "
       "rank receives from; MB/step: most bytes one rank receives per step; comm: slowest rank's "
-      "exchange (nbrs x latency + bytes / bandwidth); comp: slowest rank's share of the work at "
-      "the compute rate; c/c: comm / comp; speedup: one core's step time / (comp + comm), "
+      "exchange (nbrs x latency + bytes / bandwidth); twice: the listed pairs across a boundary, "
+      "computed by both ranks, over all pairs; comp: slowest rank's share of the work at the "
+      "compute rate plus half its pairs across (its neighbour's share, computed again), each at "
+      "a whole step's time over all pairs; c/c: comm / comp; speedup: one core's step time / (comp "
+      "+ comm), "
       "exchange not overlapped; cuts: cut planes normal to each axis.\n");
   fmt::print("decomposition     {} rank counts in {:.2f} s (RCB + ghost layer)\n", ranks.size(),
              total_seconds);

@@ -4,8 +4,26 @@
 
 namespace drumlab {
 
+PairsAcross pairs_across(const Decomposition& d, std::span<const std::size_t> row,
+                         std::span<const Index> col) {
+  PairsAcross p;
+  p.across.assign(static_cast<std::size_t>(d.ranks()), 0);
+  for (std::size_t i = 0; i + 1 < row.size(); ++i) {
+    const int a = d.owner[i];
+    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
+      const int b = d.owner[col[k]];
+      if (a == b) continue;
+      ++p.across[static_cast<std::size_t>(a)];
+      ++p.across[static_cast<std::size_t>(b)];
+    }
+  }
+  p.total = row.empty() ? 0 : row.back() - row.front();
+  return p;
+}
+
 DecompositionCost decomposition_cost(const Decomposition& d, const GhostLayer& g, double rate,
-                                     const NetworkModel& net, std::span<const double> rank_work) {
+                                     const NetworkModel& net, std::span<const double> rank_work,
+                                     const PairsAcross* pairs) {
   if (rank_work.empty()) rank_work = d.owned_weight;
   DecompositionCost c;
   c.rate = rate;
@@ -22,6 +40,12 @@ DecompositionCost decomposition_cost(const Decomposition& d, const GhostLayer& g
     rc.neighbours = g.sources[k].size();
     rc.bytes = static_cast<double>(rc.ghosts * kGhostBytesPerStep);
     rc.compute = total_weight > 0.0 ? rank_work[k] / total_weight * c.step_serial : 0.0;
+    if (pairs != nullptr && pairs->total > 0) {
+      rc.across = pairs->across[k];
+      const double again = 0.5 * static_cast<double>(rc.across);
+      rc.compute += again / static_cast<double>(pairs->total) * c.step_serial;
+      c.duplicated += again / static_cast<double>(pairs->total);
+    }
     rc.comm = static_cast<double>(rc.neighbours) * net.latency + rc.bytes / net.bandwidth;
     c.step_compute = std::max(c.step_compute, rc.compute);
     c.step_comm = std::max(c.step_comm, rc.comm);

@@ -10,6 +10,8 @@
 // that crosses a boundary, LAMMPS' "newton off"). No forces travel back, and the force on a
 // particle is summed on its owner alone, in an order the decomposition does not change.
 // Migration and ghost-list updates happen at Verlet rebuilds only and are not counted per step.
+// Given the pairs the force loop visits, a rank's compute also holds the pairs across its boundary
+// that its neighbour computes too.
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -33,6 +35,7 @@ struct RankCost {
   std::size_t neighbours = 0;  ///< ranks it receives from (messages per step)
   double bytes = 0.0;          ///< received per step
   double compute = 0.0;        ///< s per step: its share of the work x all particles / rate
+  std::size_t across = 0;      ///< listed pairs with one particle here and one elsewhere
   double comm = 0.0;           ///< s per step: neighbours x latency + bytes / bandwidth
 };
 
@@ -42,17 +45,33 @@ struct DecompositionCost {
   double step_serial = 0.0;   ///< s per step on one core: all particles / rate
   double step_compute = 0.0;  ///< max over ranks of compute
   double step_comm = 0.0;     ///< max over ranks of comm
+  /// Pair work done twice (the pairs across boundaries) over all pairs; 0 without a pair list.
+  double duplicated = 0.0;
   /// Estimated step time with the exchange not overlapped with computing: the slowest rank's
   /// compute plus the slowest exchange.
   double step() const { return step_compute + step_comm; }
   double speedup() const { return step() > 0.0 ? step_serial / step() : 0.0; }
 };
 
+/// The pairs the force loop visits as a CSR list (row i's partners col[k], k in [row[i],
+/// row[i + 1]); a Verlet list or the contacts): per rank, those with one particle on the rank and
+/// the other elsewhere, which both ranks compute; and how many there are in all.
+struct PairsAcross {
+  std::vector<std::size_t> across;
+  std::size_t total = 0;
+};
+PairsAcross pairs_across(const Decomposition& d, std::span<const std::size_t> row,
+                         std::span<const Index> col);
+
 /// `rate`: one-core particle-steps/s (> 0). Each rank's compute time is its share of
 /// `rank_work` (per rank, any unit; empty: the weight the decomposition balanced) times the
-/// one-core step time of all particles.
+/// one-core step time of all particles. With `pairs`, a rank also computes again its neighbours'
+/// share of the pairs across: half of its pairs across on average (the other half are its own
+/// share already), each costed as a whole step's time over all pairs (as if the step were all pair
+/// work: an upper bound, the pair loop and the search take 85-90 % of a step).
 DecompositionCost decomposition_cost(const Decomposition& d, const GhostLayer& g, double rate,
                                      const NetworkModel& net,
-                                     std::span<const double> rank_work = {});
+                                     std::span<const double> rank_work = {},
+                                     const PairsAcross* pairs = nullptr);
 
 }  // namespace drumlab

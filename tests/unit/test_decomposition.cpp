@@ -232,6 +232,51 @@ TEST(Decomposition, ExchangeCostFollowsTheGhostsAndTheNetwork) {
   EXPECT_DOUBLE_EQ(w.step_compute, 0.5 * w.step_serial);
 }
 
+// The pairs across boundaries against a brute-force count, and their cost: a rank computes half
+// of its pairs across again (its neighbour's share), at a whole step's time over all pairs.
+TEST(Decomposition, PairsAcrossAreCountedAndComputedOnBothSides) {
+  const auto p = cylinder_points(2000, 0.5, 0.4, 9);
+  const Decomposition d = rcb_decompose(p, {}, drum_domain(0.5, 0.4), 3);
+  // A CSR list: each point with the later points (up to 200 on) within 0.05 m.
+  std::vector<std::size_t> row = {0};
+  std::vector<Index> col;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (std::size_t j = i + 1; j < p.size() && j <= i + 200; ++j) {
+      if ((p[i] - p[j]).norm() < 0.05) col.push_back(static_cast<Index>(j));
+    }
+    row.push_back(col.size());
+  }
+  const PairsAcross a = pairs_across(d, row, col);
+  EXPECT_EQ(a.total, col.size());
+  std::vector<std::size_t> expected(3, 0);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
+      for (int r = 0; r < 3; ++r) {
+        expected[static_cast<std::size_t>(r)] +=
+            (d.owner[i] == r) != (d.owner[col[k]] == r) ? 1 : 0;
+      }
+    }
+  }
+  EXPECT_EQ(a.across, expected);
+  std::size_t sum = 0;
+  for (const std::size_t n : a.across) sum += n;
+  ASSERT_GT(sum, 0u);
+
+  const GhostLayer g =
+      ghost_layer(d, p, std::vector<double>(p.size(), 0.01), GhostReach{0.02, 0.01}, std::nullopt);
+  const DecompositionCost plain = decomposition_cost(d, g, 1e6, NetworkModel{});
+  const DecompositionCost with = decomposition_cost(d, g, 1e6, NetworkModel{}, {}, &a);
+  for (std::size_t r = 0; r < 3; ++r) {
+    EXPECT_DOUBLE_EQ(with.ranks[r].compute,
+                     plain.ranks[r].compute + 0.5 * static_cast<double>(expected[r]) /
+                                                  static_cast<double>(a.total) * plain.step_serial);
+  }
+  // Every pair across is one pair computed twice.
+  EXPECT_NEAR(with.duplicated, 0.5 * static_cast<double>(sum) / static_cast<double>(a.total),
+              1e-15);
+  EXPECT_LT(with.speedup(), plain.speedup());
+}
+
 // A ghost of radius r must be seen within r + r_max + pair range + tolerance (+ the Verlet skin)
 // of a box: the largest reach is 2 r_max + ..., a small particle's shorter by r_max - r.
 TEST(Decomposition, ReachIsTheGhostsRadiusPlusTheLargestRadiusPlusPairRangePlusSkin) {
