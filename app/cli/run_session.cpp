@@ -138,12 +138,10 @@ void run_session(const RunOptions& opt, std::span<FrameObserver* const> extra_ob
   fmt::print("-- turning phase --\n");
   print_summary(sim, turn.stats);
   if (const TeamChooser* t = session.team_chooser()) {
-    const std::uint64_t all = t->full_windows() + t->single_windows();
     fmt::print(
-        "team              adaptive: {} thread(s) in {} of {} windows of {} steps, 1 in {} "
-        "(settling and turning; the faster team runs; `--team fixed`: always {})\n",
-        t->threads(), t->full_windows(), all, TeamChooser::kWindowSteps, t->single_windows(),
-        t->threads());
+        "team              {} (settling and turning; the faster team runs; `--team fixed`: always "
+        "{})\n",
+        team_report(*t), t->threads());
   }
 }
 

@@ -103,11 +103,8 @@ void GuiApp::run() {
     sim_->with_simulation(
         [&](const Simulation& sim) { write_checkpoint(file, sim.state(), sim.scene().name); });
   }
-  if (const SimThread::TeamStatus t = sim_->team_status(); t.adaptive) {
-    const std::uint64_t windows = t.full_windows + t.single_windows;
-    fmt::print(
-        "team              adaptive: {} thread(s) in {} of {} windows of {} steps, 1 in {}\n",
-        t.threads, t.full_windows, windows, TeamChooser::kWindowSteps, t.single_windows);
+  if (const std::optional<TeamChooser> t = sim_->team()) {
+    fmt::print("team              {}\n", team_report(*t));
   }
 }
 

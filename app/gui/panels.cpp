@@ -67,15 +67,13 @@ void GuiApp::panel_run() {
   }
   ImGui::Text("%.1f frames/s   sim %.2f M particle-steps/s", fps_,
               sim_->particle_steps_per_second() / 1e6);
-  if (const SimThread::TeamStatus t = sim_->team_status(); t.threads > 1) {
-    if (t.adaptive) {
-      ImGui::Text("threads %d, adaptive: %d now", t.threads, t.now);
-      ImGui::Text("windows on %d / 1 thread: %llu / %llu", t.threads,
-                  static_cast<unsigned long long>(t.full_windows),
-                  static_cast<unsigned long long>(t.single_windows));
-    } else {
-      ImGui::Text("threads %d (fixed team)", t.threads);
-    }
+  if (const std::optional<TeamChooser> t = sim_->team()) {
+    ImGui::Text("threads %d, adaptive: %d now", t->threads(), t->team());
+    ImGui::Text("windows on %d / 1 thread: %llu / %llu", t->threads(),
+                static_cast<unsigned long long>(t->full_windows()),
+                static_cast<unsigned long long>(t->single_windows()));
+  } else if (options_.threads > 1) {
+    ImGui::Text("threads %d (fixed team)", options_.threads);
   }
   ImGui::End();
 }

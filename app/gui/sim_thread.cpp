@@ -27,7 +27,6 @@ SimThread::SimThread(SceneConfig scene, SessionOptions options, SnapshotWish wis
       step_limit_(step_limit),
       threads_(threads),
       wish_(std::move(wish)) {
-  team_.threads = team_.now = threads;
   if (wish_.view.focus_id) {  // an unknown id is bad input: one line, before any window opens
     render::index_of_id(session_->simulation().particles(), *wish_.view.focus_id);
   }
@@ -153,18 +152,13 @@ std::pair<double, double> SimThread::stepping_totals() const {
   return {particle_steps_, step_seconds_};
 }
 
-SimThread::TeamStatus SimThread::team_status() const {
+std::optional<TeamChooser> SimThread::team() const {
   std::lock_guard lock(mutex_);
   return team_;
 }
 
 void SimThread::note_team() {
-  const TeamChooser* chooser = session_->team_chooser();
-  if (chooser == nullptr) return;
-  team_.adaptive = true;
-  team_.now = chooser->team();
-  team_.full_windows = chooser->full_windows();
-  team_.single_windows = chooser->single_windows();
+  if (const TeamChooser* chooser = session_->team_chooser()) team_ = *chooser;
 }
 
 bool SimThread::settled() const {

@@ -75,15 +75,9 @@ class SimThread {
   double particle_steps_per_second() const;
   /// Particle-steps made and wall seconds spent stepping, since the start.
   std::pair<double, double> stepping_totals() const;
-  /// The OpenMP team: threads asked for and, with an adaptive team (SessionOptions::adaptive_team),
-  /// the team of the last steps and the windows each team ran (TeamChooser).
-  struct TeamStatus {
-    int threads = 1;
-    bool adaptive = false;
-    int now = 1;
-    std::uint64_t full_windows = 0, single_windows = 0;
-  };
-  TeamStatus team_status() const;
+  /// With an adaptive team (SessionOptions::adaptive_team): a copy of its chooser as of the last
+  /// steps (the team now, the windows each team ran); none with a fixed team.
+  std::optional<TeamChooser> team() const;
   /// True once the settling phase is over.
   bool settled() const;
   /// Waits until finished() (headless runs).
@@ -123,7 +117,7 @@ class SimThread {
   std::string error_;
   double step_seconds_ = 0.0;
   double particle_steps_ = 0.0;
-  TeamStatus team_;
+  std::optional<TeamChooser> team_;
   std::thread thread_;
 };
 

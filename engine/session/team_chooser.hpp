@@ -14,6 +14,7 @@
 // a change of team starts again from probe_every.
 #include <algorithm>
 #include <cstdint>
+#include <string>
 
 namespace drumlab {
 
@@ -96,5 +97,8 @@ class TeamChooser {
   std::uint64_t full_windows_ = 0;
   std::uint64_t one_windows_ = 0;
 };
+
+/// "adaptive: N thread(s) in F of W windows of 100 steps, 1 in S": what a run says of its team.
+std::string team_report(const TeamChooser& t);
 
 }  // namespace drumlab
