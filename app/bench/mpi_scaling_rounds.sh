@@ -5,7 +5,9 @@
 # "turning" figure and their share of time inside MPI).
 #
 #   [ROUNDS=4] [METHOD=verlet:m2] [SCENE=scenes/drum_deep.toml] [STATE=out/bench/drum_deep_rolling.h5] \
-#     bash app/bench/mpi_scaling_rounds.sh
+#     [SKIN=S] bash app/bench/mpi_scaling_rounds.sh
+#
+# SKIN: the Verlet skin in smallest radii for every run (`--skin`); unset: the scene's.
 #
 # STATE is the scene's cached rolling state (`drumlab bench throughput --scene SCENE` makes it).
 set -euo pipefail
@@ -14,14 +16,16 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 scene=${SCENE:-scenes/drum_deep.toml}
 state=${STATE:-out/bench/drum_deep_rolling.h5}
 method=${METHOD:-verlet:m2}
+skin=()
+[ -n "${SKIN:-}" ] && skin=(--skin "$SKIN")
 [ -f "$state" ] || { echo "mpi_scaling_rounds: no rolling state '$state' (run drumlab bench throughput --scene $scene first)" >&2; exit 2; }
 serial() {
-  build/bin/drumlab run "$scene" --restart "$state" --steps 600 --threads "$1" --method "$method" |
+  build/bin/drumlab run "$scene" --restart "$state" --steps 600 --threads "$1" --method "$method" "${skin[@]}" |
     awk '/^throughput/ {print $2}'
 }
 ranks() {
   mpirun --oversubscribe --mca mpi_yield_when_idle 1 -np "$1" build/bin/drumlab-mpi run "$scene" \
-    --restart "$state" --steps 600 --threads 1 --method "$method" </dev/null |
+    --restart "$state" --steps 600 --threads 1 --method "$method" "${skin[@]}" </dev/null |
     awk '/^communication/ {c = $2} /^steps/ {r = $0; sub(/.*\(/, "", r); sub(/ particle-steps.*/, "", r)}
          END {printf "%s (%s %% in MPI)", r, c}'
 }

@@ -85,7 +85,7 @@ struct TimeConfig {
 /// sort).
 struct PerformanceConfig {
   /// Verlet skin in units of the smallest radius (methods "verlet", "verlet:<grid>").
-  double verlet_skin = 0.5;
+  double verlet_skin = 1.0;
   /// Re-order the particles in memory along a space-filling curve every this many steps (0: never),
   /// so that neighbours sit close in memory. Trajectories do not depend on it beyond round-off
   /// of the summation order.

@@ -61,7 +61,7 @@ struct SearchTimings {
 /// Knobs of the search that change its speed, never its result.
 struct SearchTuning {
   /// Verlet skin in units of the smallest radius: pairs within margin + skin are listed.
-  double verlet_skin = 0.5;
+  double verlet_skin = 1.0;
 };
 
 /// A cell grid laid by a search (for pictures and exports).

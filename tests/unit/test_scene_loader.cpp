@@ -258,7 +258,7 @@ TEST(SceneLoader, BadInputGivesOneLineNamingFileAndKey) {
 TEST(SceneLoader, PerformanceKnobs) {
   const SceneConfig defaults = parse_scene(kGoodScene, "good.toml");
   EXPECT_EQ(defaults.performance.sort_every, 100u);
-  EXPECT_DOUBLE_EQ(defaults.performance.verlet_skin, 0.5);
+  EXPECT_DOUBLE_EQ(defaults.performance.verlet_skin, 1.0);
   const SceneConfig s = parse_scene(
       edited("[output]", "[performance]\nsort_every = 0\nverlet_skin = 0.8\n[output]"), "p.toml");
   EXPECT_EQ(s.performance.sort_every, 0u);

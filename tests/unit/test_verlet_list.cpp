@@ -56,7 +56,7 @@ bool listed(std::span<const IndexPair> list, const std::vector<IndexPair>& conta
 }
 
 TEST(VerletList, KeepsTheListWhileTheTwoLargestMovesSumToAtMostTheSkin) {
-  // Touching pairs along x, 3 cm apart: with skin 0.5 x 5 mm = 2.5 mm, no pair is within reach
+  // Touching pairs along x, 3 cm apart: with the default skin (1 x 5 mm), no pair is within reach
   // of another but its own.
   std::vector<Vec3> x;
   std::vector<double> r(20, 0.005);
@@ -67,7 +67,7 @@ TEST(VerletList, KeepsTheListWhileTheTwoLargestMovesSumToAtMostTheSkin) {
   auto verlet = make_search("verlet");
   auto* list = dynamic_cast<VerletListSearch*>(verlet.get());
   auto brute = make_search("brute");
-  const double skin = 0.5 * 0.005;
+  const double skin = SearchTuning{}.verlet_skin * 0.005;
   const auto call = [&] {
     const SearchInput in{x, r, 0.0, std::nullopt, std::nullopt};
     EXPECT_EQ(sorted(*verlet, in), sorted(*brute, in));
