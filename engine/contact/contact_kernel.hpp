@@ -157,10 +157,13 @@ struct PairBatch {
       const double sum_r = r_i[l] + r_j[l];
       const double dist = std::sqrt(dl.squaredNorm());
       const double delta = sum_r - dist;
-      const ContactGeometry g{dl / dist,
+      // One division for R* = r_i r_j / (r_i + r_j) and m* = 1 / (1/m_i + 1/m_j) together:
+      // divisions and square roots bound this loop (see the roofline in app/bench/README.md).
+      const double inv = 1.0 / (sum_r * inv_mass_sum[l]);
+      const ContactGeometry g{dl * (1.0 / dist),
                               delta,
-                              r_i[l] * r_j[l] / sum_r,
-                              1.0 / inv_mass_sum[l],
+                              r_i[l] * r_j[l] * inv_mass_sum[l] * inv,
+                              sum_r * inv,
                               r_i[l] - 0.5 * delta,
                               r_j[l] - 0.5 * delta,
                               dt * inv_inertia_sum[l]};

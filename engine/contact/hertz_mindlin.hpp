@@ -162,7 +162,7 @@ struct MindlinTangential {
     const bool sliding = ft2 > limit * limit;
     const double cap = limit / std::sqrt(ft2);
     ft *= sliding ? cap : 1.0;
-    const V xi_slide = -(ft + c.damping * vt) / c.stiffness;
+    const V xi_slide = -(ft + c.damping * vt) * (1.0 / c.stiffness);
     const V zero = V::Zero();
     xi = select(sliding, select(c.stiffness > 0.0, xi_slide, zero), xi);
     return ft;
