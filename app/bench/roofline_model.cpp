@@ -34,20 +34,22 @@ Work listed_pair_cost() {
 }
 
 // PairBatch::add: separation 3, inverse mass and inertia sums 2, relative velocity 3 = 8.
-// PairBatch::evaluate geometry: sum_r 1, |d|^2 5, delta 1, r_eff 1, a_i a_j 4, stop_rate 1 = 13;
-//   sqrt(|d|^2), the unit normal's 3 divisions, r_eff's and m_eff's divisions = 6 divsqrt.
+// PairBatch::evaluate geometry: sum_r 1, |d|^2 5, delta 1, the unit normal d (1/|d|) 3,
+//   (r_i + r_j)(1/m_i + 1/m_j) 1, r_eff 3, m_eff 1, a_i a_j 4, stop_rate 1 = 20; sqrt(|d|^2),
+//   1/|d| and the one division that gives r_eff and m_eff = 3 divsqrt.
 // contact_response, tangential: spin velocity at the contact 21, v_n 5, HertzNormal::respond 10
-//   (2 sqrt), v_t 6, MindlinTangential::force_of 56 (sqrt and division of the rescale, sqrt and
-//   division of the cap, 3 divisions of xi_slide), torques and force 21 = 119, 9 divsqrt.
+//   (2 sqrt), v_t 6, MindlinTangential::force_of 59 (sqrt and division of the rescale, sqrt and
+//   division of the cap, the division 1/S_t and 3 products of xi_slide), torques and force 21 =
+//   122, 7 divsqrt.
 // Without tangential: v_n 5, HertzNormal::force 7 (2 sqrt), force 3 = 15 flops, 2 divsqrt.
 // Rolling (RollingResistance::torque_of): 20 flops, the norm's sqrt and two divisions.
 // Scatter (RowSum and the partner's share): force and torque of both = 12.
 // Bytes: the history read (its write is in listed_pair_cost); the partner's velocity, spin,
 // inverse mass and inertia (gather, 64) and its force and torque (read and written, 96).
 Work touching_pair_cost(const LawShape& s) {
-  Work w{8.0 + 13.0 + 12.0, 6.0, kVec, 64.0 + 96.0};
+  Work w{8.0 + 20.0 + 12.0, 3.0, kVec, 64.0 + 96.0};
   if (s.tangential) {
-    w += {119.0, 9.0, 0.0, 0.0};
+    w += {122.0, 7.0, 0.0, 0.0};
   } else {
     w += {15.0, 2.0, -kVec, 0.0};  // no history
   }
@@ -75,7 +77,7 @@ Work wall_candidate_cost() {
 // velocity, spin, mass, force and torque (gather).
 Work wall_contact_cost(const LawShape& s) {
   Work w{2.0 + 3.0 + 6.0, 0.0, 2.0 * kVec, 3.0 * kVec + 8.0 + 4.0 * kVec};
-  w += s.wall_tangential ? Work{119.0 - 9.0, 9.0, 0.0, 0.0} : Work{15.0, 2.0, -2.0 * kVec, 0.0};
+  w += s.wall_tangential ? Work{122.0 - 9.0, 7.0, 0.0, 0.0} : Work{15.0, 2.0, -2.0 * kVec, 0.0};
   if (s.wall_rolling) w += {20.0, 3.0, 0.0, 0.0};
   return w;
 }
