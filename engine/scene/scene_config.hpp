@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/search/verlet_skin.hpp"
 #include "engine/types.hpp"
 
 namespace drumlab {
@@ -85,7 +86,7 @@ struct TimeConfig {
 /// sort).
 struct PerformanceConfig {
   /// Verlet skin in units of the smallest radius (methods "verlet", "verlet:<grid>").
-  double verlet_skin = 1.0;
+  double verlet_skin = kDefaultVerletSkin;
   /// Re-order the particles in memory along a space-filling curve every this many steps (0: never),
   /// so that neighbours sit close in memory. Trajectories do not depend on it beyond round-off
   /// of the summation order.

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "engine/search/cell_index.hpp"
+#include "engine/search/verlet_skin.hpp"
 #include "engine/types.hpp"
 
 namespace drumlab {
@@ -61,7 +62,7 @@ struct SearchTimings {
 /// Knobs of the search that change its speed, never its result.
 struct SearchTuning {
   /// Verlet skin in units of the smallest radius: pairs within margin + skin are listed.
-  double verlet_skin = 1.0;
+  double verlet_skin = kDefaultVerletSkin;
 };
 
 /// A cell grid laid by a search (for pictures and exports).
