@@ -17,8 +17,10 @@
 # The tilted and periodic scenes are run with search = "auto" (the method `auto` picks, printed);
 # demo sets verlet:m2 (auto's pick for it), deep sets auto. LAMMPS
 # settles 8000 steps, then its timed stage turns the drum LAMMPS_STEPS steps (default 6000; deep
-# 2000); drumlab times 600 steps of its rolling state (bench throughput). Rounds alternate LAMMPS
-# and drumlab. LAMMPS_DT=scene (default) runs LAMMPS at the scene's time step (`drumlab info`),
+# 2000); drumlab times 600 steps of its rolling state (bench throughput). Each round runs both,
+# LAMMPS first in odd rounds and drumlab first in even ones, and prints the ratio; the last line
+# gives every round's ratio and their median. With CORES=1 both run on core PIN (default 0).
+# LAMMPS_DT=scene (default) runs LAMMPS at the scene's time step (`drumlab info`),
 # LAMMPS_DT=peer at the harness's 1e-4 s. CORES=2: LAMMPS on 2 MPI ranks (mpirun -np 2; the
 # input sets `processors * 1 1`) against drumlab on 2 OpenMP threads. Needs: apt-get install
 # lammps.
@@ -31,6 +33,10 @@ case "$cores" in
   2) launch=(mpirun --allow-run-as-root --oversubscribe -np 2 lmp) ;;
   *) echo "lammps_side_by_side: CORES must be 1 or 2, not '$cores'" >&2; exit 2 ;;
 esac
+# One core: both engines on the same core (PIN, default 0; PIN= lets the scheduler choose), so
+# that a difference between the cores of a shared machine does not enter the ratio.
+pin=()
+if [ "$cores" = 1 ] && [ -n "${PIN-0}" ]; then pin=(taskset -c "${PIN-0}"); fi
 here=$(cd "$(dirname "$0")/../.." && pwd)
 peers=$(cd "${PEERS:-$here/../shared/peers}" && pwd)
 bin=${DRUMLAB:-$here/build/bin/drumlab}
@@ -93,19 +99,30 @@ esac
 echo "drumlab: $scene, $(awk '/^particles/ {print $2; exit}' <<<"$info") particles, dt $dt s"
 echo "LAMMPS:  ${gen[*]:-(default drum)} ${lvars[*]}"
 printf '%-6s %-9s %-14s %14s  %s\n' round engine "method ($cores core(s))" "p-steps/s" load
-for ((r = 1; r <= rounds; ++r)); do
+lammps_round() {
   (cd "$work" && python3 "$peers/common/gen_drum.py" --prefix drum "${gen[@]}" >/dev/null &&
     if [ "$zperiodic" = 1 ]; then  # the box's z extent is the drum's depth (the period)
       sed -i -E "s|^\S+ \S+ zlo zhi|0.000000 $(awk '/^depth/ {print $3}' "$scene") zlo zhi|" \
         drum.lammps.data
     fi &&
-    "${launch[@]}" -in "$deck" -log log.lammps -var datafile drum.lammps.data \
+    "${pin[@]}" "${launch[@]}" -in "$deck" -log log.lammps -var datafile drum.lammps.data \
       -var nrot "$nrot" -var dumpevery 0 "${lvars[@]}" >screen.txt)
-  rate=$(python3 "$peers/common/parse_log.py" "$work/log.lammps" |
+  lammps_rate=$(python3 "$peers/common/parse_log.py" "$work/log.lammps" |
     awk '/run rotate/ {for (k = 1; k < NF; ++k) if ($k == "->") print $(k + 1)}')
-  printf '%-6s %-9s %-14s %14s  %s\n' "$r" LAMMPS "granular" "$rate" "$(cut -d' ' -f1 /proc/loadavg)"
-  out=$("$bin" bench throughput --scene "$scene" --methods "$method" --steps 600 --repeats 1 \
-    --threads "$cores" --cache "$cache" --out "$work/bench")
-  rate=$(awk -v m="$method" -v t="$cores" '$1 == m && $2 == t {print $4}' <<<"$out" | tail -1)
-  printf '%-6s %-9s %-14s %14s  %s\n' "$r" drumlab "$method" "$rate" "$(cut -d' ' -f1 /proc/loadavg)"
+  printf '%-6s %-9s %-14s %14s  %s\n' "$1" LAMMPS "granular" "$lammps_rate" "$(cut -d' ' -f1 /proc/loadavg)"
+}
+drumlab_round() {
+  local out
+  out=$("${pin[@]}" "$bin" bench throughput --scene "$scene" --methods "$method" --steps 600 \
+    --repeats 1 --threads "$cores" --cache "$cache" --out "$work/bench")
+  drumlab_rate=$(awk -v m="$method" -v t="$cores" '$1 == m && $2 == t {print $4}' <<<"$out" | tail -1)
+  printf '%-6s %-9s %-14s %14s  %s\n' "$1" drumlab "$method" "$drumlab_rate" "$(cut -d' ' -f1 /proc/loadavg)"
+}
+ratios=()
+for ((r = 1; r <= rounds; ++r)); do
+  if ((r % 2 == 1)); then lammps_round "$r"; drumlab_round "$r"; else drumlab_round "$r"; lammps_round "$r"; fi
+  ratios+=("$(awk -v d="$drumlab_rate" -v l="$lammps_rate" 'BEGIN {printf "%.2f", d / l}')")
+  printf '%-6s %-9s %-14s %14s\n' "$r" ratio "drumlab/LAMMPS" "${ratios[-1]}x"
 done
+printf 'drumlab / LAMMPS, %d round(s): %s; median %sx\n' "$rounds" "${ratios[*]}" \
+  "$(printf '%s\n' "${ratios[@]}" | sort -g | awk '{v[NR] = $1} END {print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2}')"
