@@ -196,7 +196,9 @@ void run_bench_throughput(const ThroughputOptions& opt) {
   fmt::print("scene             {} ({}), {} particles\n", name, opt.scene,
              rolling.state.particles.size());
   fmt::print("state             {}\n", rolling.origin);
-#ifdef DRUMLAB_AVX2_BUILD
+#if defined(DRUMLAB_AVX512_BUILD)
+  fmt::print("build             AVX-512 (-march=x86-64-v4; cmake -DDRUMLAB_AVX512=OFF: AVX2)\n");
+#elif defined(DRUMLAB_AVX2_BUILD)
   fmt::print("build             AVX2 + FMA (-march=x86-64-v3; cmake -DDRUMLAB_AVX2=OFF: SSE2)\n");
 #else
   fmt::print("build             x86-64 baseline (SSE2), no AVX2/FMA\n");

@@ -174,6 +174,12 @@ MachineLimits measure_machine_limits(bool quick) {
     m.peak_gflops_512 = best_rate(fma512_kernel, 16 * 8 * 2, seconds, trials) * 1e-9;
   }
 #endif
+#if defined(__AVX512F__)
+  // An AVX-512 build (-march=x86-64-v4): its own peak is the 512-bit one.
+  m.isa = "AVX-512 + FMA (512-bit)";
+  m.peak_gflops = m.peak_gflops_512;
+  m.peak_gflops_512 = 0.0;
+#endif
   // Working sets at half of each cache (the triad's three arrays), so that they stay in it; the
   // last level at 16 MiB at most, because a core reaches only its own part of a large shared L3.
   const std::size_t l1 = cache_bytes(_SC_LEVEL1_DCACHE_SIZE, 32 << 10) / 2;

@@ -3,8 +3,8 @@
 //
 // * Peak double-precision flops: independent fused multiply-adds on full vector registers (as
 //   many chains as fit the register file, enough to cover the FMA latency), with the
-//   instruction set the build uses (AVX2 + FMA for -march=x86-64-v3) and, when the CPU has it,
-//   AVX-512 for reference (the build does not use it).
+//   instruction set the build uses (AVX-512 for -march=x86-64-v4, AVX2 + FMA for x86-64-v3) and,
+//   in a build without AVX-512 on a CPU that has it, AVX-512 for reference.
 // * Divisions and square roots: the DEM kernels are full of them (unit normals, Hertz
 //   stiffness, the Coulomb limit), and they run on a separate, slower unit; a second compute roof.
 // * Bandwidth of one core from each level of the memory hierarchy: the STREAM triad
@@ -26,7 +26,7 @@ struct BandwidthLevel {
 struct MachineLimits {
   std::string isa;               ///< instruction set of the peak (the build's)
   double peak_gflops = 0.0;      ///< double precision, one core, the build's ISA
-  double peak_gflops_512 = 0.0;  ///< with AVX-512 if the CPU has it (0: not available)
+  double peak_gflops_512 = 0.0;  ///< AVX-512, when the CPU has it and the build does not
   double divsqrt_per_s = 0.0;    ///< double-precision divisions and square roots (results / s)
   std::vector<BandwidthLevel> levels;  ///< from the smallest working set to the largest
 
