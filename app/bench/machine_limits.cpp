@@ -48,12 +48,12 @@ double best_rate(Body&& body, double work_per_rep, double seconds, int trials) {
 volatile double g_sink = 0.0;  // keeps the kernels' results alive
 
 #if defined(__AVX2__) && defined(__FMA__)
-constexpr const char* kIsa = "AVX2 + FMA (256-bit)";
+[[maybe_unused]] constexpr const char* kIsa = "AVX2 + FMA (256-bit)";
 // 12 chains: enough to cover 2 FMA units of 4-cycle latency, and with the two constants 14 of the
 // 16 ymm registers (more chains would spill to memory and measure the spills).
 constexpr int kFmaChains = 12;
 /// 12 independent chains of 256-bit FMAs per iteration: 12 x 4 lanes x 2 flops.
-void fma_kernel(std::uint64_t reps) {
+[[maybe_unused]] void fma_kernel(std::uint64_t reps) {
   __m256d acc[kFmaChains];
   for (int c = 0; c < kFmaChains; ++c) acc[c] = _mm256_set1_pd(1.0 + 1e-3 * c);
   const __m256d a = _mm256_set1_pd(0.999999);
@@ -65,7 +65,7 @@ void fma_kernel(std::uint64_t reps) {
   for (int c = 1; c < kFmaChains; ++c) s = _mm256_add_pd(s, acc[c]);
   g_sink = _mm256_cvtsd_f64(s);
 }
-constexpr double kFlopsPerFmaRep = kFmaChains * 4 * 2;
+[[maybe_unused]] constexpr double kFlopsPerFmaRep = kFmaChains * 4 * 2;
 
 /// 8 independent chains, each a square root and a division per iteration (4 lanes each).
 void divsqrt_kernel(std::uint64_t reps) {
@@ -81,8 +81,8 @@ void divsqrt_kernel(std::uint64_t reps) {
 }
 constexpr double kDivSqrtPerRep = 8 * 4 * 2;
 #else
-constexpr const char* kIsa = "scalar/SSE2 (build without AVX2)";
-void fma_kernel(std::uint64_t reps) {
+[[maybe_unused]] constexpr const char* kIsa = "scalar/SSE2 (build without AVX2)";
+[[maybe_unused]] void fma_kernel(std::uint64_t reps) {
   double acc[16];
   for (int c = 0; c < 16; ++c) acc[c] = 1.0 + 1e-3 * c;
   for (std::uint64_t r = 0; r < reps; ++r) {
@@ -92,7 +92,7 @@ void fma_kernel(std::uint64_t reps) {
   for (double v : acc) s += v;
   g_sink = s;
 }
-constexpr double kFlopsPerFmaRep = 16 * 2;
+[[maybe_unused]] constexpr double kFlopsPerFmaRep = 16 * 2;
 void divsqrt_kernel(std::uint64_t reps) {
   double x[8];
   for (int c = 0; c < 8; ++c) x[c] = 2.0 + c;
@@ -166,19 +166,19 @@ MachineLimits measure_machine_limits(bool quick) {
   const double seconds = quick ? 0.02 : 0.2;
   const int trials = quick ? 2 : 5;
   MachineLimits m;
+  m.divsqrt_per_s = best_rate(divsqrt_kernel, kDivSqrtPerRep, seconds, trials);
+#if defined(__AVX512F__)
+  // An AVX-512 build (-march=x86-64-v4): its own peak is the 512-bit one.
+  m.isa = "AVX-512 + FMA (512-bit)";
+  m.peak_gflops = best_rate(fma512_kernel, 16 * 8 * 2, seconds, trials) * 1e-9;
+#else
   m.isa = kIsa;
   m.peak_gflops = best_rate(fma_kernel, kFlopsPerFmaRep, seconds, trials) * 1e-9;
-  m.divsqrt_per_s = best_rate(divsqrt_kernel, kDivSqrtPerRep, seconds, trials);
 #if defined(__x86_64__)
   if (__builtin_cpu_supports("avx512f")) {
     m.peak_gflops_512 = best_rate(fma512_kernel, 16 * 8 * 2, seconds, trials) * 1e-9;
   }
 #endif
-#if defined(__AVX512F__)
-  // An AVX-512 build (-march=x86-64-v4): its own peak is the 512-bit one.
-  m.isa = "AVX-512 + FMA (512-bit)";
-  m.peak_gflops = m.peak_gflops_512;
-  m.peak_gflops_512 = 0.0;
 #endif
   // Working sets at half of each cache (the triad's three arrays), so that they stay in it; the
   // last level at 16 MiB at most, because a core reaches only its own part of a large shared L3.
