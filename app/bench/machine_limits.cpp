@@ -122,6 +122,8 @@ constexpr double kDivSqrtPerRep = 8 * 2;
   _mm512_store_pd(lanes, s);
   g_sink = lanes[0] + lanes[7];
 }
+/// 16 independent chains of 512-bit FMAs per iteration: 16 x 8 lanes x 2 flops.
+constexpr double kFlopsPerFma512Rep = 16 * 8 * 2;
 #endif
 
 /// STREAM triad over three arrays of `n` doubles (reps passes).
@@ -170,13 +172,13 @@ MachineLimits measure_machine_limits(bool quick) {
 #if defined(__AVX512F__)
   // An AVX-512 build (-march=x86-64-v4): its own peak is the 512-bit one.
   m.isa = "AVX-512 + FMA (512-bit)";
-  m.peak_gflops = best_rate(fma512_kernel, 16 * 8 * 2, seconds, trials) * 1e-9;
+  m.peak_gflops = best_rate(fma512_kernel, kFlopsPerFma512Rep, seconds, trials) * 1e-9;
 #else
   m.isa = kIsa;
   m.peak_gflops = best_rate(fma_kernel, kFlopsPerFmaRep, seconds, trials) * 1e-9;
 #if defined(__x86_64__)
   if (__builtin_cpu_supports("avx512f")) {
-    m.peak_gflops_512 = best_rate(fma512_kernel, 16 * 8 * 2, seconds, trials) * 1e-9;
+    m.peak_gflops_512 = best_rate(fma512_kernel, kFlopsPerFma512Rep, seconds, trials) * 1e-9;
   }
 #endif
 #endif
