@@ -13,6 +13,7 @@
 #include "engine/contact/contact_model.hpp"
 #include "engine/contact/wall_candidates.hpp"
 #include "engine/drum.hpp"
+#include "engine/io/restart_check.hpp"
 #include "engine/periodic.hpp"
 #include "engine/search/verlet_list.hpp"
 #include "engine/spatial_order.hpp"
@@ -126,6 +127,7 @@ Simulation::Simulation(const SceneConfig& scene, SimulationState state)
     throw InputError("restart state: particle arrays of different lengths");
   }
   validate_particles();
+  check_restart_particles(scene_, particles_, "restart state");
   if (!(state.dt > 0.0) || !std::isfinite(state.dt) || !std::isfinite(state.time) ||
       !std::isfinite(state.drum_angle) || !std::isfinite(state.drum_omega)) {
     throw InputError("restart state: dt must be positive, time/angle/omega finite");

@@ -9,19 +9,13 @@
 
 #include "engine/contact/contact_kernel.hpp"
 #include "engine/periodic.hpp"
-#include "engine/scene/material_check.hpp"
+#include "engine/scene/scene_validation.hpp"
 #ifdef _OPENMP
 #include <omp.h>
 #endif
 
 namespace drumlab {
 namespace {
-
-void check_material(const Material& m, const char* what) {
-  if (const auto problem = material_problem(m)) {
-    throw InputError(fmt::format("{}.{}: {}", what, problem->key, problem->reason));
-  }
-}
 
 // Separation of i from j (m); with period > 0 the nearest image along z.
 [[gnu::always_inline]] inline Vec3 separation(const Particles& p, std::size_t i, Index j,
@@ -362,12 +356,6 @@ ContactLaw<Normal> make_law(const Normal& n, const MindlinTangential& t,
 
 NormalVariant make_normal(const SceneConfig& s, const Material& other, double restitution) {
   if (s.contact.normal == NormalLaw::linear) {
-    if (!(s.contact.linear_stiffness > 0.0) || !std::isfinite(s.contact.linear_stiffness)) {
-      throw InputError(
-          fmt::format("contact.linear_stiffness must be positive for the linear law, "
-                      "got {}",
-                      s.contact.linear_stiffness));
-    }
     return LinearSpringDashpot(s.contact.linear_stiffness, restitution);
   }
   return HertzNormal(effective_youngs_modulus(s.material, other),
@@ -398,8 +386,7 @@ void with_law(const ContactLaw<NormalVariant>& parts, bool tangential, bool roll
 }  // namespace
 
 ContactModel::ContactModel(const SceneConfig& scene) {
-  check_material(scene.material, "material");
-  check_material(scene.wall, "wall");
+  validate_laws(scene);
   pair_ = {make_normal(scene, scene.material, scene.material.restitution),
            MindlinTangential{scene.material.friction},
            RollingResistance{scene.material.rolling_friction}};
@@ -412,16 +399,6 @@ ContactModel::ContactModel(const SceneConfig& scene) {
   constexpr double kDegree = std::numbers::pi / 180.0;
   if (scene.liquid.enabled) {
     const LiquidConfig& l = scene.liquid;
-    if (!(l.surface_tension > 0.0) || !(l.wall_surface_tension > 0.0) ||
-        !(l.contact_angle_deg >= 0.0 && l.contact_angle_deg < 90.0) ||
-        !(l.wall_contact_angle_deg >= 0.0 && l.wall_contact_angle_deg < 90.0) ||
-        !(l.migration ? l.max_bridge_volume > 0.0 && l.liquid_content >= 0.0
-                      : l.bridge_volume > 0.0) ||
-        !(l.viscosity >= 0.0) || (l.viscosity > 0.0 && !(l.min_gap > 0.0))) {
-      throw InputError(
-          "liquid: surface_tension and the bridge volume must be > 0, contact angles in [0, 90), "
-          "liquid_content and viscosity >= 0, min_gap > 0 with viscosity");
-    }
     LiquidBridge& b = bridge_.emplace();
     b.pair = {l.surface_tension, l.contact_angle_deg * kDegree};
     b.wall = {l.wall_surface_tension, l.wall_contact_angle_deg * kDegree};
@@ -435,9 +412,6 @@ ContactModel::ContactModel(const SceneConfig& scene) {
     pair_state_size_ += LiquidBridge::kStateSize;
   }
   if (scene.cohesion.enabled) {
-    if (!(scene.cohesion.energy_density >= 0.0)) {
-      throw InputError("cohesion.energy_density must be >= 0 (J/m^3)");
-    }
     sjkr_ = SjkrCohesion{scene.cohesion.energy_density};
     sjkr_offset_ = pair_state_size_;
     pair_state_size_ += SjkrCohesion::kStateSize;

@@ -14,8 +14,8 @@
 #include <fmt/ranges.h>
 #include <toml++/toml.h>
 
-#include "engine/scene/material_check.hpp"
 #include "engine/scene/scene_config.hpp"
+#include "engine/scene/scene_validation.hpp"
 #include "engine/search/contact_search.hpp"
 
 namespace drumlab {
@@ -168,27 +168,6 @@ class Scope {
   const std::string* source_;
 };
 
-// ---- range checks --------------------------------------------------------------------------
-
-void check_positive(const Scope& s, std::string_view key, double v) {
-  if (!(v > 0.0)) s.fail(key, fmt::format("must be > 0, got {}", v));
-}
-
-void check_non_negative(const Scope& s, std::string_view key, double v) {
-  if (!(v >= 0.0)) s.fail(key, fmt::format("must be >= 0, got {}", v));
-}
-
-/// The material ranges of engine/scene/material_check.hpp, reported for the key of this table.
-void check_material_value(const Scope& s, std::string_view key, double v) {
-  if (const auto reason = material_value_problem(key, v)) s.fail(key, *reason);
-}
-
-double positive(const Scope& s, std::string_view key, std::string_view what) {
-  const double v = s.required_number(key, what);
-  check_positive(s, key, v);
-  return v;
-}
-
 // ---- sections --------------------------------------------------------------------------------
 
 /// Reads the keys of a material table; `base` supplies values for omitted keys when
@@ -199,20 +178,12 @@ Material read_material(const Scope& s, const Material& base, bool all_optional) 
     if (all_optional) return s.number_or(key, fallback);
     return s.required_number(key, what);
   };
-  if (!all_optional) {
-    m.density = get("density", m.density, "kg/m^3");
-    check_material_value(s, "density", m.density);
-  }
+  if (!all_optional) m.density = get("density", m.density, "kg/m^3");
   m.youngs_modulus = get("youngs_modulus", m.youngs_modulus, "Young's modulus E, Pa");
-  check_material_value(s, "youngs_modulus", m.youngs_modulus);
   m.poisson_ratio = get("poisson_ratio", m.poisson_ratio, "Poisson ratio nu");
-  check_material_value(s, "poisson_ratio", m.poisson_ratio);
   m.restitution = get("restitution", m.restitution, "coefficient of restitution e");
-  check_material_value(s, "restitution", m.restitution);
   m.friction = get("friction", m.friction, "sliding friction coefficient mu");
-  check_material_value(s, "friction", m.friction);
   m.rolling_friction = s.number_or("rolling_friction", all_optional ? m.rolling_friction : 0.0);
-  check_material_value(s, "rolling_friction", m.rolling_friction);
   return m;
 }
 
@@ -224,31 +195,18 @@ void read_particles(const Scope& root, SceneConfig& scene) {
     root.fail("particles",
               fmt::format("expected an array of tables [[particles]], got {}", type_name(*node)));
   }
-  if (array->empty()) root.fail("particles", "needs at least one [[particles]] class");
-  if (array->size() > 256) root.fail("particles", "at most 256 size classes are supported");
-  std::set<std::string> names;
-  double sum = 0.0;
   for (std::size_t i = 0; i < array->size(); ++i) {
     const Scope s(*(*array)[i].as_table(), fmt::format("particles[{}]", i), root.source());
     s.allow_only({"name", "radius", "volume_fraction"});
     ParticleClass c;
     c.name = s.string("name").value_or(fmt::format("class{}", i));
-    if (c.name.empty()) s.fail("name", "must not be empty");
-    if (!names.insert(c.name).second) s.fail("name", fmt::format("duplicate class '{}'", c.name));
-    c.radius = positive(s, "radius", "particle radius, m");
+    c.radius = s.required_number("radius", "particle radius, m");
     if (array->size() == 1) {
       c.volume_fraction = s.number_or("volume_fraction", 1.0);
     } else {
       c.volume_fraction = s.required_number("volume_fraction", "share of the solid volume");
     }
-    if (!(c.volume_fraction > 0.0 && c.volume_fraction <= 1.0)) {
-      s.fail("volume_fraction", fmt::format("must be in (0, 1], got {}", c.volume_fraction));
-    }
-    sum += c.volume_fraction;
     scene.classes.push_back(c);
-  }
-  if (std::abs(sum - 1.0) > 1e-6) {
-    root.fail("particles", fmt::format("volume_fraction values sum to {}, must sum to 1", sum));
   }
 }
 
@@ -256,25 +214,14 @@ void read_drum(const Scope& root, SceneConfig& scene) {
   const Scope s = root.required_table("drum");
   s.allow_only({"diameter", "depth", "omega", "rpm", "tilt_deg", "ends"});
   DrumConfig& d = scene.drum;
-  const double rmax = scene.max_radius();
-  d.diameter = positive(s, "diameter", "drum diameter D, m");
-  if (!(d.diameter > 2.0 * rmax)) {
-    s.fail("diameter", fmt::format("must exceed 2 * largest particle radius = {}", 2.0 * rmax));
-  }
-  d.depth = positive(s, "depth", "drum depth H along the axis, m");
-  if (!(d.depth > 2.0 * rmax)) {
-    s.fail("depth", fmt::format("must exceed 2 * largest particle radius = {}", 2.0 * rmax));
-  }
+  d.diameter = s.required_number("diameter", "drum diameter D, m");
+  d.depth = s.required_number("depth", "drum depth H along the axis, m");
   const auto omega = s.number("omega");
   const auto rpm = s.number("rpm");
   if (omega && rpm) s.fail("rpm", "give either omega (rad/s) or rpm, not both");
   if (!omega && !rpm) s.missing("omega", "drum angular velocity: omega in rad/s or rpm");
   d.omega = omega ? *omega : *rpm * 2.0 * std::numbers::pi / 60.0;
-  const double tilt_deg = s.number_or("tilt_deg", 0.0);
-  if (!(tilt_deg >= 0.0 && tilt_deg < 90.0)) {
-    s.fail("tilt_deg", fmt::format("must be in [0, 90) degrees, got {}", tilt_deg));
-  }
-  d.tilt = tilt_from_degrees(tilt_deg);
+  d.tilt = tilt_from_degrees(s.number_or("tilt_deg", 0.0));
   const std::string ends = s.string("ends").value_or("caps");
   if (ends == "caps") {
     d.ends = DrumEnds::caps;
@@ -298,7 +245,7 @@ void read_contact(const Scope& root, SceneConfig& scene) {
   } else if (normal == "linear") {
     scene.contact.normal = NormalLaw::linear;
     scene.contact.linear_stiffness =
-        positive(*s, "linear_stiffness", "normal spring stiffness of the linear law, N/m");
+        s->required_number("linear_stiffness", "normal spring stiffness of the linear law, N/m");
   } else {
     s->fail("normal", fmt::format("unknown value '{}' (valid: hertz, linear)", normal));
   }
@@ -309,34 +256,20 @@ void read_random_fill(const Scope& s, FillConfig& f) {
   const auto count = s.integer("count");
   if (!count) s.missing("count", "total number of particles");
   if (*count <= 0) s.fail("count", fmt::format("must be >= 1, got {}", *count));
-  if (*count > 100'000'000) s.fail("count", fmt::format("{} is more than 1e8 particles", *count));
   f.count = static_cast<std::size_t>(*count);
   f.volume_fraction = s.number_or("volume_fraction", f.volume_fraction);
-  if (!(f.volume_fraction > 0.0 && f.volume_fraction <= 0.55)) {
-    s.fail("volume_fraction",
-           fmt::format("must be in (0, 0.55] (loose random packing), got {}", f.volume_fraction));
-  }
   const std::int64_t seed = s.integer("seed").value_or(static_cast<std::int64_t>(f.seed));
   if (seed < 0) s.fail("seed", fmt::format("must be >= 0, got {}", seed));
   f.seed = static_cast<std::uint64_t>(seed);
   f.settle_time = s.number_or("settle_time", f.settle_time);
-  check_non_negative(s, "settle_time", f.settle_time);
 }
 
 void read_paper_fill(const Scope& s, SceneConfig& scene) {
   s.allow_only({"kind", "box"});
   const auto box = s.vec3("box");
   if (!box) s.missing("box", "[x, y, z] size of the packing box, m");
-  for (int k = 0; k < 3; ++k) {
-    if (!((*box)[k] > 0.0)) s.fail("box", "all three sizes must be > 0");
-  }
   scene.fill.box = *box;
   scene.fill.count = 0;
-  const auto& c = scene.classes;
-  if (c.size() != 3 || !(c[0].radius < c[1].radius && c[1].radius < c[2].radius)) {
-    s.fail("kind",
-           "\"paper_packing\" needs exactly three [[particles]] classes, small to large radius");
-  }
 }
 
 /// [fill] kind = "file": the CSV path relative to the scene file's folder. The file itself is read
@@ -345,7 +278,7 @@ void read_file_fill(const Scope& s, SceneConfig& scene) {
   s.allow_only({"kind", "file", "settle_time"});
   const auto file = s.string("file");
   if (!file) s.missing("file", "CSV of the initial particles x,y,z,r[,vx,vy,vz], m and m/s");
-  if (file->empty()) s.fail("file", "must not be empty");
+  if (file->empty()) s.fail("file", "must not be empty");  // before it becomes the folder
   std::filesystem::path path(*file);
   if (path.is_relative()) path = std::filesystem::path(scene.source).parent_path() / path;
   path = path.lexically_normal();
@@ -356,7 +289,6 @@ void read_file_fill(const Scope& s, SceneConfig& scene) {
   scene.fill.file = path;
   scene.fill.count = 0;  // known once the file is read
   scene.fill.settle_time = s.number_or("settle_time", scene.fill.settle_time);
-  check_non_negative(s, "settle_time", scene.fill.settle_time);
 }
 
 void read_fill(const Scope& root, SceneConfig& scene) {
@@ -386,27 +318,13 @@ void read_time(const Scope& root, SceneConfig& scene) {
   s->allow_only({"dt", "dt_factor", "duration", "revolutions"});
   TimeConfig& t = scene.time;
   if (s->has("dt") && s->has("dt_factor")) s->fail("dt_factor", "give either dt or dt_factor");
-  if (auto dt = s->number("dt")) {
-    check_positive(*s, "dt", *dt);
-    t.dt = *dt;
-  }
+  t.dt = s->number("dt");
   t.dt_factor = s->number_or("dt_factor", t.dt_factor);
-  if (!(t.dt_factor > 0.0 && t.dt_factor <= 1.0)) {
-    s->fail("dt_factor",
-            fmt::format("must be in (0, 1] (fraction of the Rayleigh time), got {}", t.dt_factor));
-  }
   if (s->has("duration") && s->has("revolutions")) {
     s->fail("revolutions", "give either duration or revolutions, not both");
   }
-  if (auto d = s->number("duration")) {
-    check_positive(*s, "duration", *d);
-    t.duration = *d;
-  }
-  if (auto r = s->number("revolutions")) {
-    check_positive(*s, "revolutions", *r);
-    if (scene.drum.omega == 0.0) s->fail("revolutions", "needs a turning drum (omega != 0)");
-    t.revolutions = *r;
-  }
+  t.duration = s->number("duration");
+  t.revolutions = s->number("revolutions");
   if (dynamic && !t.duration && !t.revolutions) {
     s->missing("duration", "run length: duration in s or revolutions");
   }
@@ -418,7 +336,6 @@ void read_output(const Scope& root, SceneConfig& scene) {
   if (!s) return;
   s->allow_only({"directory", "diagnostics_every"});
   scene.output.directory = s->string("directory").value_or(scene.output.directory);
-  if (scene.output.directory.empty()) s->fail("directory", "must not be empty");
   const std::int64_t every = s->integer("diagnostics_every").value_or(1000);
   if (every < 1) s->fail("diagnostics_every", fmt::format("must be >= 1, got {}", every));
   scene.output.diagnostics_every = static_cast<std::uint64_t>(every);
@@ -434,22 +351,10 @@ void read_liquid(const Scope& root, SceneConfig& scene) {
                  "wall_surface_tension", "wall_contact_angle_deg"});
   LiquidConfig& l = scene.liquid;
   l.enabled = true;
-  const auto angle = [&](std::string_view key, double fallback) {
-    const double v = s->number_or(key, fallback);
-    if (!(v >= 0.0 && v < 90.0)) s->fail(key, fmt::format("must be in [0, 90) degrees, got {}", v));
-    return v;
-  };
   l.surface_tension = s->required_number("surface_tension", "N/m, > 0");
-  if (!(l.surface_tension > 0.0)) {
-    s->fail("surface_tension", fmt::format("must be > 0 (N/m), got {}", l.surface_tension));
-  }
-  l.contact_angle_deg = angle("contact_angle_deg", 0.0);
+  l.contact_angle_deg = s->number_or("contact_angle_deg", 0.0);
   l.wall_surface_tension = s->number_or("wall_surface_tension", l.surface_tension);
-  if (!(l.wall_surface_tension > 0.0)) {
-    s->fail("wall_surface_tension",
-            fmt::format("must be > 0 (N/m), got {}", l.wall_surface_tension));
-  }
-  l.wall_contact_angle_deg = angle("wall_contact_angle_deg", l.contact_angle_deg);
+  l.wall_contact_angle_deg = s->number_or("wall_contact_angle_deg", l.contact_angle_deg);
   if (const toml::node* w = s->raw().get("wall_bridges")) {
     if (!w->as_boolean()) s->fail("wall_bridges", "expected true or false");
     l.wall_bridges = w->as_boolean()->get();
@@ -463,34 +368,16 @@ void read_liquid(const Scope& root, SceneConfig& scene) {
   if (!l.migration) {
     l.bridge_volume = s->required_number(
         "bridge_volume", "m^3, > 0; or liquid_content with max_bridge_volume for migration");
-    if (!(l.bridge_volume > 0.0)) {
-      s->fail("bridge_volume", fmt::format("must be > 0 (m^3), got {}", l.bridge_volume));
-    }
     for (const char* key : {"film_share", "max_bridge_volume"}) {
       if (s->has(key)) s->fail(key, "only with liquid_content (liquid migration)");
     }
   } else {
     l.liquid_content = s->required_number("liquid_content", "liquid / solid volume, >= 0");
-    if (!(l.liquid_content >= 0.0 && l.liquid_content <= 1.0)) {
-      s->fail("liquid_content", fmt::format("must be in [0, 1] (liquid volume / solid volume), "
-                                            "got {}",
-                                            l.liquid_content));
-    }
     l.film_share = s->number_or("film_share", 1.0);
-    if (!(l.film_share >= 0.0 && l.film_share <= 1.0)) {
-      s->fail("film_share", fmt::format("must be in [0, 1], got {}", l.film_share));
-    }
     l.max_bridge_volume = s->required_number("max_bridge_volume", "m^3, > 0");
-    if (!(l.max_bridge_volume > 0.0)) {
-      s->fail("max_bridge_volume", fmt::format("must be > 0 (m^3), got {}", l.max_bridge_volume));
-    }
   }
   l.viscosity = s->number_or("viscosity", 0.0);
-  check_non_negative(*s, "viscosity", l.viscosity);
   l.min_gap = s->number_or("min_gap", 0.0);
-  if (l.viscosity > 0.0 && !(l.min_gap > 0.0)) {
-    s->fail("min_gap", fmt::format("must be > 0 (m) with viscosity > 0, got {}", l.min_gap));
-  }
   if (l.viscosity == 0.0 && s->has("min_gap")) s->fail("min_gap", "only with viscosity > 0");
 }
 
@@ -503,7 +390,6 @@ void read_cohesion(const Scope& root, SceneConfig& scene) {
   if (model != "sjkr") s->fail("model", fmt::format("unknown model '{}' (valid: sjkr)", model));
   scene.cohesion.enabled = true;
   scene.cohesion.energy_density = s->required_number("energy_density", "k_c, J/m^3, >= 0");
-  check_non_negative(*s, "energy_density", scene.cohesion.energy_density);
 }
 
 void read_performance(const Scope& root, SceneConfig& scene) {
@@ -512,10 +398,6 @@ void read_performance(const Scope& root, SceneConfig& scene) {
   s->allow_only({"verlet_skin", "sort_every"});
   PerformanceConfig& p = scene.performance;
   p.verlet_skin = s->number_or("verlet_skin", p.verlet_skin);
-  if (!(p.verlet_skin > 0.0 && p.verlet_skin <= 10.0)) {
-    s->fail("verlet_skin", fmt::format("must be in (0, 10] (units of the smallest radius), got {}",
-                                       p.verlet_skin));
-  }
   const std::int64_t every =
       s->integer("sort_every").value_or(static_cast<std::int64_t>(p.sort_every));
   if (every < 0) s->fail("sort_every", fmt::format("must be >= 0 (0: never), got {}", every));
@@ -528,18 +410,46 @@ void read_top_level(const Scope& root, SceneConfig& scene) {
                    "output"});
   const std::string stem = std::filesystem::path(scene.source).stem().string();
   scene.name = root.string("name").value_or(stem.empty() ? "scene" : stem);
-  if (scene.name.empty()) root.fail("name", "must not be empty");
   scene.description = root.string("description").value_or("");
   scene.gravity = root.vec3("gravity").value_or(scene.gravity);
   scene.search_method = root.string("search").value_or(scene.search_method);
-  if (scene.search_method.empty()) root.fail("search", "must not be empty");
-  if (scene.search_method != "auto") {
-    try {
-      make_search(scene.search_method);
-    } catch (const InputError& e) {
-      root.fail("search", e.what());
+}
+
+/// The node of a dotted key ("drum.diameter", "particles[1].radius") in the file, or the deepest
+/// table on its path that exists (a key left at its default has no node of its own).
+const toml::node* node_of(const toml::table& root, std::string_view key) {
+  const toml::node* node = &root;
+  while (!key.empty() && node) {
+    const std::size_t dot = key.find('.');
+    std::string_view part = key.substr(0, dot);
+    key = dot == std::string_view::npos ? std::string_view() : key.substr(dot + 1);
+    std::optional<std::size_t> index;
+    if (const std::size_t open = part.find('['); open != std::string_view::npos) {
+      index = std::stoul(std::string(part.substr(open + 1)));
+      part = part.substr(0, open);
     }
+    const toml::table* table = node->as_table();
+    const toml::node* next = table ? table->get(part) : nullptr;
+    if (next && index) {
+      const toml::array* array = next->as_array();
+      next = array && *index < array->size() ? array->get(*index) : nullptr;
+    }
+    if (!next) return node == &root ? nullptr : node;
+    node = next;
   }
+  return node;
+}
+
+/// Throws the validation's problem as "<file>: <key>: <reason> (line N)".
+[[noreturn]] void fail_at(const toml::table& root, const std::string& source,
+                          const SceneProblem& problem) {
+  const toml::node* node = node_of(root, problem.key);
+  const auto line = node ? node->source().begin.line : 0;
+  if (line > 0) {
+    throw InputError(
+        fmt::format("{}: {}: {} (line {})", source, problem.key, problem.reason, line));
+  }
+  throw InputError(fmt::format("{}: {}: {}", source, problem.key, problem.reason));
 }
 
 SceneConfig build_scene(const toml::table& table, std::string_view source) {
@@ -566,6 +476,7 @@ SceneConfig build_scene(const toml::table& table, std::string_view source) {
   read_time(root, scene);
   read_performance(root, scene);
   read_output(root, scene);
+  if (const auto problem = scene_problem(scene)) fail_at(table, scene.source, *problem);
   return scene;
 }
 

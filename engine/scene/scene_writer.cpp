@@ -1,9 +1,12 @@
-// SceneConfig -> TOML text, in the order of the shipped scenes. Numbers go through fmt's shortest
-// round-trip format ("{}"): toml++ 3.3 built with GCC prints doubles with 17 significant digits
-// (TOML_FLOAT_CHARCONV is off), exact but unreadable (0.1 -> 0.10000000000000001). toml++ quotes
-// the strings; tests/unit/test_scene_writer.cpp parses every written scene back.
+// SceneConfig -> a toml++ table -> TOML text by toml++'s formatter (keys of a table in
+// alphabetical order, the tables after the top-level keys, [[particles]] last), then every float
+// reprinted as the shortest decimal that parses back to the same bits: Debian's libtomlplusplus.so
+// is built without TOML_FLOAT_CHARCONV and prints 17 significant digits (0.1 ->
+// 0.10000000000000001), which a scene written for people must not show.
+// tests/unit/test_scene_writer.cpp parses every written scene back.
 #include "engine/scene/scene_writer.hpp"
 
+#include <charconv>
 #include <cstdint>
 #include <limits>
 #include <sstream>
@@ -12,6 +15,7 @@
 #include <toml++/toml.h>
 
 #include "engine/io/atomic_file.hpp"
+#include "engine/scene/scene_validation.hpp"
 #include "engine/types.hpp"
 
 namespace drumlab {
@@ -19,31 +23,47 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// A double as a TOML float that parses back to the same bits.
-std::string number(double v) {
+/// A float token of toml++'s output ("0.90000000000000002", "1e-09", "2600.0") as the shortest
+/// decimal with the same bits; any other token (an integer, a boolean) as it is.
+std::string shortest_float(std::string_view token) {
+  if (token.find_first_of(".eEn") == std::string_view::npos) return std::string(token);
+  double v = 0.0;
+  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), v);
+  if (ec != std::errc() || end != token.data() + token.size()) return std::string(token);
   std::string text = fmt::format("{}", v);
   if (text.find_first_of(".eEn") == std::string::npos) text += ".0";  // "n": inf, nan
   return text;
 }
 
-/// A TOML basic string ("...", escapes as needed; UTF-8 kept), as in the shipped scenes.
-std::string string(std::string_view s) {
-  std::ostringstream out;
-  const toml::value<std::string> value{std::string(s)};
-  out << toml::toml_formatter(value, toml::format_flags::allow_unicode_strings);
-  return out.str();
+/// One line of toml++'s output with its float values reprinted: "key = VALUE" or
+/// "key = [ V, V, V ]" where the value is not a string (a string, always quoted on one line,
+/// is left alone), table headers and blank lines as they are.
+std::string shortest_floats(const std::string& line) {
+  const std::size_t eq = line.find(" = ");
+  if (eq == std::string::npos || line.compare(eq + 3, 1, "\"") == 0) return line;
+  std::string out = line.substr(0, eq + 3);
+  std::string_view value = std::string_view(line).substr(eq + 3);
+  const bool array = value.size() >= 4 && value.starts_with("[ ") && value.ends_with(" ]");
+  if (array) value = value.substr(2, value.size() - 4);
+  std::string items;
+  for (std::size_t begin = 0; begin <= value.size();) {
+    const std::size_t comma = std::min(value.find(", ", begin), value.size());
+    items += (begin == 0 ? "" : ", ") + shortest_float(value.substr(begin, comma - begin));
+    begin = comma + 2;
+  }
+  return out + (array ? "[ " + items + " ]" : items);
 }
 
-std::string vec3(const Vec3& v) {
-  return fmt::format("[{}, {}, {}]", number(v.x()), number(v.y()), number(v.z()));
+toml::array vec3(const Vec3& v) {
+  return toml::array{v.x(), v.y(), v.z()};
 }
 
 /// A TOML integer (int64); throws for values the loader could not read back.
-std::string integer(std::uint64_t v, std::string_view key) {
+std::int64_t integer(std::uint64_t v, std::string_view key) {
   if (v > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
     throw InputError(fmt::format("{}: {} does not fit a TOML integer", key, v));
   }
-  return fmt::format("{}", v);
+  return static_cast<std::int64_t>(v);
 }
 
 /// `file` relative to `folder` when both resolve under one root, else absolute.
@@ -56,171 +76,150 @@ fs::path relative_path(const fs::path& file, const fs::path& folder) {
   return rel.empty() ? target : rel;
 }
 
-class Writer {
- public:
-  void line(std::string_view key, const std::string& value) {
-    out_ += fmt::format("{} = {}\n", key, value);
-  }
-  void table(std::string_view header) { out_ += fmt::format("\n{}\n", header); }
-  void append(const std::string& text) { out_ += text; }
-  std::string text() && { return std::move(out_); }
-
- private:
-  std::string out_;
-};
-
-void write_top_level(Writer& w, const SceneConfig& s) {
-  w.line("name", string(s.name));
-  w.line("description", string(s.description));
-  w.line("gravity", vec3(s.gravity));
-  w.line("search", string(s.search_method));
+toml::table drum_table(const DrumConfig& d) {
+  return toml::table{{"diameter", d.diameter},
+                     {"depth", d.depth},
+                     {"omega", d.omega},
+                     {"tilt_deg", tilt_in_degrees(d.tilt)},
+                     {"ends", d.ends == DrumEnds::periodic ? "periodic" : "caps"}};
 }
 
-void write_drum(Writer& w, const DrumConfig& d) {
-  w.table("[drum]");
-  w.line("diameter", number(d.diameter));
-  w.line("depth", number(d.depth));
-  w.line("omega", number(d.omega));
-  w.line("tilt_deg", number(tilt_in_degrees(d.tilt)));
-  w.line("ends", string(d.ends == DrumEnds::periodic ? "periodic" : "caps"));
-}
-
-void write_particles(Writer& w, const std::vector<ParticleClass>& classes) {
+toml::array particles_array(const std::vector<ParticleClass>& classes) {
+  toml::array out;
   for (const ParticleClass& c : classes) {
-    w.table("[[particles]]");
-    w.line("name", string(c.name));
-    w.line("radius", number(c.radius));
-    w.line("volume_fraction", number(c.volume_fraction));
+    out.push_back(toml::table{
+        {"name", c.name}, {"radius", c.radius}, {"volume_fraction", c.volume_fraction}});
   }
+  return out;
 }
 
-void write_materials(Writer& w, const Material& m, const Material& wall) {
-  w.table("[material]");
-  w.line("density", number(m.density));
-  w.line("youngs_modulus", number(m.youngs_modulus));
-  w.line("poisson_ratio", number(m.poisson_ratio));
-  w.line("restitution", number(m.restitution));
-  w.line("friction", number(m.friction));
-  w.line("rolling_friction", number(m.rolling_friction));
+toml::table material_table(const Material& m) {
+  return toml::table{{"density", m.density},
+                     {"youngs_modulus", m.youngs_modulus},
+                     {"poisson_ratio", m.poisson_ratio},
+                     {"restitution", m.restitution},
+                     {"friction", m.friction},
+                     {"rolling_friction", m.rolling_friction}};
+}
 
-  Writer keys;  // the [wall] keys that differ from [material] (each defaults to it)
+/// The [wall] keys that differ from [material] (each defaults to it); empty when none does.
+toml::table wall_table(const Material& wall, const Material& m) {
+  toml::table t;
   auto differing = [&](std::string_view key, double value, double material_value) {
-    if (value != material_value) keys.line(key, number(value));
+    if (value != material_value) t.insert(key, value);
   };
   differing("youngs_modulus", wall.youngs_modulus, m.youngs_modulus);
   differing("poisson_ratio", wall.poisson_ratio, m.poisson_ratio);
   differing("restitution", wall.restitution, m.restitution);
   differing("friction", wall.friction, m.friction);
   differing("rolling_friction", wall.rolling_friction, m.rolling_friction);
-  const std::string wall_keys = std::move(keys).text();
-  if (!wall_keys.empty()) {
-    w.table("[wall]");
-    w.append(wall_keys);
-  }
+  return t;
 }
 
-void write_contact(Writer& w, const ContactConfig& c) {
-  w.table("[contact]");
+toml::table contact_table(const ContactConfig& c) {
   if (c.normal == NormalLaw::linear) {
-    w.line("normal", string("linear"));
-    w.line("linear_stiffness", number(c.linear_stiffness));
-  } else {
-    w.line("normal", string("hertz"));
+    return toml::table{{"normal", "linear"}, {"linear_stiffness", c.linear_stiffness}};
   }
+  return toml::table{{"normal", "hertz"}};
 }
 
-void write_liquid(Writer& w, const LiquidConfig& l) {
-  if (!l.enabled) return;
-  w.table("[liquid]");
-  w.line("surface_tension", number(l.surface_tension));
-  w.line("contact_angle_deg", number(l.contact_angle_deg));
+toml::table liquid_table(const LiquidConfig& l) {
+  toml::table t{{"surface_tension", l.surface_tension},
+                {"contact_angle_deg", l.contact_angle_deg},
+                {"wall_bridges", l.wall_bridges},
+                {"wall_surface_tension", l.wall_surface_tension},
+                {"wall_contact_angle_deg", l.wall_contact_angle_deg}};
   if (l.migration) {
-    w.line("liquid_content", number(l.liquid_content));
-    w.line("film_share", number(l.film_share));
-    w.line("max_bridge_volume", number(l.max_bridge_volume));
+    t.insert("liquid_content", l.liquid_content);
+    t.insert("film_share", l.film_share);
+    t.insert("max_bridge_volume", l.max_bridge_volume);
   } else {
-    w.line("bridge_volume", number(l.bridge_volume));
+    t.insert("bridge_volume", l.bridge_volume);
   }
   if (l.viscosity > 0.0) {
-    w.line("viscosity", number(l.viscosity));
-    w.line("min_gap", number(l.min_gap));
+    t.insert("viscosity", l.viscosity);
+    t.insert("min_gap", l.min_gap);
   }
-  w.line("wall_bridges", l.wall_bridges ? "true" : "false");
-  w.line("wall_surface_tension", number(l.wall_surface_tension));
-  w.line("wall_contact_angle_deg", number(l.wall_contact_angle_deg));
+  return t;
 }
 
-void write_cohesion(Writer& w, const CohesionConfig& c) {
-  if (!c.enabled) return;
-  w.table("[cohesion]");
-  w.line("model", string("sjkr"));
-  w.line("energy_density", number(c.energy_density));
-}
-
-void write_fill(Writer& w, const FillConfig& f, const fs::path& folder) {
-  w.table("[fill]");
+toml::table fill_table(const FillConfig& f, const fs::path& folder) {
   switch (f.kind) {
     case FillKind::random:
-      w.line("kind", string("random"));
-      w.line("count", integer(f.count, "fill.count"));
-      w.line("volume_fraction", number(f.volume_fraction));
-      w.line("seed", integer(f.seed, "fill.seed"));
-      w.line("settle_time", number(f.settle_time));
-      break;
+      return toml::table{{"kind", "random"},
+                         {"count", integer(f.count, "fill.count")},
+                         {"volume_fraction", f.volume_fraction},
+                         {"seed", integer(f.seed, "fill.seed")},
+                         {"settle_time", f.settle_time}};
     case FillKind::file:
-      w.line("kind", string("file"));
-      w.line("file", string(relative_path(f.file, folder).generic_string()));
-      w.line("settle_time", number(f.settle_time));
-      break;
+      return toml::table{{"kind", "file"},
+                         {"file", relative_path(f.file, folder).generic_string()},
+                         {"settle_time", f.settle_time}};
     case FillKind::paper_packing:
-      w.line("kind", string("paper_packing"));
-      w.line("box", vec3(f.box));
       break;
   }
+  return toml::table{{"kind", "paper_packing"}, {"box", vec3(f.box)}};
 }
 
-void write_time(Writer& w, const TimeConfig& t) {
-  w.table("[time]");
+toml::table time_table(const TimeConfig& t) {
+  toml::table out;
   if (t.dt) {
-    w.line("dt", number(*t.dt));
+    out.insert("dt", *t.dt);
   } else {
-    w.line("dt_factor", number(t.dt_factor));
+    out.insert("dt_factor", t.dt_factor);
   }
-  if (t.duration) w.line("duration", number(*t.duration));
-  if (t.revolutions) w.line("revolutions", number(*t.revolutions));
+  if (t.duration) out.insert("duration", *t.duration);
+  if (t.revolutions) out.insert("revolutions", *t.revolutions);
+  return out;
 }
 
-void write_performance(Writer& w, const PerformanceConfig& p) {
-  w.table("[performance]");
-  w.line("verlet_skin", number(p.verlet_skin));
-  w.line("sort_every", integer(p.sort_every, "performance.sort_every"));
-}
-
-void write_output(Writer& w, const SceneConfig& s) {
-  w.table("[output]");
+toml::table output_table(const SceneConfig& s) {
+  toml::table t{
+      {"diagnostics_every", integer(s.output.diagnostics_every, "output.diagnostics_every")}};
   if (s.output.directory != default_output_directory(s.name)) {
-    w.line("directory", string(s.output.directory));
+    t.insert("directory", s.output.directory);
   }
-  w.line("diagnostics_every", integer(s.output.diagnostics_every, "output.diagnostics_every"));
+  return t;
+}
+
+toml::table scene_table(const SceneConfig& s, const fs::path& folder) {
+  toml::table t{
+      {"name", s.name},
+      {"description", s.description},
+      {"gravity", vec3(s.gravity)},
+      {"search", s.search_method},
+      {"drum", drum_table(s.drum)},
+      {"particles", particles_array(s.classes)},
+      {"material", material_table(s.material)},
+      {"contact", contact_table(s.contact)},
+      {"fill", fill_table(s.fill, folder)},
+      {"time", time_table(s.time)},
+      {"performance",
+       toml::table{{"verlet_skin", s.performance.verlet_skin},
+                   {"sort_every", integer(s.performance.sort_every, "performance.sort_every")}}},
+      {"output", output_table(s)}};
+  if (toml::table wall = wall_table(s.wall, s.material); !wall.empty()) {
+    t.insert("wall", std::move(wall));
+  }
+  if (s.liquid.enabled) t.insert("liquid", liquid_table(s.liquid));
+  if (s.cohesion.enabled) {
+    t.insert("cohesion",
+             toml::table{{"model", "sjkr"}, {"energy_density", s.cohesion.energy_density}});
+  }
+  return t;
 }
 
 }  // namespace
 
 std::string scene_to_toml(const SceneConfig& scene, const fs::path& folder) {
-  Writer w;
-  w.append("# Written by drumlab (engine/scene/scene_writer.cpp); keys: scenes/README.md.\n\n");
-  write_top_level(w, scene);
-  write_drum(w, scene.drum);
-  write_particles(w, scene.classes);
-  write_materials(w, scene.material, scene.wall);
-  write_contact(w, scene.contact);
-  write_liquid(w, scene.liquid);
-  write_cohesion(w, scene.cohesion);
-  write_fill(w, scene.fill, folder);
-  write_time(w, scene.time);
-  write_performance(w, scene.performance);
-  write_output(w, scene);
-  return std::move(w).text();
+  std::ostringstream toml_text;
+  toml_text << toml::toml_formatter(scene_table(scene, folder),
+                                    toml::format_flags::allow_unicode_strings);
+  std::string out =
+      "# Written by drumlab (engine/scene/scene_writer.cpp); keys: scenes/README.md.\n\n";
+  std::istringstream lines(std::move(toml_text).str());
+  for (std::string line; std::getline(lines, line);) out += shortest_floats(line) + '\n';
+  return out;
 }
 
 std::string scene_to_toml(const SceneConfig& scene) {
@@ -228,6 +227,7 @@ std::string scene_to_toml(const SceneConfig& scene) {
 }
 
 void save_scene(const SceneConfig& scene, const fs::path& file) {
+  validate(scene, fmt::format("{} not saved", file.string()));
   std::string text;
   try {
     text = scene_to_toml(scene, file.parent_path());

@@ -9,6 +9,7 @@
 
 #include "engine/fill/file_fill.hpp"
 #include "engine/io/checkpoint.hpp"
+#include "engine/io/restart_check.hpp"
 #include "engine/threads.hpp"
 
 namespace drumlab {
@@ -63,6 +64,7 @@ RunSession::RunSession(SceneConfig scene, SessionOptions options)
     return;
   }
   Checkpoint c = read_checkpoint(options_.restart);
+  check_restart_particles(scene_, c.state.particles, options_.restart);
   restart_ = RestartInfo{options_.restart, c.scene_name, options_.dt_factor > 0.0};
   if (!options_.method.empty()) {
     auto_choice_ = resolve_auto_search(scene_, c.state.particles, c.state.dt);

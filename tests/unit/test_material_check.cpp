@@ -30,7 +30,7 @@ TEST(MaterialCheck, ContactModelNamesTheTableAndKey) {
     ContactModel model(s);
     FAIL() << "accepted a negative Young's modulus";
   } catch (const InputError& e) {
-    EXPECT_STREQ(e.what(), "wall.youngs_modulus: must be > 0, got -5");
+    EXPECT_STREQ(e.what(), "scene: wall.youngs_modulus: must be > 0, got -5");
   }
 }
 
