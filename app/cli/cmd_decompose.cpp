@@ -30,7 +30,7 @@ namespace {
 
 struct DecomposeOptions {
   std::string scene;
-  std::string ranks;
+  std::vector<int> ranks;
   std::string weight = "count";
   std::string method;
   bool no_settle = false;
@@ -42,28 +42,6 @@ struct DecomposeOptions {
   bool per_rank = false;
   std::string restart;  ///< decompose a checkpoint's state instead of a fresh fill
 };
-
-/// "2,4,8" -> {2, 4, 8}; throws InputError naming --ranks for anything but whole numbers >= 1.
-std::vector<int> parse_ranks(const std::string& text) {
-  std::vector<int> ranks;
-  std::size_t start = 0;
-  while (start <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', start), text.size());
-    const std::string item = text.substr(start, comma - start);
-    int value = 0;
-    const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), value);
-    if (item.empty() || ec != std::errc() || end != item.data() + item.size()) {
-      throw InputError(fmt::format(
-          "--ranks: '{}' is not a whole number (give rank counts >= 1, e.g. 2,4,8)", item));
-    }
-    if (value < 1 || value > 1'000'000) {
-      throw InputError(fmt::format("--ranks: {} is not a rank count in [1, 1000000]", value));
-    }
-    ranks.push_back(value);
-    start = comma + 1;
-  }
-  return ranks;
-}
 
 struct Stat {
   double min = 0.0, mean = 0.0, max = 0.0;
@@ -131,7 +109,7 @@ double max_over_mean(const std::vector<double>& v) {
 }
 
 void decompose(const DecomposeOptions& opt) {
-  const std::vector<int> ranks = parse_ranks(opt.ranks);
+  const std::vector<int>& ranks = opt.ranks;
   if (!opt.method.empty() && opt.method != "auto") {
     try {
       make_search(opt.method);
@@ -266,7 +244,10 @@ void add_decompose_command(CLI::App& app) {
       "MPI domain decomposition on paper: RCB boxes, ghosts, bytes per step and the "
       "communication-to-computation ratio on the scene's real fill");
   cmd->add_option("scene", opt->scene, "scene file (TOML)")->required();
-  cmd->add_option("--ranks", opt->ranks, "rank counts, comma-separated (e.g. 2,4,8)")->required();
+  cmd->add_option("--ranks", opt->ranks, "rank counts, comma-separated (e.g. 2,4,8)")
+      ->required()
+      ->delimiter(',')
+      ->check(CLI::Range(1, 1'000'000));
   cmd->add_option("--weight", opt->weight,
                   "balance by particle count, or by work: 1 + pairs tested per particle")
       ->check(CLI::IsMember({"count", "pairs"}));

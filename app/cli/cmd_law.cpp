@@ -19,7 +19,7 @@ namespace {
 
 struct LawOptions {
   std::string scene;
-  std::string pair;
+  std::vector<std::string> pair;  ///< two classes, or none
   std::string wall;
   std::string out;
   double overlap = -1.0;
@@ -49,10 +49,8 @@ void run_law(const LawOptions& o) {
     probe.wall = true;
     probe.class_a = class_index(scene, o.wall);
   } else if (!o.pair.empty()) {
-    const auto comma = o.pair.find(',');
-    if (comma == std::string::npos) throw InputError("law: --pair takes two classes: A,B");
-    probe.class_a = class_index(scene, o.pair.substr(0, comma));
-    probe.class_b = class_index(scene, o.pair.substr(comma + 1));
+    probe.class_a = class_index(scene, o.pair[0]);
+    probe.class_b = class_index(scene, o.pair[1]);
   }
   const LawCurve curve = probe_law(scene, probe);
   const std::filesystem::path dir(o.out);
@@ -92,7 +90,9 @@ void add_law_command(CLI::App& app) {
       "law",
       "A contact law of the scene on two bodies: approach, overlap, pull apart past rupture");
   cmd->add_option("scene", o->scene, "scene file (TOML)")->required();
-  cmd->add_option("--pair", o->pair, "two particle classes A,B (names or indices; default 0,0)");
+  cmd->add_option("--pair", o->pair, "two particle classes A,B (names or indices; default 0,0)")
+      ->delimiter(',')
+      ->expected(2);
   cmd->add_option("--wall", o->wall, "one class against the drum mantle");
   cmd->add_option("--overlap", o->overlap,
                   "deepest overlap, m (default: 2 % of the smaller radius)");

@@ -33,8 +33,11 @@ int main(int argc, char** argv) {
 #endif
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::Success& e) {  // --help
     return app.exit(e);
+  } catch (const CLI::ParseError& e) {  // a bad option or value: one line, exit 2 as bad input
+    fmt::print(stderr, "drumlab: error: {}\n", e.what());
+    return 2;
   } catch (const drumlab::InputError& e) {
     fmt::print(stderr, "drumlab: error: {}\n", e.what());
     return 2;

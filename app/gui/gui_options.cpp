@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "engine/scene/scene_validation.hpp"
 #include "engine/search/search_methods.hpp"
 
 namespace drumlab::gui {
@@ -34,58 +35,69 @@ ScheduledSwitch parse_switch_at(const std::string& text) {
   return s;
 }
 
-void apply_edit(SceneConfig& scene, const std::string& edit) {
-  const auto eq = edit.find('=');
-  const std::string key = edit.substr(0, eq);
+namespace {
+
+/// The scene's field an --edit KEY names (omega, friction, restitution, wall_friction,
+/// fill_fraction, settle_time), or nullptr.
+double* edit_field(SceneConfig& scene, std::string_view key) {
+  if (key == "omega") return &scene.drum.omega;
+  if (key == "friction") return &scene.material.friction;
+  if (key == "restitution") return &scene.material.restitution;
+  if (key == "wall_friction") return &scene.wall.friction;
+  if (key == "fill_fraction") return &scene.fill.volume_fraction;
+  if (key == "settle_time") return &scene.fill.settle_time;
+  return nullptr;
+}
+
+/// The edit's value as a whole number >= 0, or an InputError naming the edit and the scene key.
+std::uint64_t whole_number(std::string_view text, const std::string& edit, std::string_view key) {
+  std::uint64_t v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size() || text.empty()) {
+    throw InputError(
+        fmt::format("--edit '{}': {}: must be a whole number >= 0, got '{}'", edit, key, text));
+  }
+  return v;
+}
+
+double number(std::string_view text, const std::string& edit) {
   double v = 0.0;
-  if (eq != std::string::npos) {
-    const char* first = edit.data() + eq + 1;
-    const char* last = edit.data() + edit.size();
-    const auto [end, ec] = std::from_chars(first, last, v);
-    if (ec != std::errc() || end != last || first == last) {
-      throw InputError(fmt::format("--edit: '{}' is not KEY=NUMBER", edit));
-    }
-  } else {
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size() || text.empty()) {
     throw InputError(fmt::format("--edit: '{}' is not KEY=NUMBER", edit));
   }
-  if (key == "omega") {
-    scene.drum.omega = v;
+  return v;
+}
+
+}  // namespace
+
+void apply_edit(SceneConfig& scene, const std::string& edit) {
+  const auto eq = edit.find('=');
+  if (eq == std::string::npos) {
+    throw InputError(fmt::format("--edit: '{}' is not KEY=NUMBER", edit));
+  }
+  const std::string key = edit.substr(0, eq);
+  const std::string_view text = std::string_view(edit).substr(eq + 1);
+  if (key == "count") {
+    const std::uint64_t count = whole_number(text, edit, "fill.count");
+    if (count > 100'000'000) {  // before it becomes a size_t anywhere else
+      throw InputError(
+          fmt::format("--edit '{}': fill.count: {} is more than 1e8 particles", edit, count));
+    }
+    scene.fill.count = static_cast<std::size_t>(count);
+  } else if (key == "seed") {
+    scene.fill.seed = whole_number(text, edit, "fill.seed");
+  } else if (double* field = edit_field(scene, key)) {
+    *field = number(text, edit);
   } else if (key == "rpm") {
-    scene.drum.omega = v * 2.0 * std::numbers::pi / 60.0;
-  } else if (key == "friction") {
-    scene.material.friction = v;
-  } else if (key == "restitution") {
-    scene.material.restitution = v;
-  } else if (key == "wall_friction") {
-    scene.wall.friction = v;
-  } else if (key == "count" && v >= 0.0) {
-    scene.fill.count = static_cast<std::size_t>(v);
-  } else if (key == "fill_fraction") {
-    scene.fill.volume_fraction = v;
-  } else if (key == "seed" && v >= 0.0) {
-    scene.fill.seed = static_cast<std::uint64_t>(v);
-  } else if (key == "settle_time") {
-    scene.fill.settle_time = v;
+    scene.drum.omega = number(text, edit) * 2.0 * std::numbers::pi / 60.0;
   } else {
     throw InputError(fmt::format(
         "--edit: unknown key in '{}' (omega, rpm, friction, restitution, wall_friction, count, "
         "fill_fraction, seed, settle_time)",
         edit));
   }
-}
-
-std::array<double, 2> parse_pair(const std::string& text, const std::string& flag) {
-  std::array<double, 2> v{};
-  const auto comma = text.find(',');
-  const char* bounds[3] = {text.data(), text.data() + std::min(comma, text.size()),
-                           text.data() + text.size()};
-  for (std::size_t k = 0; k < 2 && comma != std::string::npos; ++k) {
-    const char* first = bounds[k] + (k == 1 ? 1 : 0);
-    const auto [end, ec] = std::from_chars(first, bounds[k + 1], v[k]);
-    if (ec != std::errc() || end != bounds[k + 1] || first == bounds[k + 1]) break;
-    if (k == 1) return v;
-  }
-  throw InputError(fmt::format("{}: '{}' is not two numbers A,B", flag, text));
+  validate(scene, fmt::format("--edit '{}'", edit));
 }
 
 }  // namespace drumlab::gui

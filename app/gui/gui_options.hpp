@@ -44,12 +44,11 @@ struct GuiOptions {
   bool inset = true;  ///< the focus inset (a second view framing the focus particle's search)
 };
 
-/// "A,B" -> {A, B}; throws InputError naming `flag` otherwise.
-std::array<double, 2> parse_pair(const std::string& text, const std::string& flag);
-
 /// One edit of the scene panel's fields, as "KEY=VALUE": omega (rad/s), rpm, friction,
-/// restitution, wall_friction, count, fill_fraction, seed, settle_time. Throws InputError naming
-/// --edit for an unknown key or a value that is not a number.
+/// restitution, wall_friction, count, fill_fraction, seed, settle_time; then the whole scene is
+/// validated (engine/scene/scene_validation.hpp). Throws InputError naming --edit and the scene
+/// key for an unknown key, a value that is not a number (count and seed: a whole number) or a
+/// value out of its range.
 void apply_edit(SceneConfig& scene, const std::string& edit);
 
 /// "K:METHOD" -> the switch; throws InputError naming --switch-at otherwise (and for an unknown

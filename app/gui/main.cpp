@@ -1,8 +1,10 @@
 // drumlab-gui: the interactive workbench (GLFW + Dear ImGui + the VTK drum view). Headless driving
 // for tests and benchmarks: --frames N --screenshot FILE.png, --bench. Exit codes: 0 success,
 // 2 bad input (one line), 1 anything else (no display, a failed run).
+#include <charconv>
 #include <cstdio>
 #include <exception>
+#include <limits>
 
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
@@ -21,7 +23,9 @@ int main(int argc, char** argv) {
   app.add_option("scene", o.scene, "scene file (default: scenes/drum_demo.toml)");
   app.add_option("--method", o.method,
                  "search method (auto, brute, m1..m5, mlgrid, verlet[:GRID])");
-  app.add_option("--focus", focus, "stable id of the particle whose search is shown, or auto");
+  app.add_option("--focus", focus, "stable id of the particle whose search is shown, or auto")
+      ->check(CLI::IsMember({"auto"}) |
+              CLI::Range(drumlab::Index{0}, std::numeric_limits<drumlab::Index>::max()));
   app.add_option("--switch-at", switch_at, "K:METHOD: switch the search after K turning steps");
   app.add_option("--color-by", o.color_by, "size, speed, omega, id, coordination, ...");
   app.add_option("--camera", o.camera, "axis or iso");
@@ -45,14 +49,17 @@ int main(int argc, char** argv) {
   app.add_option("--teach-cells", o.teach_cells, "cells of the walk shown (default: all)");
   app.add_option("--edit", o.edits, "KEY=VALUE: edit the scene panel's field (repeatable)");
   app.add_option("--save-scene", o.save_scene, "headless: save the edited scene as TOML");
-  std::string orbit, pick;
-  app.add_option("--orbit", orbit,
-                 "headless: AZ,EL degrees: turn the camera before the last frame");
+  std::vector<double> orbit, pick;
+  app.add_option("--orbit", orbit, "headless: AZ,EL degrees: turn the camera before the last frame")
+      ->delimiter(',')
+      ->expected(2);
   app.add_option("--zoom", o.zoom, "headless: zoom the camera by this factor before the last frame")
       ->check(CLI::Range(0.01, 100.0));
   app.add_option("--pick", pick,
                  "headless: X,Y: click the window pixel (column, row from the top) to focus the "
-                 "front-most particle there, before the last frame");
+                 "front-most particle there, before the last frame")
+      ->delimiter(',')
+      ->expected(2);
   app.add_flag("!--no-inset", o.inset, "no focus inset");
   app.add_flag("--bench", o.bench, "print frames/s paused and running, and particle-steps/s");
   app.add_option("--bench-frames", bench_frames, "frames per --bench measurement");
@@ -66,20 +73,12 @@ int main(int argc, char** argv) {
   }
   try {
     if (!switch_at.empty()) o.switch_at = drumlab::gui::parse_switch_at(switch_at);
-    if (!orbit.empty()) o.orbit = drumlab::gui::parse_pair(orbit, "--orbit");
-    if (!pick.empty()) o.pick = drumlab::gui::parse_pair(pick, "--pick");
-    if (!focus.empty() && focus != "auto") {
-      std::size_t end = 0;
-      unsigned long id = 0;
-      try {
-        id = std::stoul(focus, &end);
-      } catch (const std::exception&) {
-        end = 0;
-      }
-      if (end != focus.size()) {
-        throw drumlab::InputError(fmt::format("--focus: '{}' is neither an id nor auto", focus));
-      }
-      o.focus_id = static_cast<drumlab::Index>(id);
+    if (!orbit.empty()) o.orbit = std::array<double, 2>{orbit[0], orbit[1]};
+    if (!pick.empty()) o.pick = std::array<double, 2>{pick[0], pick[1]};
+    if (!focus.empty() && focus != "auto") {  // an id in range: CLI11 checked it
+      drumlab::Index id = 0;
+      std::from_chars(focus.data(), focus.data() + focus.size(), id);
+      o.focus_id = id;
     }
     o.focus = focus;
     if ((!o.screenshot.empty() || !o.checkpoint.empty() || !o.save_scene.empty() || o.orbit ||
