@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <map>
@@ -18,6 +19,12 @@ namespace drumlab::test {
 
 bool have_xvfb() {
   return std::string(DRUMLAB_XVFB_RUN).size() > 0;
+}
+
+void expect_one_line_error(const GuiRun& r, const std::string& names) {
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_NE(r.output.find(names), std::string::npos) << r.output;
 }
 
 GuiRun run_gui(const std::string& args, bool window) {

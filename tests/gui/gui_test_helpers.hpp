@@ -21,6 +21,8 @@ struct GuiRun {
 
 /// Runs drumlab-gui with `args`; `window`: under xvfb-run (the caller skips where it is absent).
 GuiRun run_gui(const std::string& args, bool window);
+/// Expects bad input: exit code 2, one line of output, and `names` (the flag, key or file) in it.
+void expect_one_line_error(const GuiRun& r, const std::string& names);
 /// True where ctest found xvfb-run at configure time.
 bool have_xvfb();
 /// A fresh empty directory under the temporary directory, unique to this process and removed when

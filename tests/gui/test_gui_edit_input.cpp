@@ -12,12 +12,6 @@
 namespace drumlab::test {
 namespace {
 
-void expect_one_line_error(const GuiRun& r, const std::string& names) {
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
-  EXPECT_NE(r.output.find(names), std::string::npos) << r.output;
-}
-
 TEST(GuiEdit, OutOfRangeEditIsRefusedAndNothingIsSaved) {
   const auto dir = fresh_dir("edit-range");
   const auto scene = write_small_drum(dir, "m5");
