@@ -59,20 +59,25 @@ void print_cohesion(const SceneConfig& scene) {
   }
 }
 
-void print_info(const std::string& file) {
-  const SceneConfig scene = load_scene(file);
-  const bool dynamic = scene.dynamic();
+/// Particles per class: counted in the file, planned by the random fill, or the paper's packing.
+std::vector<std::size_t> particle_counts(const SceneConfig& scene) {
   std::vector<std::size_t> counts;
   if (scene.fill.kind == FillKind::file) {
     const Particles p = initial_fill(scene);
     counts.assign(scene.classes.size(), 0);
     for (const std::uint8_t c : p.size_class) ++counts[c];
-  } else if (dynamic) {
+  } else if (scene.dynamic()) {
     counts = class_counts(scene);
   } else {
     const auto c = paper_packing_counts(scene.fill.box);
     counts.assign(c.begin(), c.end());
   }
+  return counts;
+}
+
+/// The classes, the particle count, the drum and its fill level; returns the particle count.
+std::size_t print_particles_and_drum(const SceneConfig& scene, const std::string& file) {
+  const std::vector<std::size_t> counts = particle_counts(scene);
   std::size_t total = 0;
   double solid = 0.0;
   fmt::print("scene             {} ({})\n", scene.name, file);
@@ -90,11 +95,16 @@ void print_info(const std::string& file) {
              scene.drum.diameter, scene.drum.depth, scene.drum.omega,
              scene.drum.tilt * 180.0 / std::numbers::pi,
              scene.drum.ends == DrumEnds::caps ? "caps" : "periodic");
-  if (dynamic) {
+  if (scene.dynamic()) {
     fmt::print(
         "fill              {:.1f} % of the drum volume once settled (at solid fraction 0.6)\n",
         100.0 * solid / 0.6 / drum_volume);
   }
+  return total;
+}
+
+/// The Rayleigh time, the time step, the Froude number and one revolution; returns dt.
+double print_time_scales(const SceneConfig& scene, std::size_t total) {
   const double t_r = rayleigh_time(scene.min_radius(), scene.material);
   const double dt = scene.time.dt ? *scene.time.dt : scene.time.dt_factor * t_r;
   fmt::print("Rayleigh time     {:.4g} s (smallest radius {} m)\n", t_r, scene.min_radius());
@@ -110,8 +120,12 @@ void print_info(const std::string& file) {
     fmt::print("one revolution    {:.4g} s = {:.0f} steps = {:.3g} particle-steps\n", rev, rev / dt,
                rev / dt * static_cast<double>(total));
   }
-  // Memory: what the engine allocates for a settled bed (engine/memory_estimate.hpp), with the
-  // grid of the scene's method (or its Verlet list's builder) if it has one cell side.
+  return dt;
+}
+
+/// What the engine allocates for a settled bed (engine/memory_estimate.hpp), with the grid of the
+/// scene's method (or its Verlet list's builder) if it has one cell side.
+void print_memory(const SceneConfig& scene, std::size_t total) {
   const std::string estimated = scene.search_method == "auto" ? "m5" : scene.search_method;
   const auto parsed = parse_search_method(estimated);
   double cells = 0.0;
@@ -136,25 +150,37 @@ void print_info(const std::string& file) {
   fmt::print("memory estimate   {:.1f} MiB ({:.0f} B/particle with {:.1f} listed pairs each{}{})\n",
              memory.total() / 1048576.0, memory.per_particle, shape.listed_pairs_per_particle, grid,
              scene.search_method == "auto" ? "; auto: for m5" : "");
-  if (scene.search_method == "auto" && dynamic) {
+}
+
+/// The search method: auto's choice on the filled scene and why, or the scene's own.
+void print_search_method(const SceneConfig& scene, double dt) {
+  if (scene.search_method == "auto" && scene.dynamic()) {
     const Particles fill = initial_fill(scene);
     const SearchChoice choice = choose_search_method(scene, dt, fill.position, fill.radius);
     fmt::print("search method     auto -> {} (paper's rule: {})\n", choice.method,
                choice.paper_rule);
     fmt::print("why               {}\n", choice.reason);
-  } else {
-    fmt::print("search method     {} (set by the scene; `--method` overrides it in `run`)\n",
-               scene.search_method);
-    if (const auto parsed = parse_search_method(scene.search_method)) {
-      fmt::print("                  {}{}\n",
-                 parsed->verlet ? fmt::format("Verlet list built by {}: ", parsed->method->name)
-                                : std::string(),
-                 parsed->method->description);
-    }
+    return;
   }
+  fmt::print("search method     {} (set by the scene; `--method` overrides it in `run`)\n",
+             scene.search_method);
+  if (const auto parsed = parse_search_method(scene.search_method)) {
+    fmt::print("                  {}{}\n",
+               parsed->verlet ? fmt::format("Verlet list built by {}: ", parsed->method->name)
+                              : std::string(),
+               parsed->method->description);
+  }
+}
+
+void print_info(const std::string& file) {
+  const SceneConfig scene = load_scene(file);
+  const std::size_t total = print_particles_and_drum(scene, file);
+  const double dt = print_time_scales(scene, total);
+  print_memory(scene, total);
+  print_search_method(scene, dt);
   print_cohesion(scene);
-  if (dynamic) print_features(scene);
-  if (!dynamic) fmt::print("note              static packing: use `drumlab paper-table`\n");
+  if (scene.dynamic()) print_features(scene);
+  if (!scene.dynamic()) fmt::print("note              static packing: use `drumlab paper-table`\n");
 }
 
 }  // namespace

@@ -87,26 +87,26 @@ bool bond_joins(const Bond& b, const AgglomerateOptions& o) {
   return o.min_bond_age <= 0.0 || b.age >= o.min_bond_age;
 }
 
-AgglomerateFrame find_agglomerates(const AgglomerateInput& in, const AgglomerateOptions& options) {
-  check_input(in);
-  const std::size_t n = in.position.size();
-  AgglomerateFrame out;
-  AgglomerateStats& st = out.stats;
-  st.time = in.time;
-  st.criterion = criterion_name(options);
-  st.bonds = in.bonds.size();
-  for (const Bond& b : in.bonds) st.bridge_liquid += b.volume;
-  for (double f : in.film) st.free_liquid += f;
-  st.wall_liquid = in.wall_liquid;
+namespace {
 
+/// The bonds that join (unite) and the root of every primary; the largest cluster of all bonds,
+/// whatever the criterion, goes to `stats`.
+struct Clusters {
+  std::vector<std::size_t> root;
+  std::vector<const Bond*> used;
+};
+
+Clusters cluster_primaries(const AgglomerateInput& in, const AgglomerateOptions& options,
+                           AgglomerateStats& st) {
+  const std::size_t n = in.position.size();
   DisjointSets plain(n);
   DisjointSets sets(n);
-  std::vector<const Bond*> used;
+  Clusters c;
   for (const Bond& b : in.bonds) {
     plain.unite(b.i, b.j);
     if (bond_joins(b, options)) {
       sets.unite(b.i, b.j);
-      used.push_back(&b);
+      c.used.push_back(&b);
     }
   }
   std::size_t largest_plain = 0;
@@ -114,15 +114,21 @@ AgglomerateFrame find_agglomerates(const AgglomerateInput& in, const Agglomerate
     if (plain.find(i) == i) largest_plain = std::max(largest_plain, plain.size_of_root(i));
   }
   st.largest_plain_share = n ? static_cast<double>(largest_plain) / static_cast<double>(n) : 0.0;
+  c.root.resize(n);
+  for (std::size_t i = 0; i < n; ++i) c.root[i] = sets.find(i);
+  return c;
+}
 
-  std::vector<std::size_t> root(n);
-  for (std::size_t i = 0; i < n; ++i) root[i] = sets.find(i);
-  // One agglomerate per root, numbered in order of first appearance.
+/// One agglomerate per root, numbered in order of first appearance (`member_of[i]`): primaries,
+/// mass, sum of d^3, liquid of the films and of the bonds inside.
+std::vector<Agglomerate> sum_members(const AgglomerateInput& in, const Clusters& c,
+                                     std::vector<std::size_t>& member_of) {
+  const std::size_t n = in.position.size();
   std::vector<std::size_t> slot_of_root(n, n);
   std::vector<Agglomerate> a;
-  std::vector<std::size_t> member_of(n);
+  member_of.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
-    std::size_t& s = slot_of_root[root[i]];
+    std::size_t& s = slot_of_root[c.root[i]];
     if (s == n) {
       s = a.size();
       a.push_back({});
@@ -137,9 +143,17 @@ AgglomerateFrame find_agglomerates(const AgglomerateInput& in, const Agglomerate
     if (!in.film.empty()) g.liquid += in.film[i];
   }
   for (const Bond& b : in.bonds) {
-    if (root[b.i] == root[b.j]) a[member_of[b.i]].liquid += b.volume;
+    if (c.root[b.i] == c.root[b.j]) a[member_of[b.i]].liquid += b.volume;
   }
-  const std::vector<Vec3> x = unwrapped_positions(in, root, used);
+  return a;
+}
+
+/// Centre of mass (on the unwrapped positions, wrapped back into the period), volume-equivalent
+/// diameter and radius of gyration of every agglomerate.
+void shape_agglomerates(const AgglomerateInput& in, const Clusters& c,
+                        const std::vector<std::size_t>& member_of, std::vector<Agglomerate>& a) {
+  const std::size_t n = in.position.size();
+  const std::vector<Vec3> x = unwrapped_positions(in, c.root, c.used);
   for (std::size_t i = 0; i < n; ++i) a[member_of[i]].centre += in.mass[i] * x[i];
   for (Agglomerate& g : a) {
     g.centre /= g.mass;
@@ -156,13 +170,10 @@ AgglomerateFrame find_agglomerates(const AgglomerateInput& in, const Agglomerate
       if (g.centre.z() < 0.0) g.centre.z() += in.period;
     }
   }
-  out.label.resize(n);
-  out.size_of.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    out.label[i] = a[member_of[i]].id;
-    out.size_of[i] = a[member_of[i]].primaries;
-  }
+}
 
+/// Count, largest, mean size (agglomerates of two or more) and the mass-weighted d10, d50, d90.
+void size_statistics(const std::vector<Agglomerate>& a, AgglomerateStats& st) {
   double total_mass = 0.0;
   std::vector<std::pair<double, double>> by_diameter;
   by_diameter.reserve(a.size());
@@ -181,7 +192,33 @@ AgglomerateFrame find_agglomerates(const AgglomerateInput& in, const Agglomerate
   st.d10 = mass_percentile(by_diameter, total_mass, 0.1);
   st.d50 = mass_percentile(by_diameter, total_mass, 0.5);
   st.d90 = mass_percentile(by_diameter, total_mass, 0.9);
+}
 
+}  // namespace
+
+AgglomerateFrame find_agglomerates(const AgglomerateInput& in, const AgglomerateOptions& options) {
+  check_input(in);
+  const std::size_t n = in.position.size();
+  AgglomerateFrame out;
+  AgglomerateStats& st = out.stats;
+  st.time = in.time;
+  st.criterion = criterion_name(options);
+  st.bonds = in.bonds.size();
+  for (const Bond& b : in.bonds) st.bridge_liquid += b.volume;
+  for (double f : in.film) st.free_liquid += f;
+  st.wall_liquid = in.wall_liquid;
+
+  const Clusters clusters = cluster_primaries(in, options, st);
+  std::vector<std::size_t> member_of;
+  std::vector<Agglomerate> a = sum_members(in, clusters, member_of);
+  shape_agglomerates(in, clusters, member_of, a);
+  out.label.resize(n);
+  out.size_of.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    out.label[i] = a[member_of[i]].id;
+    out.size_of[i] = a[member_of[i]].primaries;
+  }
+  size_statistics(a, st);
   std::sort(a.begin(), a.end(),
             [](const Agglomerate& l, const Agglomerate& r) { return l.id < r.id; });
   out.agglomerates = std::move(a);
