@@ -211,58 +211,62 @@ void GridOverlay::draw_grid(const FrameSnapshot& s, const GridGeometry& g, std::
   renderer_->AddActor(lines_);
 }
 
-void GridOverlay::draw_focus(const FrameSnapshot& p, const SearchVisit& v, Index focus) {
-  const double z = front_z(p) + 1e-4;
-  auto same_as = [](const CellCoord& c) { return [c](const CellCoord& d) { return c == d; }; };
+namespace {
+
+/// The focus particle's cells as quads in the plane z, and the box that frames them.
+struct FocusCells {
   QuadBuilder quads;
   Box box{Vec3::Constant(1e300), Vec3::Constant(-1e300)};
   bool boxed = false;
-  auto add_cell = [&](const GridGeometry& g, const CellCoord& c, const double* rgb, double alpha) {
+
+  void add(const GridGeometry& g, const CellCoord& c, double z, const double* rgb, double alpha) {
     quads.add(g, c.x, c.y, z, rgb, alpha);
     const Vec3 lo = g.origin + Vec3(c.x * g.cell_xy, c.y * g.cell_xy, 0.0);
     box.lo = box.lo.cwiseMin(lo);
     box.hi = box.hi.cwiseMax(lo + Vec3(g.cell_xy, g.cell_xy, 0.0));
     boxed = true;
-  };
-  // Smaller levels first (finer cells, below), then the grid with the particle's own cell.
-  for (const VisitedCells& cells : v.grids) {
-    if (cells.has_own) continue;
-    const std::int64_t layer = cell_containing(cells.geometry, p.position[focus]).z;
-    for (const CellCoord& c : cells.forward) {
-      if (c.z == layer) add_cell(cells.geometry, c, kSmallerLevelColor, 0.35);
+  }
+
+  /// The levels without the particle's own cell (finer cells, drawn below), in its layer.
+  void add_smaller_levels(const SearchVisit& v, const Vec3& x, double z) {
+    for (const VisitedCells& cells : v.grids) {
+      if (cells.has_own) continue;
+      const std::int64_t layer = cell_containing(cells.geometry, x).z;
+      for (const CellCoord& c : cells.forward) {
+        if (c.z == layer) add(cells.geometry, c, z, kSmallerLevelColor, 0.35);
+      }
     }
   }
-  const VisitedCells* own = nullptr;
-  for (const VisitedCells& cells : v.grids) {
-    if (!cells.has_own) continue;
-    own = &cells;
-    const GridGeometry& g = cells.geometry;
-    const CellCoord& o = cells.own;
+
+  /// The grid with the particle's own cell: forward cells, the mirrored cells a half stencil
+  /// skips, the backward ring and the own cell, in its layer. Returns that grid (or nullptr).
+  const VisitedCells* add_own_grid(const SearchVisit& v, double z) {
+    const auto own = std::find_if(v.grids.begin(), v.grids.end(),
+                                  [](const VisitedCells& c) { return c.has_own; });
+    if (own == v.grids.end()) return nullptr;
+    const GridGeometry& g = own->geometry;
+    const CellCoord& o = own->own;
     auto in_grid = [&g](const CellCoord& c) {
       return c.x >= 0 && c.x < g.nx && c.y >= 0 && c.y < g.ny;
     };
-    for (const CellCoord& c : cells.forward) {
+    for (const CellCoord& c : own->forward) {
       if (c.z != o.z) continue;
-      add_cell(g, c, kForwardCellColor, 0.5);
+      add(g, c, z, kForwardCellColor, 0.5);
       const CellCoord m{2 * o.x - c.x, 2 * o.y - c.y, o.z};  // the mirrored, skipped cell
-      if (in_grid(m) && std::none_of(cells.backward.begin(), cells.backward.end(), same_as(m))) {
-        add_cell(g, m, kSkippedCellColor, 0.4);
+      if (in_grid(m) &&
+          std::find(own->backward.begin(), own->backward.end(), m) == own->backward.end()) {
+        add(g, m, z, kSkippedCellColor, 0.4);
       }
     }
-    for (const CellCoord& c : cells.backward) {
-      if (c.z == o.z) add_cell(g, c, kBackwardRingColor, 0.5);
+    for (const CellCoord& c : own->backward) {
+      if (c.z == o.z) add(g, c, z, kBackwardRingColor, 0.5);
     }
-    add_cell(g, o, kOwnCellColor, 0.7);
-    break;
+    add(g, o, z, kOwnCellColor, 0.7);
+    return &*own;
   }
-  cells_ = direct_color_actor(quads.poly());
-  renderer_->AddActor(cells_);
-  if (own != nullptr) {
-    own_ = own_cell_outline(own->geometry, own->own, z);
-    top_->AddActor(own_);
-  }
-  draw_highlights(p, v, focus, z);
-  if (!boxed && v.kind == SearchVisit::Kind::list) {  // no cells: frame the listed partners
+
+  /// No cells (a Verlet list): frame the listed partners and the particle.
+  void frame_partners(const FrameSnapshot& p, const SearchVisit& v, Index focus) {
     for (Index j : v.candidates) {
       box.lo = box.lo.cwiseMin(p.position[j] - Vec3::Constant(p.radius[j]));
       box.hi = box.hi.cwiseMax(p.position[j] + Vec3::Constant(p.radius[j]));
@@ -271,36 +275,54 @@ void GridOverlay::draw_focus(const FrameSnapshot& p, const SearchVisit& v, Index
     box.hi = box.hi.cwiseMax(p.position[focus] + Vec3::Constant(2.0 * p.radius[focus]));
     boxed = true;
   }
+};
 
+/// The lines the view shows about the focus particle's search.
+std::string describe_focus(const FrameSnapshot& p, const SearchVisit& v, Index focus,
+                           const VisitedCells* own) {
   const std::string head =
       fmt::format("focus id {} (r = {:.0f} mm)", p.id[focus], 1000.0 * p.radius[focus]);
   switch (v.kind) {
     case SearchVisit::Kind::cells: {
       const GridGeometry& g = v.grids.front().geometry;
-      summary_ = fmt::format(
+      return fmt::format(
           "{}\n  cells visited {}\n  pairs tested {}\n  contacts {}{}", head, v.cells_visited,
           v.pairs_tested, v.contacts.size(),
           g.nz > 1 ? fmt::format("\n  3D grid: layer {} of {}", v.grids.front().own.z, g.nz) : "");
-      break;
     }
     case SearchVisit::Kind::levels:
-      summary_ =
-          fmt::format("{}\n  {}\n  cells visited {}\n  pairs tested {}\n  contacts {}{}", head,
-                      own != nullptr ? own->label : "", v.cells_visited, v.pairs_tested,
-                      v.contacts.size(), v.grids.size() > 1 ? "\n  violet: smaller levels" : "");
-      break;
+      return fmt::format("{}\n  {}\n  cells visited {}\n  pairs tested {}\n  contacts {}{}", head,
+                         own != nullptr ? own->label : "", v.cells_visited, v.pairs_tested,
+                         v.contacts.size(), v.grids.size() > 1 ? "\n  violet: smaller levels" : "");
     case SearchVisit::Kind::list:
-      summary_ = fmt::format("{}\n  Verlet list\n  listed partners {}\n  contacts {}{}", head,
-                             v.candidates.size(), v.contacts.size(),
-                             own != nullptr ? fmt::format("\n  cells: {}", own->label) : "");
-      break;
+      return fmt::format("{}\n  Verlet list\n  listed partners {}\n  contacts {}{}", head,
+                         v.candidates.size(), v.contacts.size(),
+                         own != nullptr ? fmt::format("\n  cells: {}", own->label) : "");
     case SearchVisit::Kind::all:
-      summary_ = fmt::format(
-          "{}\n  brute force: no cells\n  tests all N-1 = {}\n  ({} by itself)\n  contacts {}",
-          head, p.size() - 1, v.pairs_tested, v.contacts.size());
       break;
   }
-  if (boxed) focus_box_ = box;
+  return fmt::format(
+      "{}\n  brute force: no cells\n  tests all N-1 = {}\n  ({} by itself)\n  contacts {}", head,
+      p.size() - 1, v.pairs_tested, v.contacts.size());
+}
+
+}  // namespace
+
+void GridOverlay::draw_focus(const FrameSnapshot& p, const SearchVisit& v, Index focus) {
+  const double z = front_z(p) + 1e-4;
+  FocusCells cells;
+  cells.add_smaller_levels(v, p.position[focus], z);
+  const VisitedCells* own = cells.add_own_grid(v, z);
+  cells_ = direct_color_actor(cells.quads.poly());
+  renderer_->AddActor(cells_);
+  if (own != nullptr) {
+    own_ = own_cell_outline(own->geometry, own->own, z);
+    top_->AddActor(own_);
+  }
+  draw_highlights(p, v, focus, z);
+  if (!cells.boxed && v.kind == SearchVisit::Kind::list) cells.frame_partners(p, v, focus);
+  summary_ = describe_focus(p, v, focus, own);
+  if (cells.boxed) focus_box_ = cells.box;
   visit_ = v;
 }
 
