@@ -14,13 +14,12 @@
 
 namespace drumlab::render {
 
-vtkSmartPointer<vtkPolyData> contacts_dataset(const Simulation& sim) {
-  std::vector<ContactForce> contacts;
-  sim.contact_forces(contacts);
-  const bool wet = scene_has_bonds(sim.scene());
-  std::vector<Bond> bonds;
-  sim.bonds(bonds);
-  // Each bond on its contact's line, or on a line of its own (force 0) where the spheres part.
+namespace {
+
+/// The line of each bond: its contact's, or a line of its own (force 0, appended to `contacts`)
+/// where the spheres have parted.
+std::vector<std::size_t> bond_lines(const std::vector<Bond>& bonds,
+                                    std::vector<ContactForce>& contacts) {
   const auto key = [](Index i, Index j) { return (std::uint64_t{i} << 32) | j; };
   std::unordered_map<std::uint64_t, std::size_t> line_of;
   for (std::size_t k = 0; k < contacts.size(); ++k) {
@@ -36,6 +35,21 @@ vtkSmartPointer<vtkPolyData> contacts_dataset(const Simulation& sim) {
       contacts.push_back({bonds[b].i, bonds[b].j, Vec3::Zero()});
     }
   }
+  return bond_line;
+}
+
+template <class Array>
+vtkSmartPointer<Array> named_array(const char* name, vtkIdType tuples, int components = 1) {
+  auto a = vtkSmartPointer<Array>::New();
+  a->SetName(name);
+  a->SetNumberOfComponents(components);
+  a->SetNumberOfTuples(tuples);
+  return a;
+}
+
+/// One line per contact, from i to the image of j nearest to it, with the force and both ids.
+vtkSmartPointer<vtkPolyData> contact_lines(const Simulation& sim,
+                                           const std::vector<ContactForce>& contacts) {
   const Particles& p = sim.particles();
   const double period = Drum(sim.scene().drum).period();
   const auto m = static_cast<vtkIdType>(contacts.size());
@@ -44,19 +58,10 @@ vtkSmartPointer<vtkPolyData> contacts_dataset(const Simulation& sim) {
   points->SetNumberOfPoints(2 * m);
   vtkNew<vtkCellArray> lines;
   lines->AllocateExact(m, 2 * m);
-  vtkNew<vtkDoubleArray> magnitude;
-  magnitude->SetName("force_magnitude");
-  magnitude->SetNumberOfTuples(m);
-  vtkNew<vtkDoubleArray> force;
-  force->SetName("force");
-  force->SetNumberOfComponents(3);
-  force->SetNumberOfTuples(m);
-  vtkNew<vtkUnsignedIntArray> id_a;
-  id_a->SetName("id_a");
-  id_a->SetNumberOfTuples(m);
-  vtkNew<vtkUnsignedIntArray> id_b;
-  id_b->SetName("id_b");
-  id_b->SetNumberOfTuples(m);
+  auto magnitude = named_array<vtkDoubleArray>("force_magnitude", m);
+  auto force = named_array<vtkDoubleArray>("force", m, 3);
+  auto id_a = named_array<vtkUnsignedIntArray>("id_a", m);
+  auto id_b = named_array<vtkUnsignedIntArray>("id_b", m);
   for (vtkIdType k = 0; k < m; ++k) {
     const ContactForce& c = contacts[static_cast<std::size_t>(k)];
     const Vec3 d = nearest_image(p.position[c.i], p.position[c.j], period);
@@ -70,19 +75,6 @@ vtkSmartPointer<vtkPolyData> contacts_dataset(const Simulation& sim) {
     id_a->SetValue(k, p.id[c.i]);
     id_b->SetValue(k, p.id[c.j]);
   }
-  vtkNew<vtkDoubleArray> bridge_volume;
-  bridge_volume->SetName("bridge_volume");
-  bridge_volume->SetNumberOfTuples(m);
-  bridge_volume->Fill(0.0);
-  vtkNew<vtkDoubleArray> bridge_force;
-  bridge_force->SetName("bridge_force");
-  bridge_force->SetNumberOfTuples(m);
-  bridge_force->Fill(0.0);
-  for (std::size_t b = 0; b < bonds.size(); ++b) {
-    const auto k = static_cast<vtkIdType>(bond_line[b]);
-    bridge_volume->SetValue(k, bonds[b].volume);
-    bridge_force->SetValue(k, bonds[b].force);
-  }
   auto pd = vtkSmartPointer<vtkPolyData>::New();
   pd->SetPoints(points);
   pd->SetLines(lines);
@@ -90,7 +82,29 @@ vtkSmartPointer<vtkPolyData> contacts_dataset(const Simulation& sim) {
   pd->GetCellData()->AddArray(force);
   pd->GetCellData()->AddArray(id_a);
   pd->GetCellData()->AddArray(id_b);
-  if (wet) {
+  return pd;
+}
+
+}  // namespace
+
+vtkSmartPointer<vtkPolyData> contacts_dataset(const Simulation& sim) {
+  std::vector<ContactForce> contacts;
+  sim.contact_forces(contacts);
+  std::vector<Bond> bonds;
+  sim.bonds(bonds);
+  const std::vector<std::size_t> bond_line = bond_lines(bonds, contacts);
+  auto pd = contact_lines(sim, contacts);
+  if (scene_has_bonds(sim.scene())) {  // each bond's volume and force on its line, 0 elsewhere
+    const auto m = static_cast<vtkIdType>(contacts.size());
+    auto bridge_volume = named_array<vtkDoubleArray>("bridge_volume", m);
+    auto bridge_force = named_array<vtkDoubleArray>("bridge_force", m);
+    bridge_volume->Fill(0.0);
+    bridge_force->Fill(0.0);
+    for (std::size_t b = 0; b < bonds.size(); ++b) {
+      const auto k = static_cast<vtkIdType>(bond_line[b]);
+      bridge_volume->SetValue(k, bonds[b].volume);
+      bridge_force->SetValue(k, bonds[b].force);
+    }
     pd->GetCellData()->AddArray(bridge_volume);
     pd->GetCellData()->AddArray(bridge_force);
   }
