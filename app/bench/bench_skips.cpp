@@ -128,86 +128,99 @@ double max_difference(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
   return d;
 }
 
-std::vector<SkipCase> make_cases(const SceneConfig& base, const std::string& method, double tiny) {
+SkipCase friction_case(const SceneConfig& base, const std::string& method, double tiny) {
+  SkipCase c;
+  c.name = "friction 0";
+  c.general = fmt::format("friction {:g} (material and wall)", tiny);
+  SceneConfig s = base;
+  s.material.rolling_friction = s.wall.rolling_friction = 0.0;  // isolate the friction skip
+  s.material.friction = s.wall.friction = 0.0;
+  c.with_skip = {s, method, false};
+  s.material.friction = s.wall.friction = tiny;
+  c.without_skip = {s, method, false};
+  c.note = "no tangential history, no rotation; rolling friction 0 in both";
+  return c;
+}
+
+SkipCase rolling_case(const SceneConfig& base, const std::string& method, double tiny) {
+  SkipCase c;
+  c.name = "rolling 0";
+  c.general = fmt::format("rolling_friction {:g} (material and wall)", tiny);
+  SceneConfig s = base;
+  s.material.rolling_friction = s.wall.rolling_friction = 0.0;
+  c.with_skip = {s, method, false};
+  s.material.rolling_friction = s.wall.rolling_friction = tiny;
+  c.without_skip = {s, method, false};
+  c.note = fmt::format("friction as in the scene ({}, wall {})", base.material.friction,
+                       base.wall.friction);
+  return c;
+}
+
+SkipCase grid_case(const SceneConfig& base, const char* grid3d) {
   const SceneFeatures f = scene_features(base);
-  std::vector<SkipCase> cases;
-  {
-    SkipCase c;
-    c.name = "friction 0";
-    c.general = fmt::format("friction {:g} (material and wall)", tiny);
-    SceneConfig s = base;
-    s.material.rolling_friction = s.wall.rolling_friction = 0.0;  // isolate the friction skip
-    s.material.friction = s.wall.friction = 0.0;
-    c.with_skip = {s, method, false};
-    s.material.friction = s.wall.friction = tiny;
-    c.without_skip = {s, method, false};
-    c.note = "no tangential history, no rotation; rolling friction 0 in both";
-    cases.push_back(std::move(c));
-  }
-  {
-    SkipCase c;
-    c.name = "rolling 0";
-    c.general = fmt::format("rolling_friction {:g} (material and wall)", tiny);
-    SceneConfig s = base;
-    s.material.rolling_friction = s.wall.rolling_friction = 0.0;
-    c.with_skip = {s, method, false};
-    s.material.rolling_friction = s.wall.rolling_friction = tiny;
-    c.without_skip = {s, method, false};
-    c.note = fmt::format("friction as in the scene ({}, wall {})", base.material.friction,
-                         base.wall.friction);
-    cases.push_back(std::move(c));
-  }
-  for (const char* grid3d : {"m3", "m5"}) {
-    SkipCase c;
-    c.name = fmt::format("2D grid m2 vs {}", grid3d);
-    c.general = fmt::format("3D grid {}", grid3d);
-    c.with_skip = {base, "m2", false};
-    c.without_skip = {base, grid3d, false};
-    c.note = f.shallow
-                 ? fmt::format("shallow: depth = {:.3g} largest diameters", f.depth_in_diameters)
-                 : fmt::format("deep ({:.3g} largest diameters): the skip does not apply",
-                               f.depth_in_diameters);
-    cases.push_back(std::move(c));
-  }
-  if (base.drum.ends == DrumEnds::caps) {  // a periodic state may straddle the ends: no caps
-    SkipCase c;
-    c.name = "periodic ends";
-    c.general = "end caps";
-    SceneConfig s = base;
-    s.drum.ends = DrumEnds::periodic;
-    c.with_skip = {s, method, false};
-    s.drum.ends = DrumEnds::caps;
-    c.without_skip = {s, method, false};
-    c.same_physics = false;
-    c.walls_only = true;
-    c.note = "different physics: wall-phase time only";
-    cases.push_back(std::move(c));
-  }
-  if (!base.liquid.enabled && !base.cohesion.enabled) {
-    SkipCase c;
-    c.name = "cohesion off";
-    c.general = "[cohesion] sjkr with energy_density 0";
-    SceneConfig s = base;
-    c.with_skip = {s, method, false};
-    s.cohesion.enabled = true;
-    s.cohesion.energy_density = 0.0;
-    c.without_skip = {s, method, false};
-    c.note = "zero-strength adhesion: the cohesive pass runs, adds nothing";
-    cases.push_back(std::move(c));
-  }
-  {
-    SkipCase c;
-    c.name = "no writers";
+  SkipCase c;
+  c.name = fmt::format("2D grid m2 vs {}", grid3d);
+  c.general = fmt::format("3D grid {}", grid3d);
+  c.with_skip = {base, "m2", false};
+  c.without_skip = {base, grid3d, false};
+  c.note = f.shallow
+               ? fmt::format("shallow: depth = {:.3g} largest diameters", f.depth_in_diameters)
+               : fmt::format("deep ({:.3g} largest diameters): the skip does not apply",
+                             f.depth_in_diameters);
+  return c;
+}
+
+SkipCase ends_case(const SceneConfig& base, const std::string& method) {
+  SkipCase c;
+  c.name = "periodic ends";
+  c.general = "end caps";
+  SceneConfig s = base;
+  s.drum.ends = DrumEnds::periodic;
+  c.with_skip = {s, method, false};
+  s.drum.ends = DrumEnds::caps;
+  c.without_skip = {s, method, false};
+  c.same_physics = false;
+  c.walls_only = true;
+  c.note = "different physics: wall-phase time only";
+  return c;
+}
+
+SkipCase cohesion_case(const SceneConfig& base, const std::string& method) {
+  SkipCase c;
+  c.name = "cohesion off";
+  c.general = "[cohesion] sjkr with energy_density 0";
+  SceneConfig s = base;
+  c.with_skip = {s, method, false};
+  s.cohesion.enabled = true;
+  s.cohesion.energy_density = 0.0;
+  c.without_skip = {s, method, false};
+  c.note = "zero-strength adhesion: the cohesive pass runs, adds nothing";
+  return c;
+}
+
+SkipCase writers_case(const SceneConfig& base, const std::string& method) {
+  SkipCase c;
+  c.name = "no writers";
 #ifdef DRUMLAB_WITH_RENDER
-    c.general = "--vtu and --h5 writers";
+  c.general = "--vtu and --h5 writers";
 #else
-    c.general = "--h5 writer (no VTK in this build)";
+  c.general = "--h5 writer (no VTK in this build)";
 #endif
-    c.with_skip = {base, method, false};
-    c.without_skip = {base, method, true};
-    c.note = "stepping + writing";
-    cases.push_back(std::move(c));
-  }
+  c.with_skip = {base, method, false};
+  c.without_skip = {base, method, true};
+  c.note = "stepping + writing";
+  return c;
+}
+
+std::vector<SkipCase> make_cases(const SceneConfig& base, const std::string& method, double tiny) {
+  std::vector<SkipCase> cases;
+  cases.push_back(friction_case(base, method, tiny));
+  cases.push_back(rolling_case(base, method, tiny));
+  for (const char* grid3d : {"m3", "m5"}) cases.push_back(grid_case(base, grid3d));
+  // A periodic state may straddle the ends: no caps.
+  if (base.drum.ends == DrumEnds::caps) cases.push_back(ends_case(base, method));
+  if (!base.liquid.enabled && !base.cohesion.enabled) cases.push_back(cohesion_case(base, method));
+  cases.push_back(writers_case(base, method));
   return cases;
 }
 
