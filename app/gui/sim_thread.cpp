@@ -26,6 +26,7 @@ SimThread::SimThread(SceneConfig scene, SessionOptions options, SnapshotWish wis
       scheduled_(std::move(scheduled)),
       step_limit_(step_limit),
       threads_(threads),
+      scene_(session_->scene()),
       wish_(std::move(wish)) {
   if (wish_.view.focus_id) {  // an unknown id is bad input: one line, before any window opens
     render::index_of_id(session_->simulation().particles(), *wish_.view.focus_id);
@@ -123,7 +124,7 @@ void SimThread::with_simulation(const std::function<void(const Simulation&)>& jo
 
 SceneConfig SimThread::scene() const {
   std::lock_guard lock(mutex_);
-  return session_->scene();
+  return scene_;
 }
 
 std::string SimThread::state_text() const {
@@ -171,12 +172,12 @@ void SimThread::wait_finished() const {
   cv_.wait(lock, [&] { return finished_ || quit_; });
 }
 
-void SimThread::publish() {
-  SnapshotWish wish;
-  {
-    std::lock_guard lock(mutex_);
-    wish = wish_;
-  }
+SnapshotWish SimThread::current_wish() const {
+  std::lock_guard lock(mutex_);
+  return wish_;
+}
+
+void SimThread::publish(const SnapshotWish& wish) {
   SnapshotRequest request;
   request.compare_methods = wish.compare_methods;
   auto snap = std::make_shared<FrameSnapshot>(
@@ -186,41 +187,25 @@ void SimThread::publish() {
   ++generation_;
 }
 
-void SimThread::apply_commands(std::unique_lock<std::mutex>& lock) {
-  if (pending_job_) {
-    auto job = std::move(pending_job_);
-    pending_job_ = nullptr;
-    job(session_->simulation());  // under the lock: the UI thread waits for it anyway
-    cv_.notify_all();
-  }
-  if (pending_method_ && !settling_) {
-    const std::string name = std::move(*pending_method_);
-    pending_method_.reset();
-    lock.unlock();
-    std::string error;
-    try {
-      session_->set_search_method(name);
-    } catch (const std::exception& e) {
-      error = e.what();
-    }
-    lock.lock();
-    error_ = error;
-    snapshot_due_ = true;
-  }
+void SimThread::run_pending_job() {
+  auto job = std::move(pending_job_);
+  pending_job_ = nullptr;
+  job(session_->simulation());  // under the lock: the UI thread waits for it anyway
+  cv_.notify_all();
 }
 
 bool SimThread::settle_progress() {
   {
-    std::unique_lock lock(mutex_);
+    std::lock_guard lock(mutex_);
     settle_done_ = session_->simulation().steps();
   }
-  publish();
+  publish(current_wish());
   std::unique_lock lock(mutex_);
   for (;;) {  // paused inside the settling: wait here, serving exports and new wishes
     cv_.wait(lock, [&] {
       return quit_ || pending_restart_ || pending_job_ || snapshot_due_ || running_ || step_once_;
     });
-    apply_commands(lock);
+    if (pending_job_) run_pending_job();
     if (quit_ || pending_restart_) return false;
     if (running_ || step_once_) {
       step_once_ = false;
@@ -228,119 +213,186 @@ bool SimThread::settle_progress() {
     }
     if (snapshot_due_) {
       snapshot_due_ = false;
+      const SnapshotWish wish = wish_;
       lock.unlock();
-      publish();
+      publish(wish);
       lock.lock();
     }
   }
 }
 
-void SimThread::loop() {
-  set_thread_count(threads_);  // OpenMP's count is this thread's own
-  bool settled = false;
-  std::uint64_t turn_start = 0;
-  std::unique_lock lock(mutex_);
+SimThread::Command SimThread::take_command(std::unique_lock<std::mutex>& lock) {
+  using Kind = Command::Kind;
   for (;;) {
     cv_.wait(lock, [&] {
       return quit_ || pending_restart_ || pending_job_ || pending_method_ || snapshot_due_ ||
              (!finished_ && (running_ || step_once_));
     });
-    if (quit_) break;
+    Command c;
+    if (quit_) return c;
     if (pending_restart_) {
-      SceneConfig scene = std::move(*pending_restart_);
+      c.kind = Kind::restart;
+      c.scene = std::move(*pending_restart_);
       pending_restart_.reset();
-      lock.unlock();
-      std::string error;
-      try {
-        auto fresh = std::make_unique<RunSession>(std::move(scene), options_);
-        session_ = std::move(fresh);  // only this thread touches the session
-        settled = false;
-        settled_ = false;
-      } catch (const std::exception& e) {
-        error = fmt::format("restart refused: {}", e.what());
-      }
-      lock.lock();
-      error_ = error;
-      running_ = false;
-      finished_ = false;
-      snapshot_due_ = true;
-      continue;
+      return c;
     }
-    apply_commands(lock);
+    if (pending_job_) run_pending_job();
+    if (pending_method_) {
+      c.kind = Kind::switch_method;
+      c.method = std::move(*pending_method_);
+      pending_method_.reset();
+      return c;
+    }
     if (snapshot_due_) {
       snapshot_due_ = false;
-      lock.unlock();
-      publish();
-      lock.lock();
-      continue;
+      c.kind = Kind::snapshot;
+      c.wish = wish_;
+      return c;
     }
-    if (finished_ || !(running_ || step_once_)) continue;
+    if (finished_ || !(running_ || step_once_)) continue;  // a job only
+    c.particles = static_cast<double>(session_->simulation().particles().size());
+    if (!settled_) {
+      c.kind = Kind::settle;
+      settling_ = true;
+      settle_done_ = 0;
+      settle_total_ = session_->settle_steps();
+      return c;
+    }
+    const std::uint64_t done = session_->simulation().steps() - turn_start_;
+    c.kind = Kind::advance;
+    c.steps = chunk_;
+    if (scheduled_ && done < scheduled_->step) c.steps = std::min(c.steps, scheduled_->step - done);
+    if (step_limit_ > 0) c.steps = std::min(c.steps, step_limit_ - std::min(step_limit_, done));
+    step_once_ = false;
+    return c;
+  }
+}
+
+void SimThread::restart_session(SceneConfig scene) {
+  std::unique_ptr<RunSession> fresh;
+  std::string error;
+  try {
+    fresh = std::make_unique<RunSession>(std::move(scene), options_);
+  } catch (const std::exception& e) {
+    error = fmt::format("restart refused: {}", e.what());
+  }
+  if (fresh) session_ = std::move(fresh);  // the UI thread never reads session_
+  std::lock_guard lock(mutex_);
+  if (error.empty()) {
+    scene_ = session_->scene();
+    settled_ = false;
+  }
+  error_ = error;
+  running_ = false;
+  finished_ = false;
+  snapshot_due_ = true;
+}
+
+void SimThread::switch_search(const std::string& name) {
+  std::string error;
+  try {
+    session_->set_search_method(name);
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  std::lock_guard lock(mutex_);
+  scene_ = session_->scene();
+  error_ = error;
+  snapshot_due_ = true;
+}
+
+void SimThread::settle(double particles) {
+  const auto t0 = std::chrono::steady_clock::now();
+  session_->settle([this](std::uint64_t, std::uint64_t) { return settle_progress(); });
+  const double dt = seconds_since(t0);
+  SnapshotWish wish;
+  {
+    std::lock_guard lock(mutex_);
+    settling_ = false;
+    if (pending_restart_ || quit_) return;  // stopped inside the settling
+    step_seconds_ += dt;
+    particle_steps_ += particles * static_cast<double>(settle_total_);
+    note_team();
+    settled_ = true;
+    turn_start_ = session_->simulation().steps();
+    wish = wish_;
+  }
+  publish(wish);
+}
+
+void SimThread::advance(std::uint64_t steps, double particles) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (steps > 0) session_->advance(steps);
+  const double dt = seconds_since(t0);
+  const std::uint64_t done = session_->simulation().steps() - turn_start_;
+  const bool switched = scheduled_ && done == scheduled_->step;
+  if (switched) {
+    session_->set_search_method(scheduled_->method);
+    scheduled_.reset();
+  }
+  const bool last = step_limit_ > 0 && done >= step_limit_;
+  std::optional<SnapshotWish> wish;
+  {
+    std::lock_guard lock(mutex_);
+    if (switched) scene_ = session_->scene();
+    step_seconds_ += dt;
+    particle_steps_ += particles * static_cast<double>(steps);
+    note_team();
+    // A snapshot when the UI has taken the last one (it draws no faster than that), when not
+    // running on, and at the end.
+    if (taken_generation_ == generation_ || !running_ || last) wish = wish_;
+  }
+  if (wish) publish(*wish);
+  if (!last) return;
+  std::lock_guard lock(mutex_);  // finished only once the last snapshot is there
+  finished_ = true;
+  running_ = false;
+  cv_.notify_all();
+}
+
+void SimThread::stop(const std::exception& e) {
+  std::lock_guard lock(mutex_);
+  settling_ = false;
+  error_ = fmt::format("stopped: {}", e.what());
+  finished_ = true;
+  running_ = false;
+  cv_.notify_all();
+}
+
+void SimThread::loop() {
+  using Kind = Command::Kind;
+  set_thread_count(threads_);  // OpenMP's count is this thread's own
+  for (;;) {
+    Command c;
+    {
+      std::unique_lock lock(mutex_);
+      c = take_command(lock);
+    }
     try {
-      if (!settled) {
-        settling_ = true;
-        settle_done_ = 0;
-        settle_total_ = session_->settle_steps();
-        const auto n = static_cast<double>(session_->simulation().particles().size());
-        lock.unlock();
-        const auto t0 = std::chrono::steady_clock::now();
-        session_->settle([this](std::uint64_t, std::uint64_t) { return settle_progress(); });
-        const double dt = seconds_since(t0);
-        lock.lock();
-        settling_ = false;
-        if (pending_restart_ || quit_) continue;
-        step_seconds_ += dt;
-        particle_steps_ += n * static_cast<double>(settle_total_);
-        note_team();
-        settled = true;
-        settled_ = true;
-        turn_start = session_->simulation().steps();
-        lock.unlock();
-        publish();
-        lock.lock();
-        continue;
-      }
-      const std::uint64_t done = session_->simulation().steps() - turn_start;
-      std::uint64_t n = chunk_;
-      if (scheduled_ && done < scheduled_->step) n = std::min(n, scheduled_->step - done);
-      if (step_limit_ > 0) n = std::min(n, step_limit_ - std::min(step_limit_, done));
-      step_once_ = false;
-      const auto count = static_cast<double>(session_->simulation().particles().size());
-      lock.unlock();
-      const auto t0 = std::chrono::steady_clock::now();
-      if (n > 0) session_->advance(n);
-      const double dt = seconds_since(t0);
-      const std::uint64_t now = session_->simulation().steps() - turn_start;
-      if (scheduled_ && now == scheduled_->step) {
-        session_->set_search_method(scheduled_->method);
-        scheduled_.reset();
-      }
-      lock.lock();
-      // A snapshot when the UI has taken the last one (it draws no faster than that), when not
-      // running on, and at the end.
-      const bool last = step_limit_ > 0 && now >= step_limit_;
-      if (taken_generation_ == generation_ || !running_ || last) {
-        lock.unlock();
-        publish();
-        lock.lock();
-      }
-      step_seconds_ += dt;
-      particle_steps_ += count * static_cast<double>(n);
-      note_team();
-      if (step_limit_ > 0 && now >= step_limit_) {
-        finished_ = true;
-        running_ = false;
-        cv_.notify_all();
+      switch (c.kind) {
+        case Kind::quit:
+          cv_.notify_all();
+          return;
+        case Kind::restart:
+          restart_session(std::move(c.scene));
+          break;
+        case Kind::switch_method:
+          switch_search(c.method);
+          break;
+        case Kind::snapshot:
+          publish(c.wish);
+          break;
+        case Kind::settle:
+          settle(c.particles);
+          break;
+        case Kind::advance:
+          advance(c.steps, c.particles);
+          break;
       }
     } catch (const std::exception& e) {
-      if (!lock.owns_lock()) lock.lock();
-      settling_ = false;
-      error_ = fmt::format("stopped: {}", e.what());
-      finished_ = true;
-      running_ = false;
-      cv_.notify_all();
+      stop(e);
     }
   }
-  cv_.notify_all();
 }
 
 }  // namespace drumlab::gui

@@ -65,7 +65,8 @@ class SimThread {
   /// Runs `job` on the simulation between steps (an export that needs the full state) and waits.
   void with_simulation(const std::function<void(const Simulation&)>& job);
 
-  /// The scene as run (overrides applied, "auto" resolved) and the session's options.
+  /// The scene as run (overrides applied, "auto" resolved) as of the last restart or method
+  /// switch: a copy the simulation thread publishes under the lock, safe to read from any thread.
   SceneConfig scene() const;
   /// "settling 120 / 1000 steps", "running", "paused", "done", or the error that stopped it.
   std::string state_text() const;
@@ -84,20 +85,47 @@ class SimThread {
   void wait_finished() const;
 
  private:
+  // The locking discipline: the simulation thread alone touches session_, always without the
+  // lock; everything the UI thread reads or writes (below mutex_) is behind the lock. The loop
+  // takes one command under the lock, carries it out unlocked, and publishes its results (the
+  // snapshot, the scene, the figures) under the lock again.
+  struct Command {
+    enum class Kind { quit, restart, switch_method, snapshot, settle, advance } kind = Kind::quit;
+    SceneConfig scene;        ///< restart
+    std::string method;       ///< switch_method
+    SnapshotWish wish;        ///< snapshot
+    std::uint64_t steps = 0;  ///< advance
+    double particles = 0.0;   ///< settle, advance: particles in the steps
+  };
   void loop();
-  bool settle_progress();  // called by RunSession::settle between chunks
-  void publish();          // takes a snapshot (sim thread, lock not held)
-  void apply_commands(std::unique_lock<std::mutex>& lock);
-  void note_team();  // copies the session's team into team_ (sim thread, lock held)
+  /// Waits for work and takes it (lock held; runs an export job there, the UI waiting for it).
+  Command take_command(std::unique_lock<std::mutex>& lock);
+  /// The steps of the loop, each entered and left without the lock.
+  void restart_session(SceneConfig scene);
+  void switch_search(const std::string& name);
+  void settle(double particles);
+  void advance(std::uint64_t steps, double particles);
+  /// The run stopped on an error: "stopped: ..." (lock not held).
+  void stop(const std::exception& e);
+  bool settle_progress();  // called by RunSession::settle between chunks (lock not held)
+  /// Takes a snapshot with `wish` (lock not held) and hands it to the UI thread.
+  void publish(const SnapshotWish& wish);
+  /// The snapshot the next publish needs (lock not held): the wish as of now.
+  SnapshotWish current_wish() const;
+  void run_pending_job();  // (lock held)
+  void note_team();        // copies the session's team into team_ (sim thread, lock held)
 
   SessionOptions options_;
+  // The simulation thread's own (never read by the UI thread).
   std::unique_ptr<RunSession> session_;
   std::optional<ScheduledSwitch> scheduled_;
   std::uint64_t step_limit_ = 0;
   int threads_ = 1;
+  std::uint64_t turn_start_ = 0;  ///< the session's steps when the settling ended
 
   mutable std::mutex mutex_;
   mutable std::condition_variable cv_;
+  SceneConfig scene_;  ///< the session's scene, copied here whenever it changes (scene())
   std::shared_ptr<const FrameSnapshot> latest_;
   std::uint64_t generation_ = 0;
   mutable std::uint64_t taken_generation_ = 0;  ///< the newest snapshot latest() has handed out
