@@ -7,11 +7,9 @@
 #include <thread>
 
 #include <fmt/format.h>
-// clang-format off
-#include <GLFW/glfw3.h>
-// clang-format on
 
 #include "app/gui/gui_app.hpp"
+#include "app/gui/gui_session.hpp"
 #include "engine/io/checkpoint.hpp"
 #include "engine/session/team_chooser.hpp"
 #include "engine/threads.hpp"
@@ -19,43 +17,38 @@
 namespace drumlab::gui {
 
 void GuiApp::apply_view_flags() {
-  const FrameSnapshot* s = shown_.get();
-  if (options_.orbit) {
-    view_->orbit((*options_.orbit)[0], (*options_.orbit)[1]);
-    camera_changed();
-  }
-  if (options_.zoom != 1.0) {
-    view_->zoom(options_.zoom);
-    camera_changed();
-  }
-  if (s == nullptr || (!options_.orbit && options_.zoom == 1.0 && !options_.pick)) return;
+  if (options_.orbit) view_->orbit((*options_.orbit)[0], (*options_.orbit)[1]);
+  if (options_.zoom != 1.0) view_->zoom(options_.zoom);
+  if (!shown_ || (!options_.orbit && options_.zoom == 1.0 && !options_.pick)) return;
+  const std::shared_ptr<const FrameSnapshot> s = shown_;
   frame();  // the view as turned, at full size (headless)
-  const auto axis = view_->project(Vec3(0.0, 0.0, s->drum_depth));
-  const auto back = view_->project(Vec3::Zero());
-  const auto rim = view_->project(Vec3(0.0, s->drum_radius, s->drum_depth));
+  render::DrumView& view = view_->drum_view();
+  const auto axis = view.project(Vec3(0.0, 0.0, s->drum_depth));
+  const auto back = view.project(Vec3::Zero());
+  const auto rim = view.project(Vec3(0.0, s->drum_radius, s->drum_depth));
   fmt::print("view: front axis at ({:.1f}, {:.1f}), back axis at ({:.1f}, {:.1f}), rim {:.1f} px\n",
              axis[0], axis[1], back[0], back[1], std::hypot(rim[0] - axis[0], rim[1] - axis[1]));
-  if (!options_.pick) return;
-  const auto [x, y] = *options_.pick;
+  if (options_.pick) report_pick(*s, (*options_.pick)[0], (*options_.pick)[1]);
+}
+
+void GuiApp::report_pick(const FrameSnapshot& s, double x, double y) {
   // Every particle whose projected disc holds the pixel, and where the line of sight enters it,
   // from the projected pixels alone: an independent check that the pick is the front-most.
-  int win_w = 0, win_h = 0;
-  glfwGetWindowSize(window_, &win_w, &win_h);
-  const double px = x * image_.width() / std::max(1, win_w);
-  const double py = y * image_.height() / std::max(1, win_h);
-  const auto [near, far] = view_->sight_line(px, py);
+  render::DrumView& view = view_->drum_view();
+  const auto [px, py] = view_->image_pixel(x, y, window_->window_size());
+  const auto [near, far] = view.sight_line(px, py);
   const Vec3 d = (far - near).normalized();
   const auto entry = [&](std::size_t i) -> std::optional<double> {
-    const auto c = view_->project(s->position[i]);
-    const auto e = view_->project(s->position[i] + s->radius[i] * d.unitOrthogonal());
+    const auto c = view.project(s.position[i]);
+    const auto e = view.project(s.position[i] + s.radius[i] * d.unitOrthogonal());
     const double r_px = std::hypot(e[0] - c[0], e[1] - c[1]);
-    const double rho = s->radius[i] * std::hypot(c[0] - px, c[1] - py) / r_px;
-    if (rho > s->radius[i]) return std::nullopt;
-    return d.dot(s->position[i] - near) - std::sqrt(s->radius[i] * s->radius[i] - rho * rho);
+    const double rho = s.radius[i] * std::hypot(c[0] - px, c[1] - py) / r_px;
+    if (rho > s.radius[i]) return std::nullopt;
+    return d.dot(s.position[i] - near) - std::sqrt(s.radius[i] * s.radius[i] - rho * rho);
   };
   std::size_t under = 0;
   double front = 1e300;
-  for (std::size_t i = 0; i < s->size(); ++i) {
+  for (std::size_t i = 0; i < s.size(); ++i) {
     if (const auto depth = entry(i)) {
       ++under;
       front = std::min(front, *depth);
@@ -72,8 +65,7 @@ void GuiApp::apply_view_flags() {
     fmt::print("pick ({}, {}): none ({} particles under the cursor)\n", x, y, under);
     return;
   }
-  const auto i =
-      static_cast<std::size_t>(std::find(s->id.begin(), s->id.end(), *id) - s->id.begin());
+  const auto i = static_cast<std::size_t>(std::find(s.id.begin(), s.id.end(), *id) - s.id.begin());
   fmt::print(
       "pick ({}, {}): id {} entered at depth {:.9f} m; {} particles under the cursor, the "
       "front-most entered at depth {:.9f} m\n",
@@ -82,7 +74,7 @@ void GuiApp::apply_view_flags() {
 
 void GuiApp::run() {
   if (options_.frames == 0) {
-    while (glfwWindowShouldClose(window_) == 0) frame();
+    while (!window_->should_close()) frame();
     return;
   }
   // Headless: at least `frames` UI frames, and until the simulation has made its steps.
@@ -92,12 +84,18 @@ void GuiApp::run() {
       throw std::runtime_error(sim_->state_text());
     }
   }
-  shown_ = sim_->latest();
-  shown_generation_ = sim_->generation();
-  if (shown_) update_history(*shown_);
+  take_snapshot();
   apply_view_flags();
   frame(options_.screenshot);  // the last snapshot, panels included
-  if (!options_.save_scene.empty()) save_edited_scene(options_.save_scene);
+  if (shown_) {                // the search's work since the start pins when a --switch-at happened
+    const SearchCounters& t = shown_->totals;
+    fmt::print(
+        "search            {}; since the start: {} cells visited, {} pairs tested, {} found\n",
+        shown_->search_name, t.cells_visited, t.pairs_tested, t.pairs_found);
+    const std::string walk = teaching_.report(*shown_, shown_generation_);
+    if (!walk.empty()) fmt::print("{}\n", walk);
+  }
+  if (!options_.save_scene.empty()) scene_editor_->save(options_.save_scene);
   if (!options_.checkpoint.empty()) {
     const std::string file = options_.checkpoint;
     sim_->with_simulation(
@@ -110,7 +108,7 @@ void GuiApp::run() {
 
 BenchFigures GuiApp::bench(std::uint64_t frames) {
   BenchFigures b;
-  b.max_running_fps = max_running_fps_;
+  b.max_running_fps = clock_.max_running_fps;
   // Settle first (drawing as it goes), then pause: both measurements on the settled bed.
   sim_->set_running(true);
   while (!sim_->settled()) {
@@ -121,25 +119,23 @@ BenchFigures GuiApp::bench(std::uint64_t frames) {
   while (sim_->running()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   frame();
   profiling_ = true;
-  // Paused, the camera orbiting: the drawing alone (at 1 / reduction_ of the size: it moves).
+  // Paused, the camera orbiting: the drawing alone (reduced while it moves).
   profile_ = {};
   double t0 = now_seconds();
   for (std::uint64_t k = 0; k < frames; ++k) {
     view_->orbit(360.0 / static_cast<double>(frames), 0.0);
-    camera_changed();
     frame();
   }
   b.paused_fps = static_cast<double>(frames) / (now_seconds() - t0);
   b.orbiting = profile_;
   // Paused, the camera still: full size, once; then the image shown again.
-  camera_changed(true);
-  camera_moved_at_ = -1e9;
+  view_->place_camera();
   t0 = now_seconds();
   profile_ = {};
   for (std::uint64_t k = 0; k < frames; ++k) frame();
   b.still_fps = static_cast<double>(frames) / (now_seconds() - t0);
   b.still = profile_;
-  // Running: paced as in the window (at most max_running_fps_ frames/s).
+  // Running: paced as in the window (at most max_running_fps frames/s).
   const auto [steps0, seconds0] = sim_->stepping_totals();
   profile_ = {};
   sim_->set_running(true);
