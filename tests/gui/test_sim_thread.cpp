@@ -8,6 +8,7 @@
 #include <chrono>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "app/gui/sim_thread.hpp"
@@ -17,13 +18,17 @@
 namespace drumlab::test {
 namespace {
 
-TEST(SimThread, SceneIsWholeWhileTheThreadSwitchesMethodsAndRestarts) {
-  const auto dir = fresh_dir("sim-thread");
-  const auto file = write_small_drum(dir, "m5").string();
+/// The small drum (m5) without settling: its scene, and the session options naming it.
+std::pair<SceneConfig, SessionOptions> small_drum(const std::string& name) {
+  const auto file = write_small_drum(fresh_dir(name), "m5").string();
   SessionOptions o;
   o.scene_file = file;
   o.settle_time = 0.0;
-  const SceneConfig scene = load_dynamic_scene(file);
+  return {load_dynamic_scene(file), o};
+}
+
+TEST(SimThread, SceneIsWholeWhileTheThreadSwitchesMethodsAndRestarts) {
+  const auto [scene, o] = small_drum("sim-thread");
   gui::SimThread sim(scene, o, {}, 1);
   sim.set_chunk(2);
   sim.set_running(true);
@@ -55,12 +60,8 @@ TEST(SimThread, SceneIsWholeWhileTheThreadSwitchesMethodsAndRestarts) {
 }
 
 TEST(SimThread, SceneFollowsASwitchOnceItIsApplied) {
-  const auto dir = fresh_dir("sim-thread-switch");
-  const auto file = write_small_drum(dir, "m5").string();
-  SessionOptions o;
-  o.scene_file = file;
-  o.settle_time = 0.0;
-  gui::SimThread sim(load_dynamic_scene(file), o, {}, 1);
+  const auto [scene, o] = small_drum("sim-thread-switch");
+  gui::SimThread sim(scene, o, {}, 1);
   EXPECT_EQ(sim.scene().search_method, "m5");
   sim.switch_method("verlet:m2");
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
