@@ -10,6 +10,7 @@
 #include "app/gui/gui_options.hpp"
 #include "app/gui/gui_session.hpp"
 #include "app/gui/gui_window.hpp"
+#include "engine/scene/scene_validation.hpp"
 #include "engine/scene/scene_writer.hpp"
 
 namespace drumlab::gui {
@@ -50,8 +51,12 @@ void SceneEditor::panel(const GuiWindow& window, SimThread& sim) {
   class_fields();
   fill_fields();
   if (ImGui::Button("Restart from edited scene")) {
-    sim.restart(with_gui_checks(edited_));
-    message_ = "restarted (paused): press Run";
+    if (const auto problem = scene_problem(edited_)) {  // the loader's ranges, not a crash
+      message_ = fmt::format("not restarted: {}: {}", problem->key, problem->reason);
+    } else {
+      sim.restart(with_gui_checks(edited_));
+      message_ = "restarted (paused): press Run";
+    }
   }
   ImGui::InputText("##scenefile", &save_path_);
   ImGui::SameLine();
