@@ -128,31 +128,28 @@ double max_difference(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
   return d;
 }
 
-SkipCase friction_case(const SceneConfig& base, const std::string& method, double tiny) {
+/// A case that sets one material coefficient (material and wall) to 0 for the skip and to `tiny`
+/// for the general path; rolling friction is 0 in both unless it is the coefficient.
+SkipCase coefficient_case(const SceneConfig& base, const std::string& method, double tiny,
+                          bool rolling) {
   SkipCase c;
-  c.name = "friction 0";
-  c.general = fmt::format("friction {:g} (material and wall)", tiny);
+  c.name = rolling ? "rolling 0" : "friction 0";
+  c.general =
+      fmt::format("{} {:g} (material and wall)", rolling ? "rolling_friction" : "friction", tiny);
   SceneConfig s = base;
   s.material.rolling_friction = s.wall.rolling_friction = 0.0;  // isolate the friction skip
-  s.material.friction = s.wall.friction = 0.0;
+  const auto set = [&](double v) {
+    double& material = rolling ? s.material.rolling_friction : s.material.friction;
+    double& wall = rolling ? s.wall.rolling_friction : s.wall.friction;
+    material = wall = v;
+  };
+  set(0.0);
   c.with_skip = {s, method, false};
-  s.material.friction = s.wall.friction = tiny;
+  set(tiny);
   c.without_skip = {s, method, false};
-  c.note = "no tangential history, no rotation; rolling friction 0 in both";
-  return c;
-}
-
-SkipCase rolling_case(const SceneConfig& base, const std::string& method, double tiny) {
-  SkipCase c;
-  c.name = "rolling 0";
-  c.general = fmt::format("rolling_friction {:g} (material and wall)", tiny);
-  SceneConfig s = base;
-  s.material.rolling_friction = s.wall.rolling_friction = 0.0;
-  c.with_skip = {s, method, false};
-  s.material.rolling_friction = s.wall.rolling_friction = tiny;
-  c.without_skip = {s, method, false};
-  c.note = fmt::format("friction as in the scene ({}, wall {})", base.material.friction,
-                       base.wall.friction);
+  c.note = rolling ? fmt::format("friction as in the scene ({}, wall {})", base.material.friction,
+                                 base.wall.friction)
+                   : "no tangential history, no rotation; rolling friction 0 in both";
   return c;
 }
 
@@ -170,32 +167,37 @@ SkipCase grid_case(const SceneConfig& base, const char* grid3d) {
   return c;
 }
 
-SkipCase ends_case(const SceneConfig& base, const std::string& method) {
+/// A case of two scenes run with `method`: the one the engine skips work in, and the general one.
+SkipCase scene_pair_case(std::string name, std::string general, const SceneConfig& with_skip,
+                         const SceneConfig& without_skip, const std::string& method,
+                         std::string note) {
   SkipCase c;
-  c.name = "periodic ends";
-  c.general = "end caps";
-  SceneConfig s = base;
-  s.drum.ends = DrumEnds::periodic;
-  c.with_skip = {s, method, false};
-  s.drum.ends = DrumEnds::caps;
-  c.without_skip = {s, method, false};
+  c.name = std::move(name);
+  c.general = std::move(general);
+  c.with_skip = {with_skip, method, false};
+  c.without_skip = {without_skip, method, false};
+  c.note = std::move(note);
+  return c;
+}
+
+SkipCase ends_case(const SceneConfig& base, const std::string& method) {
+  SceneConfig periodic = base;
+  periodic.drum.ends = DrumEnds::periodic;
+  SceneConfig caps = base;
+  caps.drum.ends = DrumEnds::caps;
+  SkipCase c = scene_pair_case("periodic ends", "end caps", periodic, caps, method,
+                               "different physics: wall-phase time only");
   c.same_physics = false;
   c.walls_only = true;
-  c.note = "different physics: wall-phase time only";
   return c;
 }
 
 SkipCase cohesion_case(const SceneConfig& base, const std::string& method) {
-  SkipCase c;
-  c.name = "cohesion off";
-  c.general = "[cohesion] sjkr with energy_density 0";
-  SceneConfig s = base;
-  c.with_skip = {s, method, false};
-  s.cohesion.enabled = true;
-  s.cohesion.energy_density = 0.0;
-  c.without_skip = {s, method, false};
-  c.note = "zero-strength adhesion: the cohesive pass runs, adds nothing";
-  return c;
+  SceneConfig zero = base;
+  zero.cohesion.enabled = true;
+  zero.cohesion.energy_density = 0.0;
+  return scene_pair_case("cohesion off", "[cohesion] sjkr with energy_density 0", base, zero,
+                         method, "zero-strength adhesion: the cohesive pass runs, adds nothing");
 }
 
 SkipCase writers_case(const SceneConfig& base, const std::string& method) {
@@ -214,8 +216,8 @@ SkipCase writers_case(const SceneConfig& base, const std::string& method) {
 
 std::vector<SkipCase> make_cases(const SceneConfig& base, const std::string& method, double tiny) {
   std::vector<SkipCase> cases;
-  cases.push_back(friction_case(base, method, tiny));
-  cases.push_back(rolling_case(base, method, tiny));
+  cases.push_back(coefficient_case(base, method, tiny, false));
+  cases.push_back(coefficient_case(base, method, tiny, true));
   for (const char* grid3d : {"m3", "m5"}) cases.push_back(grid_case(base, grid3d));
   // A periodic state may straddle the ends: no caps.
   if (base.drum.ends == DrumEnds::caps) cases.push_back(ends_case(base, method));
