@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 
 #include "app/bench/paper_reference.hpp"
-#include "app/cli/run_report.hpp"
+#include "app/run/run_report.hpp"
 #include "engine/fill/paper_packing.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/search/contact_search.hpp"

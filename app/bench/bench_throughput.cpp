@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "app/cli/run_report.hpp"
+#include "app/run/run_report.hpp"
 #include "engine/io/atomic_file.hpp"
 #include "engine/search/verlet_list.hpp"
 #include "engine/simulation.hpp"

@@ -16,7 +16,7 @@
 #include <fmt/format.h>
 
 #include "app/cli/commands.hpp"
-#include "app/cli/run_report.hpp"
+#include "app/run/run_report.hpp"
 #include "engine/contact/contact_model.hpp"
 #include "engine/parallel/exchange_cost.hpp"
 #include "engine/parallel/ghost_layer.hpp"

@@ -15,10 +15,7 @@ void add_run_command(CLI::App& app) {
   auto opt = std::make_shared<RunOptions>();
   CLI::App* run =
       app.add_subcommand("run", "Simulate a scene: fill, settle, turn the drum, report");
-  run->add_option("scene", opt->scene, "scene file (TOML)")->required();
-  add_run_options(run, *opt);
-  run->add_option("--every", opt->every, "steps between output frames (default: 1/100 of the run)")
-      ->check(CLI::PositiveNumber);
+  add_run_arguments(run, *opt);  // the same as drumlab-mpi run's (app/run/run_options.hpp)
   run->callback([opt] { run_session(*opt); });
 
   auto demo_opt = std::make_shared<RunOptions>();

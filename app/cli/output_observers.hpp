@@ -1,6 +1,7 @@
 #pragma once
 // The output writers of `run`/`demo`/`render` as scheduled FrameObservers, created only for the
-// output flags given (a run without them creates no writer and no VTK object):
+// output flags given (a run without them creates no writer and no VTK object); when they write is
+// app/run/output_schedule.hpp's, shared with drumlab-mpi:
 //   --vtu DIR [--contacts-vtk] [--grid-vtk]   VTU/PVD series (needs the render library)
 //   --h5 FILE                                 HDF5 time series + XDMF sidecar (streamed)
 //   --agglomerates FILE.csv [--granule-age T] agglomerate statistics per frame + FILE.png
@@ -8,7 +9,7 @@
 #include <memory>
 #include <vector>
 
-#include "app/cli/run_session.hpp"
+#include "app/run/run_options.hpp"
 
 namespace drumlab::cli {
 

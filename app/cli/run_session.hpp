@@ -1,58 +1,14 @@
 #pragma once
-// `run`, `demo` and `render` on the command line: their options, and the printing around one
-// RunSession (engine/session/run_session.hpp: fill, settle with the drum at rest, turn the drum,
-// scheduled observers between steps).
-#include <cstdint>
-#include <optional>
+// `run`, `demo` and `render` on the command line: the printing around one RunSession
+// (engine/session/run_session.hpp: fill, settle with the drum at rest, turn the drum, scheduled
+// observers between steps). The options, the output schedule and the summary are
+// app/run/'s, shared with drumlab-mpi.
 #include <span>
-#include <string>
 
-#include <CLI/CLI.hpp>
-
-#include "engine/session/run_session.hpp"
+#include "app/run/run_options.hpp"
+#include "app/run/run_report.hpp"
 
 namespace drumlab::cli {
-
-struct RunOptions {
-  std::string scene;
-  std::string method;
-  std::optional<std::uint64_t> steps;  ///< --steps (0: fill and settle only)
-  double revolutions = 0.0;
-  double dt_factor = 0.0;
-  int threads = 1;
-  std::string team = "adaptive";                    ///< --team: adaptive or fixed (see TeamChooser)
-  int team_probe_every = TeamChooser::kProbeEvery;  ///< --team-probe-every
-  bool unsafe_dt = false;
-  std::int64_t sort_every = -1;  ///< >= 0: overrides performance.sort_every
-  double skin = 0.0;             ///< > 0: overrides performance.verlet_skin
-  double settle_time = -1.0;     ///< < 0: the scene's fill.settle_time
-  std::uint64_t every = 0;       ///< steps between frames for observers (0: the run decides)
-  std::uint64_t frames = 0;      ///< if > 0, spread this many frames over the turning phase
-  // Outputs (see output_observers.hpp).
-  std::string vtu_dir;        ///< --vtu DIR
-  bool contacts_vtk = false;  ///< --contacts-vtk
-  bool grid_vtk = false;      ///< --grid-vtk
-  std::string h5_file;        ///< --h5 FILE
-  std::string checkpoint;     ///< --checkpoint FILE (written at the end)
-  std::uint64_t checkpoint_every = 0;
-  std::string agglomerates;   ///< --agglomerates FILE.csv (+ FILE.png)
-  double granule_age = -1.0;  ///< --granule-age T (s); < 0: one drum revolution
-  std::string restart;        ///< --restart FILE: skip fill and settling, continue from the file
-};
-
-/// Adds the options of RunOptions (except the scene and the frame schedule --every/--frames, which
-/// each command adds itself) to a subcommand.
-void add_run_options(CLI::App* cmd, RunOptions& opt);
-
-/// The session options `opt` asks for (the scene file, method, time step, settling, restart...).
-SessionOptions session_options(const RunOptions& opt);
-
-/// Prints the search "auto" chose and why ("search auto       -> METHOD: REASON").
-void print_auto_choice(const SearchChoice& choice);
-
-/// Prints how the session resolved "auto" and what a restart read (the notes and the restart
-/// line), as `run` does.
-void print_session_choices(const RunSession& session);
 
 /// Runs the scene as planned by `opt` and prints the summary of the turning phase. The output
 /// writers requested in `opt` are added to `observers`.

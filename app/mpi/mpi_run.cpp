@@ -2,9 +2,6 @@
 
 #include <sched.h>
 
-#include <algorithm>
-#include <filesystem>
-#include <functional>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -12,15 +9,13 @@
 
 #include <fmt/format.h>
 
-#include "engine/analysis/agglomerates.hpp"
+#include "app/mpi/mpi_outputs.hpp"
+#include "app/mpi/mpi_report.hpp"
+#include "app/run/output_schedule.hpp"
+#include "app/run/run_report.hpp"
 #include "engine/contact/contact_model.hpp"
 #include "engine/io/checkpoint.hpp"
-#include "engine/io/h5_series_frame.hpp"
-#include "engine/io/mpi/checkpoint_mpi.hpp"
-#include "engine/io/mpi/h5_mpi.hpp"
-#include "engine/io/mpi/h5_series_mpi.hpp"
 #include "engine/parallel/ghost_layer.hpp"
-#include "engine/parallel/mpi/mpi_domain.hpp"
 #include "engine/threads.hpp"
 
 namespace drumlab::mpi {
@@ -35,15 +30,15 @@ void broadcast(MPI_Comm comm, std::string& text) {
   MPI_Bcast(text.data(), length, MPI_CHAR, 0, comm);
 }
 
-/// How the run starts: the scene as run and the plan on every rank; the whole state on rank 0
-/// only, or every rank's share of a checkpoint.
+/// How the run starts: the scene as run on every rank; the whole state on rank 0 only, or every
+/// rank's share of a checkpoint; what rank 0's session chose and read (for its lines).
 struct Start {
   SceneConfig scene;
-  SessionPlan plan;
   std::optional<SimulationState> full;
-  std::string search_reason;  ///< how "auto" chose, if it did
-  SimulationState share;      ///< rows [first, first + its size) of the checkpoint's total
+  SimulationState share;  ///< rows [first, first + its size) of the checkpoint's total
   std::uint64_t first = 0, total = 0;
+  std::optional<SearchChoice> auto_choice;
+  std::optional<RestartInfo> restart;
 };
 
 /// A restart with a search method named (not "auto", which times the candidates on the whole
@@ -58,36 +53,31 @@ bool spread_restart(const SceneConfig& scene, const SessionOptions& o) {
 Start read_shares(MpiComm& comm, const SceneConfig& scene, const SessionOptions& o) {
   Start s;
   s.scene = scene_with_options(scene, o);
-  std::string error;
-  try {
+  comm.agree([&] {
     s.total = read_checkpoint_rows(o.restart, 0, 0).particles;
     const auto r = static_cast<std::uint64_t>(comm.rank());
     const auto n = static_cast<std::uint64_t>(comm.size());
     s.first = s.total * r / n;
     Checkpoint c = read_checkpoint_rows(o.restart, s.first, s.total * (r + 1) / n - s.first);
     if (!o.method.empty()) c.state.search_method = o.method;
-    s.plan = session_plan(s.scene, o, c.state.dt, true);
+    s.restart = RestartInfo{o.restart, c.scene_name, o.dt_factor > 0.0};
     s.share = std::move(c.state);
-  } catch (const InputError& e) {
-    error = e.what();
-  }
-  error = comm.first_error(error);
-  if (!error.empty()) throw InputError(error);
+  });
   return s;
 }
 
 /// Rank 0 alone fills the scene or reads the checkpoint (and resolves "auto"); the others get the
-/// method and the plan from it and apply the same options to the scene. Bad input met by rank 0
-/// is thrown on every rank.
+/// method from it and apply the same options to the scene. Bad input met by rank 0 is thrown on
+/// every rank.
 Start start_run(MPI_Comm comm, int rank, const SceneConfig& scene, const SessionOptions& o) {
   Start s;
   std::string error;
   if (rank == 0) {
     try {
       RunSession session(scene, o);
-      s.plan = session.plan();
       s.scene = session.scene();
-      if (session.auto_choice()) s.search_reason = session.auto_choice()->reason;
+      s.auto_choice = session.auto_choice();
+      s.restart = session.restart();
       s.full = session.simulation().take_state();
     } catch (const InputError& e) {
       error = e.what();
@@ -97,14 +87,10 @@ Start start_run(MPI_Comm comm, int rank, const SceneConfig& scene, const Session
   if (!error.empty()) throw InputError(error);
   std::string method = s.scene.search_method;
   broadcast(comm, method);
-  std::uint64_t steps[2] = {s.plan.settle_steps, s.plan.turn_steps};
-  MPI_Bcast(steps, 2, MPI_UINT64_T, 0, comm);
-  MPI_Bcast(&s.plan.settle_time, 1, MPI_DOUBLE, 0, comm);
   if (rank != 0) {
     s.scene = scene_with_options(scene, o);
     s.scene.search_method = method;
-    s.plan.settle_steps = steps[0];
-    s.plan.turn_steps = steps[1];
+    if (!o.restart.empty()) s.restart = RestartInfo{o.restart, {}, false};  // no settling
   }
   return s;
 }
@@ -120,94 +106,6 @@ MpiDomainOptions domain_options(const SceneConfig& scene, const MpiRunOptions& o
   d.balance = o.balance;
   d.balance_threshold = o.balance_threshold;
   return d;
-}
-
-/// Checkpoints and the series: written by every rank into one file (parallel HDF5, the serial
-/// layout), or with --gather-output gathered on rank 0 and written there by the serial writer;
-/// each write timed on this rank.
-struct Output {
-  const MpiRunOptions& o;
-  bool gather_series = false;
-  std::optional<H5Series> series;
-  std::vector<Bond> bonds;  ///< rank 0's scratch for a gathered frame of a scene with bonds
-  std::uint64_t checkpoints = 0, frames = 0;
-  double checkpoint_seconds = 0.0, frame_seconds = 0.0;
-};
-
-void write_checkpoint_now(MpiDomain& domain, const Simulation& sim, Output& out) {
-  const double t0 = MPI_Wtime();
-  if (out.o.gather_output) {
-    const auto state = domain.gather(sim);
-    h5::on_root(domain.comm().comm(),
-                [&] { write_checkpoint(out.o.checkpoint, *state, sim.scene().name); });
-  } else {
-    write_checkpoint_mpi(domain.comm(), sim, domain.slots(), out.o.checkpoint, sim.scene().name);
-  }
-  out.checkpoint_seconds += MPI_Wtime() - t0;
-  ++out.checkpoints;
-}
-
-/// One frame of the series, as `drumlab run --h5` takes it: only of a state that has just passed
-/// the stability check (collective).
-void write_series_frame(MpiDomain& domain, Simulation& sim, Output& out) {
-  sim.check_stability();
-  const double t0 = MPI_Wtime();
-  if (out.gather_series) {
-    std::optional<SimulationState> state = domain.gather(sim);
-    h5::on_root(domain.comm().comm(), [&] {
-      const Simulation whole(sim.scene(), std::move(*state));  // the serial run at this step
-      write_series_frame(*out.series, whole, out.o.granule_age, out.bonds);
-    });
-  } else {
-    write_frame_mpi(*out.series, domain, sim, out.o.granule_age);
-  }
-  out.frame_seconds += MPI_Wtime() - t0;
-  ++out.frames;
-}
-
-/// The series (every rank's, or rank 0's with --gather-output), its path checked now.
-void open_series(MpiComm& comm, Output& out) {
-  const MpiRunOptions& o = out.o;
-  if (o.h5.empty()) return;
-  if (out.gather_series) {
-    h5::on_root(comm.comm(), [&] { out.series.emplace(o.h5); });
-  } else {
-    out.series.emplace(o.h5, mpi_series_access(comm, o.h5));
-  }
-}
-
-/// The final checkpoint and the series' end.
-void finish_output(MpiDomain& domain, const Simulation& sim, Output& out) {
-  if (!out.o.checkpoint.empty()) write_checkpoint_now(domain, sim, out);
-  if (out.o.h5.empty()) return;
-  if (out.gather_series) {
-    h5::on_root(domain.comm().comm(), [&] { out.series->finish(); });
-  } else {
-    out.series->finish();
-  }
-}
-
-/// The turn: `steps` steps with the scheduled series frames (frame 0 first) and checkpoints.
-void turn_drum(MpiDomain& domain, Simulation& sim, std::uint64_t steps, Output& out) {
-  const MpiRunOptions& o = out.o;
-  std::uint64_t every = 0;
-  if (!o.h5.empty()) {
-    every = o.every > 0 ? o.every : std::max<std::uint64_t>(1, steps / 100);
-    write_series_frame(domain, sim, out);
-  }
-  std::uint64_t done = 0;
-  while (done < steps) {
-    std::uint64_t k = steps - done;
-    if (o.checkpoint_every > 0) k = std::min(k, o.checkpoint_every - done % o.checkpoint_every);
-    if (every > 0) k = std::min(k, every - done % every);
-    sim.advance(k);
-    done += k;
-    if (every > 0 && done % every == 0) write_series_frame(domain, sim, out);
-    if (!o.checkpoint.empty() && o.checkpoint_every > 0 && done % o.checkpoint_every == 0 &&
-        done < steps) {
-      write_checkpoint_now(domain, sim, out);
-    }
-  }
 }
 
 /// The cores this process may run on (its CPU affinity); 0 if unknown.
@@ -233,88 +131,73 @@ void warn_if_threads_share_cores(MPI_Comm comm, int rank, int threads) {
   }
 }
 
+/// The decomposition's numbers of the run, over all ranks. Collective.
+MpiRunSummary decomposition_summary(MpiDomain& domain, const Simulation& sim,
+                                    const MpiRunOptions& o, double comm_share,
+                                    const OutputTimes& out) {
+  MpiRunSummary s;
+  s.ranks = domain.comm().size();
+  s.threads = o.run.threads;
+  s.balance = domain.balance(sim);
+  s.comm_share_max = domain.max(comm_share);
+  s.comm_share_mean = domain.sum(comm_share) / s.ranks;
+  s.exchange_seconds = domain.max(s.balance.exchange_seconds);
+  s.recut_seconds = domain.max(s.balance.recut_seconds);
+  s.balance_by = o.balance;
+  s.rebalance_every = o.rebalance_every;
+  s.balance_threshold = o.balance_threshold;
+  s.wet = sim.scene().liquid.enabled && sim.scene().liquid.migration;
+  s.output = out;
+  s.output.checkpoint_seconds = domain.max(out.checkpoint_seconds);
+  s.output.frame_seconds = domain.max(out.frame_seconds);
+  return s;
+}
+
 }  // namespace
 
-MpiRunSummary run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
-  int rank = 0, ranks = 1;
+void run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
+  const cli::RunOptions& opt = o.run;
+  int rank = 0;
   MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &ranks);
-  set_thread_count(o.threads);
-  warn_if_threads_share_cores(comm, rank, o.threads);
-  SceneConfig scene = load_dynamic_scene(o.session.scene_file);
-  if (!o.h5.empty() && !o.checkpoint.empty() &&
-      std::filesystem::weakly_canonical(o.h5) == std::filesystem::weakly_canonical(o.checkpoint)) {
-    throw InputError(fmt::format("--h5 and --checkpoint both name {}", o.h5));
-  }
-  Output out{o, o.gather_output, {}, {}};
+  set_thread_count(opt.threads);
+  warn_if_threads_share_cores(comm, rank, opt.threads);
   MpiComm io_comm(comm);
-  open_series(io_comm, out);  // checked before the fill, written from the turn
-  MpiRunSummary s;
-  const bool shares = spread_restart(scene, o.session);
-  Start start =
-      shares ? read_shares(io_comm, scene, o.session) : start_run(comm, rank, scene, o.session);
-  s.search_reason = std::move(start.search_reason);
-  const SessionPlan plan = start.plan;
-  const SceneConfig& run_scene = start.scene;
-  MpiDomain domain(comm, domain_options(run_scene, o));
+  SceneConfig scene;  // every rank reads the file: one that some rank cannot read stops all
+  io_comm.agree([&] { scene = load_dynamic_scene(opt.scene); });
+  cli::check_run_options(opt);
+  const SessionOptions session_options = cli::session_options(opt);
+  MpiDomain domain(comm, domain_options(scene_with_options(scene, session_options), o));
+  OutputTimes written;
+  const auto outputs = make_mpi_outputs(domain, opt, o.gather_output, written);  // before the fill
+  std::vector<FrameObserver*> observers;
+  for (const auto& w : outputs) observers.push_back(w.get());
+  const bool shares = spread_restart(scene, session_options);
+  Start start = shares ? read_shares(io_comm, scene, session_options)
+                       : start_run(comm, rank, scene, session_options);
   std::unique_ptr<Simulation> sim =
-      shares ? domain.distribute_shares(run_scene, std::move(start.share), start.first, start.total)
-             : domain.distribute(run_scene, std::move(start.full));
-  s.particles = domain.particles();
+      shares
+          ? domain.distribute_shares(start.scene, std::move(start.share), start.first, start.total)
+          : domain.distribute(start.scene, std::move(start.full));
+  RunSession session(start.scene, session_options, std::move(sim), start.restart,
+                     start.auto_choice);
+  if (rank == 0) cli::print_session_choices(session);
+  const bool frames_taken = !opt.h5_file.empty() || !opt.agglomerates.empty();
+  const std::uint64_t every = cli::frame_every(opt, session.plan().turn_steps, frames_taken);
   MPI_Barrier(comm);
   const double t0 = MPI_Wtime();
   const double comm0 = domain.comm_seconds();  // the distribution is not part of the stepping
-  if (plan.settle_steps > 0) {
-    sim->set_drum_omega(0.0);
-    sim->advance(plan.settle_steps);
-    sim->set_drum_omega(run_scene.drum.omega);
+  const TurnResult turn = cli::settle_and_turn(session, every, observers, rank == 0);
+  const double seconds = MPI_Wtime() - t0;
+  const double comm_share = seconds > 0.0 ? (domain.comm_seconds() - comm0) / seconds : 0.0;
+  const Simulation& run = session.simulation();
+  cli::RunSummary summary = cli::run_summary(run, turn.stats, domain.particles());
+  reduce_phase(domain, summary.phase);
+  const MpiRunSummary decomposition = decomposition_summary(domain, run, o, comm_share, written);
+  if (rank == 0) {
+    cli::print_summary(summary);
+    cli::print_team(session);
+    print_decomposition(decomposition);
   }
-  const double t1 = MPI_Wtime();
-  turn_drum(domain, *sim, plan.turn_steps, out);
-  const double t2 = MPI_Wtime();
-  const double comm2 = domain.comm_seconds();
-  finish_output(domain, *sim, out);
-  const MpiBalance b = domain.balance(*sim);
-  const double share = (t2 - t0) > 0.0 ? (comm2 - comm0) / (t2 - t0) : 0.0;
-  s.scene = run_scene.name;
-  s.method = run_scene.search_method;
-  s.ranks = ranks;
-  s.threads = o.threads;
-  s.settle_steps = plan.settle_steps;
-  s.turn_steps = plan.turn_steps;
-  s.seconds = t2 - t0;
-  s.turn_seconds = t2 - t1;
-  s.owned_min = b.owned_min;
-  s.owned_max = b.owned_max;
-  s.owned_mean = b.owned_mean;
-  s.comm_share_max = domain.max(share);
-  s.comm_share_mean = domain.sum(share) / ranks;
-  s.exchanges = b.exchanges;
-  s.exchange_seconds = domain.max(b.exchange_seconds);
-  s.recut_seconds = domain.max(b.recut_seconds);
-  const StepTimers& tm = sim->timers();
-  for (auto [mine, mean] : {std::pair{tm.search, &s.split.search},
-                            {tm.forces, &s.split.forces},
-                            {tm.walls, &s.split.walls},
-                            {tm.integration, &s.split.integration},
-                            {tm.reorder, &s.split.reorder}}) {
-    *mean = domain.sum(mine) / ranks;
-  }
-  s.rebalances = b.rebalances;
-  s.balance = o.balance;
-  s.rebalance_every = o.rebalance_every;
-  s.balance_threshold = o.balance_threshold;
-  s.first_imbalance = b.first_imbalance;
-  s.last_imbalance = b.last_imbalance;
-  s.ghosts_new = b.ghosts_new;
-  s.ghosts_kept = b.ghosts_kept;
-  s.wet = scene.liquid.enabled && scene.liquid.migration;
-  s.bridge_events = b.bridge_events;
-  s.checkpoints = out.checkpoints;
-  s.frames = out.frames;
-  s.checkpoint_seconds = domain.max(out.checkpoint_seconds);
-  s.frame_seconds = domain.max(out.frame_seconds);
-  return s;
 }
 
 }  // namespace drumlab::mpi

@@ -74,6 +74,14 @@ RunSession::RunSession(SceneConfig scene, SessionOptions options)
   if (!options_.method.empty()) sim_->set_search_method(method);
 }
 
+RunSession::RunSession(SceneConfig scene, SessionOptions options, std::unique_ptr<Simulation> sim,
+                       std::optional<RestartInfo> restart, std::optional<SearchChoice> auto_choice)
+    : scene_(std::move(scene)),
+      options_(std::move(options)),
+      sim_(std::move(sim)),
+      auto_choice_(std::move(auto_choice)),
+      restart_(std::move(restart)) {}
+
 std::uint64_t RunSession::settle_steps() const {
   if (restart_) return 0;
   const double t = options_.settle_time >= 0.0 ? options_.settle_time : scene_.fill.settle_time;
@@ -115,8 +123,8 @@ SessionPlan RunSession::plan() const {
   return session_plan(scene_, options_, sim_->dt(), restart_.has_value());
 }
 
-std::uint64_t RunSession::advance_chunked(std::uint64_t n, std::uint64_t every,
-                                          const std::function<void()>& at_every,
+std::uint64_t RunSession::advance_chunked(std::uint64_t n, std::span<const std::uint64_t> every,
+                                          const std::function<void(std::uint64_t)>& after_chunk,
                                           const SessionProgress& progress) {
   const std::uint64_t chunk = std::max<std::uint64_t>(1, sim_->scene().output.diagnostics_every);
   if (options_.adaptive_team && !team_ && max_threads() > 1)
@@ -124,7 +132,9 @@ std::uint64_t RunSession::advance_chunked(std::uint64_t n, std::uint64_t every,
   std::uint64_t done = 0;
   while (done < n) {
     std::uint64_t k = std::min(chunk, n - done);
-    if (every > 0) k = std::min(k, every - done % every);
+    for (const std::uint64_t e : every) {
+      if (e > 0) k = std::min(k, e - done % e);
+    }
     if (team_) {  // a window of steps with the chosen team, timed
       k = std::min(k, TeamChooser::kWindowSteps);
       set_thread_count(team_->team());
@@ -138,7 +148,7 @@ std::uint64_t RunSession::advance_chunked(std::uint64_t n, std::uint64_t every,
       sim_->advance(k);
     }
     done += k;
-    if (every > 0 && done % every == 0) at_every();
+    if (after_chunk) after_chunk(done);
     if (progress && !progress(done, n)) break;
   }
   return done;
@@ -148,12 +158,12 @@ void RunSession::settle(const SessionProgress& progress) {
   const std::uint64_t steps = settle_steps();
   if (steps == 0) return;
   sim_->set_drum_omega(0.0);
-  advance_chunked(steps, 0, {}, progress);
+  advance_chunked(steps, {}, {}, progress);
   sim_->set_drum_omega(scene_.drum.omega);
 }
 
 std::uint64_t RunSession::advance(std::uint64_t n, const SessionProgress& progress) {
-  return advance_chunked(n, 0, {}, progress);
+  return advance_chunked(n, {}, {}, progress);
 }
 
 TurnResult RunSession::run_turn(std::uint64_t steps, std::uint64_t every,
@@ -162,17 +172,30 @@ TurnResult RunSession::run_turn(std::uint64_t steps, std::uint64_t every,
   TurnResult r;
   const PhaseMeter meter(*sim_);
   double output_seconds = 0.0;
-  const auto emit = [&] {
+  // Each observer's schedule; `every` itself too, whose frames are checked for stability also
+  // when no observer takes them.
+  std::vector<std::uint64_t> cadence{every};
+  for (const FrameObserver* o : observers) cadence.push_back(o->every() > 0 ? o->every() : every);
+  std::vector<std::uint64_t> frames(observers.size(), 0);
+  const auto due = [&](std::size_t k, std::uint64_t done) {
+    return cadence[k] > 0 && done % cadence[k] == 0;
+  };
+  const auto emit = [&](std::uint64_t done) {
+    bool any = false;
+    for (std::size_t k = 0; k < cadence.size(); ++k) any = any || due(k, done);
+    if (!any) return;
     // No frame of a bad state: a writer sees only a state that has just passed the stability
     // check (finite, inside the drum, sane overlaps), also for frame 0 of a restart.
     sim_->check_stability();
     const auto t0 = std::chrono::steady_clock::now();
-    for (FrameObserver* o : observers) o->on_frame(*sim_, r.frames);
+    for (std::size_t k = 0; k < observers.size(); ++k) {
+      if (due(k + 1, done)) observers[k]->on_frame(*sim_, frames[k]++);
+    }
     ++r.frames;
     output_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
-  if (every > 0) emit();
-  r.stopped = advance_chunked(steps, every, emit, progress) < steps;
+  emit(0);
+  r.stopped = advance_chunked(steps, cadence, emit, progress) < steps;
   r.stats = meter.finish();
   r.stats.output_seconds = output_seconds;
   for (FrameObserver* o : observers) o->on_finish(*sim_);

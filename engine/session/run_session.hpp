@@ -12,6 +12,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "engine/search/auto_select.hpp"
 #include "engine/session/phase_meter.hpp"
@@ -31,6 +32,9 @@ class FrameObserver {
   virtual ~FrameObserver() = default;
   virtual void on_frame(const Simulation& sim, std::uint64_t frame) = 0;
   virtual void on_finish(const Simulation& /*sim*/) {}
+  /// Steps between this observer's frames when it keeps a schedule of its own (a checkpoint
+  /// every K steps); 0: the run's `every`.
+  virtual std::uint64_t every() const { return 0; }
 };
 
 struct SessionOptions {
@@ -94,6 +98,11 @@ class RunSession {
   /// Fills the scene (or reads options.restart), applies the overrides and resolves "auto".
   /// Throws InputError for bad input.
   RunSession(SceneConfig scene, SessionOptions options);
+  /// Drives a simulation built elsewhere (drumlab-mpi: this rank's part of a decomposed run)
+  /// for the scene as run (`scene`: overrides applied, "auto" already resolved, as `auto_choice`
+  /// says); `restart`: it continues a checkpoint (no settling).
+  RunSession(SceneConfig scene, SessionOptions options, std::unique_ptr<Simulation> sim,
+             std::optional<RestartInfo> restart, std::optional<SearchChoice> auto_choice);
   RunSession(const RunSession&) = delete;
   RunSession& operator=(const RunSession&) = delete;
 
@@ -120,8 +129,9 @@ class RunSession {
   void settle(const SessionProgress& progress = {});
   /// Advances `n` steps in chunks of at most output.diagnostics_every; returns the steps done.
   std::uint64_t advance(std::uint64_t n, const SessionProgress& progress = {});
-  /// Turns `steps` steps; with `every` > 0 the observers see frame 0 now, a frame every `every`
-  /// steps (each after the stability check), and on_finish at the end.
+  /// Turns `steps` steps; each observer with a schedule (its own `every()`, else `every` > 0)
+  /// sees frame 0 now and a frame every that many steps (each after the stability check); every
+  /// observer sees on_finish at the end. The chunks of steps end at every scheduled frame.
   TurnResult run_turn(std::uint64_t steps, std::uint64_t every,
                       std::span<FrameObserver* const> observers,
                       const SessionProgress& progress = {});
@@ -129,8 +139,10 @@ class RunSession {
   void set_search_method(const std::string& name);
 
  private:
-  std::uint64_t advance_chunked(std::uint64_t n, std::uint64_t every,
-                                const std::function<void()>& at_every,
+  /// Advances `n` steps in chunks that end at each multiple of every non-zero `every` (steps
+  /// counted from this call) and calls `after_chunk` with the steps done after each chunk.
+  std::uint64_t advance_chunked(std::uint64_t n, std::span<const std::uint64_t> every,
+                                const std::function<void(std::uint64_t)>& after_chunk,
                                 const SessionProgress& progress);
 
   SceneConfig scene_;

@@ -21,7 +21,8 @@ TEST(CliOutput, RestartContinuesBitIdentically) {
   // 120 turning steps straight; 60, then 60 more from the checkpoint (other frame chunking).
   auto r = run_cli("run " + scene + " --steps 120 --checkpoint " + d + "full.h5");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  r = run_cli("run " + scene + " --steps 60 --every 7 --checkpoint " + d + "half.h5");
+  r = run_cli("run " + scene + " --steps 60 --every 7 --h5 " + d + "s.h5 --checkpoint " + d +
+              "half.h5");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   r = run_cli("run " + scene + " --restart " + d + "half.h5 --steps 60 --checkpoint " + d +
               "cont.h5");
@@ -60,6 +61,7 @@ TEST(CliOutput, BadOutputPathsStopBeforeRunning) {
   for (const std::string& args :
        {"--h5 " + missing + "/s.h5", "--checkpoint " + missing + "/c.h5",
         "--restart " + missing + "/c.h5", std::string("--checkpoint-every 10"),
+        std::string("--every 10"), "--every 10 --checkpoint " + dir.path().string() + "/c.h5",
         "--restart " + scene,
         "--h5 " + dir.path().string() + "/x.h5 --checkpoint " + dir.path().string() + "/./x.h5"}) {
     const auto r = run_cli("run " + scene + " --steps 20 " + args);

@@ -24,8 +24,10 @@ class CountingObserver final : public FrameObserver {
     steps.push_back(sim.steps());
   }
   void on_finish(const Simulation&) override { ++finished; }
+  std::uint64_t every() const override { return own_every; }
   std::vector<std::uint64_t> frames, steps;
   int finished = 0;
+  std::uint64_t own_every = 0;
 };
 
 TEST(RunSession, PlansSettlesAndTurnsWithFrames) {
@@ -50,6 +52,23 @@ TEST(RunSession, PlansSettlesAndTurnsWithFrames) {
   EXPECT_EQ(o.steps, (std::vector<std::uint64_t>{plan.settle_steps, plan.settle_steps + 20,
                                                  plan.settle_steps + 40}));
   EXPECT_EQ(o.finished, 1);
+}
+
+// An observer with a schedule of its own (a checkpoint every K steps) sees its frames at the
+// multiples of K, the others at the run's; the chunks of steps end at both.
+TEST(RunSession, ObserverWithItsOwnScheduleSeesItsOwnFrames) {
+  RunSession session(small_scene(), SessionOptions{});
+  const std::uint64_t start = session.simulation().steps();
+  CountingObserver run, own;
+  own.own_every = 15;
+  FrameObserver* observers[] = {&run, &own};
+  const TurnResult r = session.run_turn(50, 20, observers);
+  EXPECT_EQ(r.stats.steps, 50u);
+  EXPECT_EQ(run.steps, (std::vector<std::uint64_t>{start, start + 20, start + 40}));
+  EXPECT_EQ(own.steps, (std::vector<std::uint64_t>{start, start + 15, start + 30, start + 45}));
+  EXPECT_EQ(own.frames, (std::vector<std::uint64_t>{0, 1, 2, 3}));
+  EXPECT_EQ(run.finished, 1);
+  EXPECT_EQ(own.finished, 1);
 }
 
 TEST(RunSession, SameTrajectoryAsTheSimulationDrivenByHand) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <numeric>
 
+#include "engine/types.hpp"
+
 namespace drumlab {
 
 namespace {
@@ -209,6 +211,17 @@ std::string MpiComm::first_error(const std::string& mine) {
   std::vector<std::byte> bytes(b, b + (rank_ == first ? mine.size() : 0));
   broadcast(bytes, first);
   return std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+}
+
+void MpiComm::agree(const std::function<void()>& work) {
+  std::string error;
+  try {
+    work();
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  error = first_error(error);
+  if (!error.empty()) throw InputError(error);
 }
 
 void MpiComm::send(int to, std::span<const std::byte> bytes) {

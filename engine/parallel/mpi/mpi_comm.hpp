@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -43,6 +44,10 @@ class MpiComm {
   /// The message of the lowest rank whose `mine` is not empty ("" if none): an error met by some
   /// ranks, to be thrown alike on all.
   std::string first_error(const std::string& mine);
+  /// Runs `work` on every rank; an InputError that any rank meets in it is thrown on every rank
+  /// alike (the lowest such rank's message), so that no rank is left waiting for the others in
+  /// a later collective. Collective.
+  void agree(const std::function<void()>& work);
   /// Point-to-point bytes of any length (in pieces of at most 1 GiB): send to rank `to`, and what
   /// rank `from` sent here.
   void send(int to, std::span<const std::byte> bytes);

@@ -403,18 +403,7 @@ std::unique_ptr<Simulation> MpiDomain::distribute_shares(const SceneConfig& scen
   scalars.search_method = share.search_method;
   scalars.contact_state_size = share.contact_state_size;
   share = {};
-  // A rank's part may hold what another rank's does not (a radius the Simulation refuses): the
-  // first rank to refuse its part speaks for all.
-  std::unique_ptr<Simulation> sim;
-  std::string error;
-  try {
-    sim = start_local(scene, std::move(scalars), std::move(part));
-  } catch (const InputError& e) {
-    error = e.what();
-  }
-  error = comm_.first_error(error);
-  if (!error.empty()) throw InputError(error);
-  return sim;
+  return start_local(scene, std::move(scalars), std::move(part));
 }
 
 std::unique_ptr<Simulation> MpiDomain::start_local(const SceneConfig& scene,
@@ -429,7 +418,11 @@ std::unique_ptr<Simulation> MpiDomain::start_local(const SceneConfig& scene,
   OwnedSet o = unpack_owned(start.particles, part.owned, part.owned_count);
   start.particles = std::move(o.p);
   start.wall_history = std::move(o.wall);
-  auto sim = std::make_unique<Simulation>(scene, std::move(start));
+  // A rank's part may hold what another rank's does not (a radius or a position the Simulation
+  // refuses): the first rank to refuse its part speaks for all, before any rank waits for the
+  // others again.
+  std::unique_ptr<Simulation> sim;
+  comm_.agree([&] { sim = std::make_unique<Simulation>(scene, std::move(start)); });
   assemble(*sim, sorted_pieces(part.owned, part.owned_count, size), part.ghosts,
            std::move(part.records), false);
   events_.set_ghosts(&sim->ghost_mask());

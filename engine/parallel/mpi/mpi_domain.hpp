@@ -74,7 +74,8 @@ class MpiDomain final : public DomainHooks {
 
   /// This rank's part of the whole state `full` (particles in the serial run's order), as a
   /// Simulation wired to this domain. `full` is rank 0's (none on the others): rank 0 cuts it,
-  /// sends each rank its part (engine/parallel/start_message.hpp) and frees it. Collective.
+  /// sends each rank its part (engine/parallel/start_message.hpp) and frees it. Bad input met by
+  /// any rank (its part refused by Simulation) is thrown on every rank. Collective.
   std::unique_ptr<Simulation> distribute(const SceneConfig& scene,
                                          std::optional<SimulationState> full);
   /// This rank's part of a checkpoint that every rank read a share of (no rank holds the whole
@@ -115,7 +116,8 @@ class MpiDomain final : public DomainHooks {
  private:
   /// The Simulation of this rank's part (owned particles packed, ghosts by owner, records) with
   /// the state's scalars (`scalars`, whose particles register the extra arrays), wired to this
-  /// domain; decomposition_ and cell_ set.
+  /// domain; decomposition_ and cell_ set. A part the Simulation refuses on any rank throws its
+  /// InputError on every rank. Collective.
   std::unique_ptr<Simulation> start_local(const SceneConfig& scene, SimulationState scalars,
                                           StartPart part);
   /// Migration, optional re-balance and a new ghost layer; replaces sim's particles.

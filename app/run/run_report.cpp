@@ -1,9 +1,11 @@
-#include "app/cli/run_report.hpp"
+#include "app/run/run_report.hpp"
 
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include <fmt/format.h>
 
@@ -12,10 +14,10 @@
 
 namespace drumlab::cli {
 
-ProgressBar::ProgressBar(std::string label, std::uint64_t total_steps)
+ProgressBar::ProgressBar(std::string label, std::uint64_t total_steps, bool shown)
     : label_(std::move(label)),
       total_(total_steps),
-      tty_(::isatty(::fileno(stderr)) != 0),
+      tty_(shown && ::isatty(::fileno(stderr)) != 0),
       start_(std::chrono::steady_clock::now()) {}
 
 void ProgressBar::update(std::uint64_t done) {
@@ -37,20 +39,54 @@ void ProgressBar::finish() {
   if (tty_ && total_ > 0) fmt::print(stderr, "\n");
 }
 
-void print_summary(const Simulation& sim, const PhaseStats& phase) {
-  const double n = static_cast<double>(sim.particles().size());
+void print_auto_choice(const SearchChoice& choice) {
+  fmt::print("search auto       -> {}: {}\n", choice.method, choice.reason);
+}
+
+void print_session_choices(const RunSession& session) {
+  if (const auto& r = session.restart()) {
+    if (r->checkpoint_scene != session.scene().name) {
+      fmt::print("note: {} was written by scene '{}', continuing with scene '{}'\n", r->file,
+                 r->checkpoint_scene, session.scene().name);
+    }
+    if (r->dt_factor_ignored)
+      fmt::print("note: --restart keeps the checkpoint's dt; --dt-factor ignored\n");
+  }
+  if (const auto& choice = session.auto_choice()) print_auto_choice(*choice);
+  if (const auto& r = session.restart()) {
+    const Simulation& sim = session.simulation();
+    fmt::print("restart           {} (step {}, t = {:.6g} s)\n", r->file, sim.steps(), sim.time());
+  }
+}
+
+RunSummary run_summary(const Simulation& sim, const PhaseStats& phase, std::uint64_t particles) {
+  RunSummary s;
+  s.particles = particles;
+  s.phase = phase;
+  s.dt = sim.dt();
+  s.rayleigh_time = sim.rayleigh_time();
+  s.time = sim.time();
+  s.method = sim.search().name();
+  s.method_description = sim.search().description();
+  s.search_detail = sim.search().report();
+  s.diagnostics = sim.diagnostics();
+  return s;
+}
+
+void print_summary(const RunSummary& s) {
+  const PhaseStats& phase = s.phase;
+  const double n = static_cast<double>(s.particles);
   const double steps = static_cast<double>(std::max<std::uint64_t>(phase.steps, 1));
   const double particle_steps = n * static_cast<double>(phase.steps);
   const double total = std::max(phase.timers.total(), 1e-12);
-  const Diagnostics d = sim.diagnostics();
+  const Diagnostics& d = s.diagnostics;
   auto share = [&](double t) { return 100.0 * t / total; };
-  fmt::print("particles         {}\n", sim.particles().size());
+  fmt::print("particles         {}\n", s.particles);
   fmt::print(
       "steps             {} (dt = {:.4g} s = {:.3g} Rayleigh times), simulated {:.4g} s, t = "
       "{:.4g} s\n",
-      phase.steps, sim.dt(), sim.dt() / sim.rayleigh_time(),
-      static_cast<double>(phase.steps) * sim.dt(), sim.time());
-  fmt::print("search method     {} ({})\n", sim.search().name(), sim.search().description());
+      phase.steps, s.dt, s.dt / s.rayleigh_time, static_cast<double>(phase.steps) * s.dt, s.time);
+  fmt::print("search method     {} ({})\n", s.method, s.method_description);
 #ifdef _OPENMP
   fmt::print("threads           {} (OpenMP: pair forces, walls, integration); waiting: {}\n",
              max_threads(), openmp_waiting_description());
@@ -74,9 +110,7 @@ void print_summary(const Simulation& sim, const PhaseStats& phase) {
       phase.search.pairs_found > 0 ? static_cast<double>(phase.search.pairs_tested) /
                                          static_cast<double>(phase.search.pairs_found)
                                    : 0.0);
-  if (const std::string extra = sim.search().report(); !extra.empty()) {
-    fmt::print("search detail     {}\n", extra);
-  }
+  if (!s.search_detail.empty()) fmt::print("search detail     {}\n", s.search_detail);
   fmt::print(
       "energy            kinetic {:.5g} J, rotational {:.5g} J, potential {:.5g} J, elastic {:.5g} "
       "J\n",
@@ -87,14 +121,49 @@ void print_summary(const Simulation& sim, const PhaseStats& phase) {
       d.max_overlap_ratio, d.outside_drum, d.non_finite, d.contacts, d.wall_contacts);
 }
 
-void settle_with_progress(RunSession& session, std::uint64_t steps) {
+void settle_with_progress(RunSession& session, std::uint64_t steps, bool shown) {
   if (steps == 0) return;
-  ProgressBar bar("settle", steps);
+  ProgressBar bar("settle", steps, shown);
   session.settle([&](std::uint64_t done, std::uint64_t) {
     bar.update(done);
     return true;
   });
   bar.finish();
+}
+
+TurnResult settle_and_turn(RunSession& session, std::uint64_t every,
+                           std::span<FrameObserver* const> observers, bool print) {
+  const Simulation& sim = session.simulation();
+  const SessionPlan plan = session.plan();
+  if (print) {
+    fmt::print("scene             {} ({})\n", session.scene().name, session.options().scene_file);
+    fmt::print(
+        "plan              settle {} steps ({:.3g} s, drum at rest), then turn {} steps ({:.3g} "
+        "s, {:.3g} rev)\n",
+        plan.settle_steps, plan.settle_time, plan.turn_steps,
+        static_cast<double>(plan.turn_steps) * sim.dt(),
+        static_cast<double>(plan.turn_steps) * sim.dt() * std::abs(session.scene().drum.omega) /
+            (2.0 * std::numbers::pi));
+  }
+  settle_with_progress(session, plan.settle_steps, print);
+  ProgressBar bar("turn", plan.turn_steps, print);
+  const TurnResult turn =
+      session.run_turn(plan.turn_steps, every, observers, [&](std::uint64_t done, std::uint64_t) {
+        bar.update(done);
+        return true;
+      });
+  bar.finish();
+  if (print) fmt::print("-- turning phase --\n");
+  return turn;
+}
+
+void print_team(const RunSession& session) {
+  if (const TeamChooser* t = session.team_chooser()) {
+    fmt::print(
+        "team              {} (settling and turning; the faster team runs; `--team fixed`: always "
+        "{})\n",
+        team_report(*t), t->threads());
+  }
 }
 
 }  // namespace drumlab::cli
