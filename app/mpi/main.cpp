@@ -1,10 +1,12 @@
 // drumlab-mpi: the drum on N MPI ranks (issue 15). Run it with mpirun:
 //   mpirun -np 4 drumlab-mpi run scenes/drum_demo.toml --steps 2000 --checkpoint out/state.h5
 // Exit codes as drumlab's: 0 success, 1 unexpected failure, 2 bad input, 3 unstable. An error is
-// printed once (by rank 0, or by the rank that met it if only one did) and every rank exits.
+// printed once (by rank 0, or by the rank that met it if only one did) and every rank exits, never
+// one left waiting (see fail()).
 #include <mpi.h>
 
 #include <malloc.h>
+#include <unistd.h>
 
 #include <csignal>
 #include <cstdio>
@@ -41,10 +43,34 @@ void add_run(CLI::App& app, MpiRunOptions& o, std::string& balance) {
       ->check(CLI::Range(0.0, 10.0));
 }
 
-/// Prints the error: bad input (exit 2) is met by every rank alike and printed by rank 0; any
-/// other failure may be one rank's alone, and that rank prints it.
-int fail(int code, const char* kind, const std::string& what, int rank) {
-  if (rank == 0 || code != 2) fmt::print(stderr, "drumlab-mpi: {}: {}\n", kind, what);
+/// Whether every rank has failed too: each failing rank calls this from its handler, on a
+/// communicator of its own (so that it matches no collective of the run). An error the ranks
+/// agreed on (bad input found by one rank and thrown on all, a write failed anywhere, an
+/// instability in the reduced diagnostics) brings all of them here within moments; an error met
+/// by this rank alone does not (the others wait in a collective of the run), and after
+/// `seconds` this rank gives up on them.
+bool every_rank_failed(MPI_Comm failures, double seconds) {
+  MPI_Request request = MPI_REQUEST_NULL;
+  MPI_Ibarrier(failures, &request);
+  const double t0 = MPI_Wtime();
+  int done = 0;
+  while (MPI_Test(&request, &done, MPI_STATUS_IGNORE) == MPI_SUCCESS && done == 0 &&
+         MPI_Wtime() - t0 < seconds) {
+    usleep(1000);
+  }
+  return done != 0;
+}
+
+/// Ends a failed run with one line and `code` on every rank: printed by rank 0 when every rank
+/// failed alike (then each leaves through MPI_Finalize), else by this rank, which then stops
+/// every rank with MPI_Abort (mpirun exits with `code`), never leaving one waiting.
+int fail(MPI_Comm failures, int code, const char* kind, const std::string& what, int rank) {
+  const bool all = every_rank_failed(failures, 10.0);
+  if (rank == 0 || !all) fmt::print(stderr, "drumlab-mpi: {}: {}\n", kind, what);
+  if (!all) {
+    std::fflush(stderr);
+    MPI_Abort(MPI_COMM_WORLD, code);
+  }
   return code;
 }
 
@@ -73,6 +99,8 @@ int main(int argc, char** argv) {
   MpiRunOptions o;
   std::string balance = "time";
   add_run(app, o, balance);
+  MPI_Comm failures = MPI_COMM_NULL;
+  MPI_Comm_dup(MPI_COMM_WORLD, &failures);
   int code = 0;
   try {
     app.parse(argc, argv);
@@ -82,17 +110,13 @@ int main(int argc, char** argv) {
     if (rank == 0) app.exit(e);
     code = e.get_exit_code() != 0 ? 2 : 0;
   } catch (const drumlab::InputError& e) {
-    code = fail(2, "error", e.what(), rank);
+    code = fail(failures, 2, "error", e.what(), rank);
   } catch (const drumlab::UnstableError& e) {
-    code = fail(3, "unstable", e.what(), rank);
+    code = fail(failures, 3, "unstable", e.what(), rank);
   } catch (const std::exception& e) {
-    code = fail(1, "failed", e.what(), rank);
+    code = fail(failures, 1, "failed", e.what(), rank);
   }
-  if (code != 0 && code != 2) {
-    // A failure met by one rank only would leave the others waiting in a collective: stop all.
-    std::fflush(stderr);
-    MPI_Abort(MPI_COMM_WORLD, code);
-  }
+  MPI_Comm_free(&failures);
   MPI_Finalize();
   return code;
 }

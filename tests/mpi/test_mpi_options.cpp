@@ -112,5 +112,26 @@ TEST_F(MpiOptions, InputErrorOfOneRankStopsEveryRankWithOneLine) {
   }
 }
 
+// An error that one rank alone meets: the scene file, or the checkpoint's directory, missing on
+// rank 1 only (each rank given its own arguments, as where nodes see different disks). The scene
+// is read under an agreement (rank 0 prints rank 1's line); the directory is checked by each rank
+// alone, and rank 1, finding no other rank failing with it, prints its line and stops every rank
+// (MPI_Abort). Either way: exit 2, one line naming the file, no hang.
+TEST_F(MpiOptions, ErrorOfOneRankAloneStopsEveryRankWithOneLine) {
+  const std::string scene = dir.write("scene.toml", small_scene());
+  const std::string missing = dir.file("missing");
+  const std::string ck = " --steps 5 --checkpoint ";
+  for (const auto& [rank0, rank1] :
+       {std::pair{scene, missing + ".toml"},
+        std::pair{scene + ck + dir.file("c.h5"), scene + ck + missing + "/c.h5"}}) {
+    const std::string run = std::string("exec ") + DRUMLAB_MPI_CLI + " run ";
+    const Ran r = shell(mpirun(2) + "--timeout 60 sh -c 'if [ $OMPI_COMM_WORLD_RANK = 1 ]; then " +
+                        run + rank1 + "; else " + run + rank0 + "; fi'");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_EQ(count(r.output, "drumlab-mpi: error: "), 1u) << r.output;
+    EXPECT_NE(r.output.find(missing), std::string::npos) << r.output;
+  }
+}
+
 }  // namespace
 }  // namespace drumlab::test
