@@ -13,6 +13,11 @@
 // them with their arrays, wall history and contact records, and the ghost layer is rebuilt (kept
 // ghosts get their motion only). One rank does none of this. At a re-ordering step the ranks agree
 // on the serial run's new order (same Morton keys and ties as Simulation::reorder_particles).
+//
+// Its definitions by concern: mpi_domain_start.cpp (distribute, distribute_shares, a rank's
+// Simulation), mpi_domain_exchange.cpp (migration, the ghost layer, the next local set),
+// mpi_domain.cpp (the step's hooks: ghost motion, balance checks and re-cuts, re-ordering; the
+// gather and the statistics); domain_messages.hpp holds the message pieces they share.
 #include <cstdint>
 #include <memory>
 #include <optional>
