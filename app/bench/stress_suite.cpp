@@ -2,6 +2,7 @@
 // it expects, the outcome it observed and pass/fail, and writes OUT/stress.csv.
 #include <chrono>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 
 #include <fmt/format.h>
@@ -39,6 +40,16 @@ void write_csv(const std::filesystem::path& file, const std::vector<StressRow>& 
   });
 }
 
+/// The case's outcome; a case that throws (a folder it cannot make, a file it cannot read)
+/// misbehaves like any other: its row says what it threw, and the suite goes on.
+StressOutcome run_case(const StressCase& c) {
+  try {
+    return c.run();
+  } catch (const std::exception& e) {
+    return {fmt::format("threw: {}", e.what()), false};
+  }
+}
+
 }  // namespace
 
 void run_stress_suite(const StressSuiteOptions& a) {
@@ -59,7 +70,7 @@ void run_stress_suite(const StressSuiteOptions& a) {
   for (StressCase& c : cases) {
     if (!a.only.empty() && c.name.find(a.only) == std::string::npos) continue;
     const auto t0 = std::chrono::steady_clock::now();
-    StressRow row{c.name, c.setup, c.expected, c.run(), 0.0};
+    StressRow row{c.name, c.setup, c.expected, run_case(c), 0.0};
     row.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     fmt::print("| {} | {} | {} | {} | {} | {:.1f} |\n", row.name, row.setup, row.expected,
                row.outcome.observed, row.outcome.pass ? "pass" : "FAIL", row.seconds);

@@ -39,7 +39,8 @@ struct StressSuiteOptions {
 };
 
 /// Runs the suite: prints the table, writes OUT/stress.csv. Throws InputError for an unusable
-/// folder or an `only` that matches no case, std::runtime_error if any case misbehaves.
+/// folder or an `only` that matches no case, std::runtime_error (naming how many) if any case
+/// misbehaves: its observation does not match its expectation, or it throws (its row says what).
 void run_stress_suite(const StressSuiteOptions& opt);
 
 }  // namespace drumlab::bench
