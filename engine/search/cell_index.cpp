@@ -5,7 +5,11 @@ namespace drumlab {
 void DenseCellIndex::reset(std::int64_t nx, std::int64_t ny, std::int64_t nz) {
   nx_ = nx;
   ny_ = ny;
-  cells_.assign(static_cast<std::size_t>(nx * ny * nz), CellRange{});
+  // The grid follows the bed's bounding box, which breathes as the drum turns: a new largest
+  // grid takes half as many cells again, so that the steps after it do not allocate again.
+  const auto size = static_cast<std::size_t>(nx * ny * nz);
+  if (size > cells_.capacity()) cells_.reserve(size + size / 2);
+  cells_.assign(size, CellRange{});
 }
 
 void HashedCellIndex::reset(std::size_t occupied) {

@@ -85,7 +85,8 @@ void MultiLevelGridSearch::assign_levels(const SearchInput& in) {
     top = std::max(top, raw[i]);
   }
   // Keep only occupied levels, smallest first.
-  std::vector<int> compact(static_cast<std::size_t>(top) + 1, -1);
+  std::vector<int>& compact = compact_;
+  compact.assign(static_cast<std::size_t>(top) + 1, -1);
   for (int l : raw) compact[l] = 0;
   int next = 0;
   for (int& c : compact) {

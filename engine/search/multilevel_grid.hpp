@@ -82,6 +82,7 @@ class MultiLevelGridSearch final : public ContactSearch {
   PairSlices slices_;             ///< per-thread pairs of visit_level()
   std::vector<double> distinct_;  ///< assign_levels' buffers
   std::vector<int> raw_;
+  std::vector<int> compact_;
   double slack_ = 0.0;
   double margin_ = 0.0;  ///< margin and z period of the last call (for visit())
   double period_ = 0.0;
