@@ -396,8 +396,8 @@ void Simulation::compute_forces(double history_dt, bool count) {
   impl_->walls.refresh(particles_, impl_->drum, impl_->wall_reach, impl_->wall_history,
                        impl_->moved);
   impl_->moved = 0.0;
-  impl_->model.add_wall_forces(particles_, impl_->walls.list(), impl_->drum, omega_,
-                               impl_->wall_history, dt_, history_dt);
+  const std::size_t wall_contacts = impl_->model.add_wall_forces(
+      particles_, impl_->walls.list(), impl_->drum, omega_, impl_->wall_history, dt_, history_dt);
   const auto t3 = Clock::now();
   if (count) {
     const SearchCounters& c = search_->counters();
@@ -411,6 +411,7 @@ void Simulation::compute_forces(double history_dt, bool count) {
     work_.listed_pairs += contacts.size();
     work_.touching_pairs += touching;
     work_.wall_candidates += impl_->walls.list().size();
+    work_.wall_contacts += wall_contacts;
   }
 }
 

@@ -34,6 +34,7 @@ struct StepWork {
   std::uint64_t touching_pairs = 0;   ///< of those, within the touching tolerance
   std::uint64_t wall_candidates = 0;  ///< particles in the wall-candidate list
   std::uint64_t reorders = 0;         ///< re-orderings of the particles in memory
+  std::uint64_t wall_contacts = 0;    ///< wall contacts (overlaps) the wall kernel evaluated
 };
 
 /// Snapshot of physical health, computed on demand (not every step).

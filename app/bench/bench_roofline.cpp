@@ -32,8 +32,6 @@ std::uint64_t verlet_rebuilds(const Simulation& sim) {
   return v != nullptr ? v->rebuilds() : 0;
 }
 
-/// Runs the rolling state `steps` steps; the wall contacts and live bridges, which the engine
-/// does not sum per step, are sampled at five points of the run and averaged.
 Measured measure(const RollingState& rolling, const RooflineOptions& opt) {
   set_thread_count(opt.threads);
   SimulationState state = rolling.state;
@@ -43,27 +41,34 @@ Measured measure(const RollingState& rolling, const RooflineOptions& opt) {
   Measured m;
   m.method = std::string(sim.search().name());
   m.shape = law_shape(rolling.scene, sim.particles());
-  m.counts.verlet = dynamic_cast<const VerletListSearch*>(&sim.search()) != nullptr;
+  m.counts = count_run(sim, opt.steps, &m.phase);
+  if (!m.shape.cohesive) m.counts.cohesive_pairs_per_step = 0.0;
+  return m;
+}
+
+}  // namespace
+
+RunCounts count_run(Simulation& sim, std::uint64_t steps, PhaseStats* phase) {
+  RunCounts c;
+  c.verlet = dynamic_cast<const VerletListSearch*>(&sim.search()) != nullptr;
   const std::uint64_t rebuilds0 = verlet_rebuilds(sim);
-  double walls = 0.0, bridges = 0.0;
   PhaseMeter meter(sim);
   constexpr int kSamples = 5;
   for (int k = 0; k < kSamples; ++k) {
-    const Diagnostics d = sim.diagnostics();
-    walls += static_cast<double>(d.wall_contacts) / kSamples;
-    bridges += static_cast<double>(d.bridges) / kSamples;
-    const std::uint64_t done = opt.steps * static_cast<std::uint64_t>(k) / kSamples;
-    sim.advance(opt.steps * static_cast<std::uint64_t>(k + 1) / kSamples - done);
+    c.cohesive_pairs_per_step += static_cast<double>(sim.diagnostics().bridges) / kSamples;
+    const std::uint64_t done = steps * static_cast<std::uint64_t>(k) / kSamples;
+    sim.advance(steps * static_cast<std::uint64_t>(k + 1) / kSamples - done);
   }
-  m.phase = meter.finish();
-  m.counts.work = m.phase.work;
-  m.counts.steps = m.phase.steps;
-  m.counts.pairs_tested = m.phase.search.pairs_tested;
-  m.counts.builds = m.counts.verlet ? verlet_rebuilds(sim) - rebuilds0 : m.phase.steps;
-  m.counts.wall_contacts_per_step = walls;
-  m.counts.cohesive_pairs_per_step = m.shape.cohesive ? bridges : 0.0;
-  return m;
+  const PhaseStats p = meter.finish();
+  c.work = p.work;
+  c.steps = p.steps;
+  c.pairs_tested = p.search.pairs_tested;
+  c.builds = c.verlet ? verlet_rebuilds(sim) - rebuilds0 : p.steps;
+  if (phase != nullptr) *phase = p;
+  return c;
 }
+
+namespace {
 
 struct Row {
   std::string phase;
@@ -188,8 +193,8 @@ void run_bench_roofline(const RooflineOptions& opt) {
       static_cast<double>(m.counts.work.listed_pairs) / m.counts.steps,
       static_cast<double>(m.counts.work.touching_pairs) / m.counts.steps,
       static_cast<double>(m.counts.work.wall_candidates) / m.counts.steps,
-      m.counts.wall_contacts_per_step, m.counts.cohesive_pairs_per_step, m.counts.builds,
-      m.counts.work.reorders);
+      static_cast<double>(m.counts.work.wall_contacts) / m.counts.steps,
+      m.counts.cohesive_pairs_per_step, m.counts.builds, m.counts.work.reorders);
   print_rows(rows, particle_steps);
   const auto file = std::filesystem::path(opt.out) / ("roofline_" + rolling.scene.name + ".csv");
   write_csv(file, rolling.scene.name, m, rows, particle_steps, opt.threads);

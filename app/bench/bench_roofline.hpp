@@ -9,6 +9,8 @@
 #include <string>
 
 #include "app/bench/bench_state.hpp"
+#include "app/bench/roofline_model.hpp"
+#include "engine/session/phase_meter.hpp"
 
 namespace drumlab::bench {
 
@@ -25,5 +27,10 @@ struct RooflineOptions {
 
 /// Runs it; throws InputError for bad input (scene, method, output folder).
 void run_bench_roofline(const RooflineOptions& opt);
+
+/// Advances `sim` `steps` steps and returns the counts the work model takes (roofline_model.hpp):
+/// the step's own StepWork, the search's tests and builds, and the live bridges (sampled at five
+/// points, as the engine does not sum them per step). `phase`, if given, gets the phase timers.
+RunCounts count_run(Simulation& sim, std::uint64_t steps, PhaseStats* phase = nullptr);
 
 }  // namespace drumlab::bench

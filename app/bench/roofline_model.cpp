@@ -1,6 +1,7 @@
 #include "app/bench/roofline_model.hpp"
 
 #include <type_traits>
+#include <variant>
 
 #include "engine/contact/contact_model.hpp"
 
@@ -14,6 +15,8 @@ constexpr double kIdx = 4.0;   // bytes of an Index
 LawShape law_shape(const SceneConfig& scene, const Particles& particles) {
   const ContactModel model(scene);
   LawShape s;
+  s.hertz = std::holds_alternative<HertzNormal>(model.pair_normal());
+  s.wall_hertz = std::holds_alternative<HertzNormal>(model.wall_normal());
   s.tangential = model.pair_tangential();
   s.rolling = model.pair_rolling();
   s.wall_tangential = model.wall_tangential();
@@ -41,17 +44,26 @@ Work listed_pair_cost() {
 //   (2 sqrt), v_t 6, MindlinTangential::force_of 59 (sqrt and division of the rescale, sqrt and
 //   division of the cap, the division 1/S_t and 3 products of xi_slide), torques and force 21 =
 //   122, 7 divsqrt.
-// Without tangential: v_n 5, HertzNormal::force 7 (2 sqrt), force 3 = 15 flops, 2 divsqrt.
+// Without tangential: v_n 5, HertzNormal::force 7 (2 sqrt), force 3 = 15 flops, 2 divsqrt;
+//   LinearSpringDashpot::force 6 (1 sqrt: the damping's), so 14 flops, 1 divsqrt. With
+//   tangential, LinearSpringDashpot::respond is 10 flops and 2 sqrt, as HertzNormal::respond.
 // Rolling (RollingResistance::torque_of): 20 flops, the norm's sqrt and two divisions.
 // Scatter (RowSum and the partner's share): force and torque of both = 12.
 // Bytes: the history read (its write is in listed_pair_cost); the partner's velocity, spin,
 // inverse mass and inertia (gather, 64) and its force and torque (read and written, 96).
+namespace {
+// contact_response without the tangential part: v_n, the normal force, the force vector.
+Work normal_only_response(bool hertz) {
+  return hertz ? Work{15.0, 2.0, 0.0, 0.0} : Work{14.0, 1.0, 0.0, 0.0};
+}
+}  // namespace
+
 Work touching_pair_cost(const LawShape& s) {
   Work w{8.0 + 20.0 + 12.0, 3.0, kVec, 64.0 + 96.0};
   if (s.tangential) {
     w += {122.0, 7.0, 0.0, 0.0};
   } else {
-    w += {15.0, 2.0, -kVec, 0.0};  // no history
+    w += normal_only_response(s.hertz) + Work{0.0, 0.0, -kVec, 0.0};  // no history
   }
   if (s.rolling) w += {20.0, 3.0, 0.0, 0.0};
   return w;
@@ -77,7 +89,8 @@ Work wall_candidate_cost() {
 // velocity, spin, mass, force and torque (gather).
 Work wall_contact_cost(const LawShape& s) {
   Work w{2.0 + 3.0 + 6.0, 0.0, 2.0 * kVec, 3.0 * kVec + 8.0 + 4.0 * kVec};
-  w += s.wall_tangential ? Work{122.0 - 9.0, 7.0, 0.0, 0.0} : Work{15.0, 2.0, -2.0 * kVec, 0.0};
+  w += s.wall_tangential ? Work{122.0 - 9.0, 7.0, 0.0, 0.0}
+                         : normal_only_response(s.wall_hertz) + Work{0.0, 0.0, -2.0 * kVec, 0.0};
   if (s.wall_rolling) w += {20.0, 3.0, 0.0, 0.0};
   return w;
 }
@@ -129,7 +142,7 @@ PhaseWork phase_work(const LawShape& s, const RunCounts& c) {
   p.forces += cohesive_pair_cost() * (c.cohesive_pairs_per_step * steps);
   p.forces += Work{0.0, 0.0, kVec * 2.0, 0.0} * static_cast<double>(w.particles);  // own F, T
   p.walls += wall_candidate_cost() * static_cast<double>(w.wall_candidates);
-  p.walls += wall_contact_cost(s) * (c.wall_contacts_per_step * steps);
+  p.walls += wall_contact_cost(s) * static_cast<double>(w.wall_contacts);
   p.integration += integrated_particle_cost(s) * static_cast<double>(w.particles);
   const double reorders = static_cast<double>(w.reorders);
   p.reorder += reordered_particle_cost(s) * (reorders * particles_per_step);

@@ -33,11 +33,17 @@ struct Work {
     gather += o.gather;
     return *this;
   }
+  Work operator+(const Work& o) const {
+    Work w = *this;
+    return w += o;
+  }
   Work operator*(double k) const { return {flops * k, divsqrt * k, stream * k, gather * k}; }
 };
 
 /// What the scene's law computes (ContactModel's choices, made once per run).
 struct LawShape {
+  bool hertz = true;            ///< pair normal law: Hertz (else the linear spring-dashpot)
+  bool wall_hertz = true;       ///< the same for wall contacts
   bool tangential = true;       ///< pair tangential spring with history
   bool rolling = false;         ///< pair rolling resistance
   bool wall_tangential = true;  ///< wall tangential spring with history
@@ -61,8 +67,8 @@ Work reordered_particle_cost(const LawShape& s);   ///< Morton key, sort share, 
 Work tested_pair_cost();      ///< a distance test in a search or a Verlet rebuild (candidates)
 Work binned_particle_cost();  ///< putting a particle into a search grid
 
-/// Per phase of a run, the work done; the counts come from PhaseStats (and a snapshot of the
-/// contacts for the wall and cohesive counts, which the engine does not sum per step).
+/// Per phase of a run, the work done; the counts come from PhaseStats (and samples of the live
+/// bridges, which the engine does not sum per step).
 struct PhaseWork {
   Work search, forces, walls, integration, reorder;
   double working_set_forces = 0.0;     ///< bytes the pair loop touches in one step
@@ -70,13 +76,12 @@ struct PhaseWork {
 };
 
 struct RunCounts {
-  StepWork work;  ///< summed over the timed steps
+  StepWork work;  ///< summed over the timed steps (wall contacts included)
   std::uint64_t steps = 0;
   std::uint64_t pairs_tested = 0;  ///< search distance tests, summed (SearchCounters)
   std::uint64_t builds = 0;        ///< search structure builds (each step for a grid; rebuilds)
   bool verlet = false;             ///< the method keeps a Verlet list
-  double wall_contacts_per_step = 0.0;
-  double cohesive_pairs_per_step = 0.0;
+  double cohesive_pairs_per_step = 0.0;  ///< live bridges, sampled
 };
 
 PhaseWork phase_work(const LawShape& s, const RunCounts& c);

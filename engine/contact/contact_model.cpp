@@ -293,10 +293,12 @@ void pair_force_loop(const ContactLaw<Normal>& law, const Particles& p, const Co
 }
 
 // The wall contacts of the particles candidates[begin, end), by particle, then wall part.
+// Returns how many there were (the contacts the kernel evaluated).
 template <class Normal, bool Tangential, bool Rolling>
-void wall_rows(const ContactLaw<Normal>& law, Particles& p, std::span<const Index> candidates,
-               std::size_t begin, std::size_t end, const Drum& drum, double omega,
-               WallHistory& history, double dt, double history_dt, WallBatch& batch) {
+std::size_t wall_rows(const ContactLaw<Normal>& law, Particles& p,
+                      std::span<const Index> candidates, std::size_t begin, std::size_t end,
+                      const Drum& drum, double omega, WallHistory& history, double dt,
+                      double history_dt, WallBatch& batch) {
   const Vec3 wall_spin(0.0, 0.0, omega);
   const std::size_t parts = drum.periodic() ? 1 : kWallParts;
   const auto flush = [&] {
@@ -309,6 +311,7 @@ void wall_rows(const ContactLaw<Normal>& law, Particles& p, std::span<const Inde
     }
     batch.count = 0;
   };
+  std::size_t contacts = 0;
   for (std::size_t q = begin; q < end; ++q) {
     const Index i = candidates[q];
     const Vec3& x = p.position[i];
@@ -324,28 +327,33 @@ void wall_rows(const ContactLaw<Normal>& law, Particles& p, std::span<const Inde
       const Vec3 point = x - (r - 0.5 * c.overlap) * c.normal;
       batch.add(i, part, c.normal, c.overlap, r, p.mass[i], dt * p.inv_inertia[i],
                 p.velocity[i] - Drum::wall_velocity(point, omega), p.omega[i], history[i][part]);
+      ++contacts;
       if (batch.full()) flush();
     }
   }
   if (batch.count > 0) flush();
+  return contacts;
 }
 
 template <class Normal, bool Tangential, bool Rolling>
-void wall_loop(const ContactLaw<Normal>& law, Particles& p, std::span<const Index> candidates,
-               const Drum& drum, double omega, WallHistory& history, double dt, double history_dt) {
+std::size_t wall_loop(const ContactLaw<Normal>& law, Particles& p,
+                      std::span<const Index> candidates, const Drum& drum, double omega,
+                      WallHistory& history, double dt, double history_dt) {
   constexpr std::size_t kPerTask = 256;
   const auto tasks = static_cast<std::int64_t>((candidates.size() + kPerTask - 1) / kPerTask);
-#pragma omp parallel
+  std::size_t contacts = 0;
+#pragma omp parallel reduction(+ : contacts)
   {
     WallBatch batch;
 #pragma omp for schedule(static)
     for (std::int64_t t = 0; t < tasks; ++t) {
       const std::size_t begin = static_cast<std::size_t>(t) * kPerTask;
-      wall_rows<Normal, Tangential, Rolling>(law, p, candidates, begin,
-                                             std::min(candidates.size(), begin + kPerTask), drum,
-                                             omega, history, dt, history_dt, batch);
+      contacts += wall_rows<Normal, Tangential, Rolling>(
+          law, p, candidates, begin, std::min(candidates.size(), begin + kPerTask), drum, omega,
+          history, dt, history_dt, batch);
     }
   }
+  return contacts;
 }
 
 template <class Normal>
@@ -451,17 +459,19 @@ std::size_t ContactModel::add_pair_forces(Particles& p, ContactList& contacts,
   return touching;
 }
 
-void ContactModel::add_wall_forces(Particles& p, std::span<const Index> candidates,
-                                   const Drum& drum, double omega, WallHistory& history, double dt,
-                                   double history_dt) const {
+std::size_t ContactModel::add_wall_forces(Particles& p, std::span<const Index> candidates,
+                                          const Drum& drum, double omega, WallHistory& history,
+                                          double dt, double history_dt) const {
+  std::size_t contacts = 0;
   with_law(wall_, wall_tangential_, wall_rolling_,
            [&]<class N, bool Tangential, bool Rolling>(const ContactLaw<N>& law) {
-             wall_loop<N, Tangential, Rolling>(law, p, candidates, drum, omega, history, dt,
-                                               history_dt);
+             contacts = wall_loop<N, Tangential, Rolling>(law, p, candidates, drum, omega, history,
+                                                          dt, history_dt);
            });
   if (const CohesiveParts parts = cohesive_parts(); parts.any()) {
     cohesion_wall_loop(parts, p, candidates, drum, omega, history_dt);
   }
+  return contacts;
 }
 
 void ContactModel::pair_forces(const Particles& p, const ContactList& contacts, double period,

@@ -113,9 +113,10 @@ class ContactModel {
                               double period, double dt, double history_dt) const;
   /// Adds the wall forces of the drum turning at omega (rad/s) on the particles `candidates`
   /// (increasing; the others must not touch the wall, see WallCandidates).
-  /// history.size() == p.size().
-  void add_wall_forces(Particles& p, std::span<const Index> candidates, const Drum& drum,
-                       double omega, WallHistory& history, double dt, double history_dt) const;
+  /// history.size() == p.size(). Returns the wall contacts (overlaps) the kernel evaluated.
+  std::size_t add_wall_forces(Particles& p, std::span<const Index> candidates, const Drum& drum,
+                              double omega, WallHistory& history, double dt,
+                              double history_dt) const;
 
   /// Force on i of every overlapping contact in `contacts` at the current state, without changing
   /// anything: the tangential history is used as stored (not advanced). Replaces `out` (i, j,

@@ -23,9 +23,12 @@ PhaseStats PhaseMeter::finish() const {
   s.search = {c.cells_visited - search0_.cells_visited, c.pairs_tested - search0_.pairs_tested,
               c.pairs_found - search0_.pairs_found, c.cells_total};
   const StepWork& w = sim_.work();
-  s.work = {w.particles - work0_.particles, w.listed_pairs - work0_.listed_pairs,
-            w.touching_pairs - work0_.touching_pairs, w.wall_candidates - work0_.wall_candidates,
-            w.reorders - work0_.reorders};
+  s.work = {w.particles - work0_.particles,
+            w.listed_pairs - work0_.listed_pairs,
+            w.touching_pairs - work0_.touching_pairs,
+            w.wall_candidates - work0_.wall_candidates,
+            w.reorders - work0_.reorders,
+            w.wall_contacts - work0_.wall_contacts};
   return s;
 }
 

@@ -3,6 +3,19 @@
 // composed law, and the command end to end on a tiny drum writes a CSV whose step row is the sum
 // of its phases, with roofs that order as a memory hierarchy must (L1 faster than memory). No
 // speed is asserted.
+//
+// What ties the model to the engine (RooflineModel.CountsAreTheRunsAndTheModelPricesThem): the
+// counts the model multiplies are the ones count_run reads from a run (the step's own StepWork),
+// and each is checked step by step against an independent brute-force count over the particles
+// at the positions the forces were computed at: the pairs within touching distance, the wall
+// overlaps, the particles integrated, the re-orderings on their schedule; the model then prices
+// exactly those units. This fails when the engine stops counting what the kernels evaluate (a
+// pair or wall loop changed to evaluate other contacts, a counter dropped or moved), or when the
+// model leaves a counted unit out. It cannot see a change inside a kernel that adds an operation
+// per contact: the unit costs are hand counts written beside the lines they count
+// (roofline_model.cpp), and no test can count a kernel's flops without hardware counters (none in
+// the virtual machines this runs on: `perf stat` has no cycles there). The normal law is part of
+// the law shape (a linear spring-dashpot without friction takes one square root fewer).
 #include <gtest/gtest.h>
 
 #include <sstream>
@@ -10,7 +23,10 @@
 #include "app/bench/bench_roofline.hpp"
 #include "app/bench/machine_limits.hpp"
 #include "app/bench/roofline_model.hpp"
+#include "engine/drum.hpp"
+#include "engine/fill/random_fill.hpp"
 #include "engine/scene/scene_config.hpp"
+#include "engine/search/contact_search.hpp"
 #include "tests/small_drum_text.hpp"
 #include "tests/unit/bench_runner.hpp"
 #include "tests/unit/cli_runner.hpp"
@@ -35,7 +51,7 @@ TEST(RooflineModel, PhaseWorkIsTheCountsTimesTheUnitCosts) {
   c.verlet = true;
   c.pairs_tested = 5000 + 700;  // the list every step and one rebuild's 700 tests
   c.builds = 1;
-  c.wall_contacts_per_step = 20.0;
+  c.work.wall_contacts = 200;  // 20 a step
   const bench::PhaseWork w = bench::phase_work(s, c);
   const bench::Work pair = bench::touching_pair_cost(s);
   EXPECT_DOUBLE_EQ(w.forces.flops, 5000 * bench::listed_pair_cost().flops + 2000 * pair.flops);
@@ -66,6 +82,112 @@ TEST(RooflineModel, LawShapeIsTheComposedLaws) {
   EXPECT_EQ(s.particle_bytes, 5 * sizeof(Vec3) + 4 * sizeof(double) + 1 + sizeof(Index));
   const SceneConfig rolling = parse_scene(tiny_scene("0.1"), "tiny.toml");
   EXPECT_TRUE(bench::law_shape(rolling, p).rolling);
+}
+
+TEST(RooflineModel, LawShapeKnowsTheNormalLaw) {
+  SmallDrumText t;
+  t.friction = "0.0";
+  const std::string contact = "[contact]\nnormal = \"linear\"\nlinear_stiffness = 1e4\n";
+  const SceneConfig hertz = parse_scene(t.text(), "hertz.toml");
+  const SceneConfig linear = parse_scene(t.text() + contact, "linear.toml");
+  Particles p;
+  p.add({0.0, 0.0, 0.0}, 0.01, 2500.0);
+  const bench::LawShape h = bench::law_shape(hertz, p), l = bench::law_shape(linear, p);
+  EXPECT_TRUE(h.hertz);
+  EXPECT_FALSE(l.hertz);
+  EXPECT_FALSE(l.tangential);
+  // HertzNormal::force takes two square roots, LinearSpringDashpot::force one (its damping's).
+  EXPECT_EQ(bench::touching_pair_cost(h).divsqrt - bench::touching_pair_cost(l).divsqrt, 1.0);
+}
+
+// Pairs within touching distance (what add_pair_forces counts) and wall overlaps (what the wall
+// kernel evaluates), by brute force over all pairs and every wall part.
+struct BruteCounts {
+  std::uint64_t touching = 0;
+  std::uint64_t wall_contacts = 0;
+  std::uint64_t wall_particles = 0;  ///< particles with a wall overlap
+};
+
+BruteCounts brute_counts(const Particles& p, const Drum& drum) {
+  BruteCounts b;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (std::size_t j = i + 1; j < p.size(); ++j) {
+      const double cut = p.radius[i] + p.radius[j] + kTouchTolerance;
+      b.touching += (p.position[i] - p.position[j]).squaredNorm() <= cut * cut ? 1 : 0;
+    }
+    std::uint64_t parts = 0;
+    for (std::size_t part = 0; part < (drum.periodic() ? 1 : kWallParts); ++part) {
+      parts += drum.contact(static_cast<WallPart>(part), p.position[i], p.radius[i]).overlap > 0.0;
+    }
+    b.wall_contacts += parts;
+    b.wall_particles += parts > 0 ? 1 : 0;
+  }
+  return b;
+}
+
+TEST(RooflineModel, CountsAreTheRunsAndTheModelPricesThem) {
+  SmallDrumText t;
+  t.rolling_friction = "0.05";
+  const SceneConfig scene =
+      parse_scene(t.text() + "[performance]\nsort_every = 10\n", "roofline-counts.toml");
+  Simulation sim(scene, random_fill(scene));
+  sim.advance(200);  // a settled bed on the mantle and the caps
+  const Drum drum(scene.drum);
+  const std::uint64_t n = sim.particles().size();
+  bench::RunCounts sum;
+  BruteCounts brute;
+  std::uint64_t listed = 0;
+  constexpr std::uint64_t kSteps = 40;
+  for (std::uint64_t k = 0; k < kSteps; ++k) {
+    const std::uint64_t step = sim.steps();
+    const bench::RunCounts c = bench::count_run(sim, 1);
+    const BruteCounts b = brute_counts(sim.particles(), drum);
+    SCOPED_TRACE(step);
+    EXPECT_EQ(c.steps, 1u);
+    EXPECT_EQ(c.work.particles, n);
+    EXPECT_EQ(c.work.touching_pairs, b.touching);
+    EXPECT_EQ(c.work.listed_pairs, sim.contacts().size());
+    EXPECT_GE(c.work.listed_pairs, b.touching);
+    EXPECT_EQ(c.work.wall_contacts, b.wall_contacts);
+    EXPECT_GE(c.work.wall_candidates, b.wall_particles);
+    EXPECT_EQ(c.work.reorders, step % 10 == 0 ? 1u : 0u);
+    EXPECT_EQ(c.builds, 1u);  // m5: a grid built every step
+    sum.steps += c.steps;
+    sum.work.particles += c.work.particles;
+    sum.work.listed_pairs += c.work.listed_pairs;
+    sum.work.touching_pairs += c.work.touching_pairs;
+    sum.work.wall_candidates += c.work.wall_candidates;
+    sum.work.wall_contacts += c.work.wall_contacts;
+    sum.work.reorders += c.work.reorders;
+    sum.pairs_tested += c.pairs_tested;
+    sum.builds += c.builds;
+    brute.touching += b.touching;
+    brute.wall_contacts += b.wall_contacts;
+    listed += sim.contacts().size();
+  }
+  ASSERT_GT(brute.touching, 10 * kSteps);
+  ASSERT_GT(brute.wall_contacts, 10 * kSteps);
+  EXPECT_EQ(sum.work.reorders, kSteps / 10);
+  // The model prices those units, and no others: forces are the listed pairs, the contacts
+  // found by brute force and every particle's own force and torque; walls the candidates and
+  // the overlaps found by brute force; integration every particle of every step.
+  const bench::LawShape s = bench::law_shape(scene, sim.particles());
+  ASSERT_TRUE(s.rolling);
+  const bench::PhaseWork w = bench::phase_work(s, sum);
+  const auto steps = static_cast<double>(kSteps), particles = static_cast<double>(n) * steps;
+  const bench::Work forces = bench::listed_pair_cost() * static_cast<double>(listed) +
+                             bench::touching_pair_cost(s) * static_cast<double>(brute.touching);
+  EXPECT_DOUBLE_EQ(w.forces.flops, forces.flops);
+  EXPECT_DOUBLE_EQ(w.forces.divsqrt, forces.divsqrt);
+  EXPECT_DOUBLE_EQ(w.forces.stream, forces.stream + 48.0 * particles);
+  const bench::Work walls =
+      bench::wall_candidate_cost() * static_cast<double>(sum.work.wall_candidates) +
+      bench::wall_contact_cost(s) * static_cast<double>(brute.wall_contacts);
+  EXPECT_DOUBLE_EQ(w.walls.flops, walls.flops);
+  EXPECT_DOUBLE_EQ(w.walls.divsqrt, walls.divsqrt);
+  EXPECT_DOUBLE_EQ(w.integration.flops, bench::integrated_particle_cost(s).flops * particles);
+  EXPECT_DOUBLE_EQ(w.reorder.flops,
+                   bench::reordered_particle_cost(s).flops * static_cast<double>(n) * 4.0);
 }
 
 TEST(MachineLimits, RoofsArePositiveAndL1IsFasterThanMemory) {
