@@ -1,6 +1,7 @@
 // The step loop must not allocate once its buffers have grown. This test binary replaces the
 // global operator new (plain and aligned; new[] and the nothrow forms call these) with one that
-// counts while armed, and checks that the steps after a warm-up allocate nothing, for
+// counts while armed, and checks that the steps after a warm-up allocate nothing (but the pair
+// buffers' geometric growth where a step needs more pairs than any warm-up step), for
 //   * three scenes: a dry periodic drum (friction, rolling resistance, persistent contacts), a wet
 //     turning drum with liquid migration (films, bridges seeded at the start, wall bridges, the
 //     viscous term: bridges form and rupture in the window), and the same drum with sjkr adhesion;
@@ -11,6 +12,7 @@
 // Not covered: the MPI exchanges, which allocate (tests/README.md says where and why).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cctype>
 #include <cstdlib>
@@ -161,32 +163,43 @@ class StepLoopAllocations : public ::testing::TestWithParam<Case> {};
 // Verlet rebuilds; bridges forming and rupturing) allocate nothing.
 TEST_P(StepLoopAllocations, NoneAfterWarmUp) {
   const auto& [scene, method, threads] = GetParam();
-  if (scene == "dry_periodic" && method != "brute" && !method.starts_with("verlet")) {
-    // Known, not yet fixed: 1-2 allocations in 200 warm steps, from the grids' pair slices
-    // (CellGridSearch::visit_all, MultiLevelGridSearch::find_pairs), on periodic ends only.
-    GTEST_SKIP() << "known allocation in the grid searches on periodic ends (tests/README.md)";
-  }
   const int saved = max_threads();
   set_thread_count(threads);
   Start start = make_start(scene);
   start.scene.search_method = method;
   Simulation sim(start.scene, std::move(start.particles));
-  sim.advance(scene == "wet_migration" ? 1500 : 3000);
+  std::size_t warm_pairs = 0, window_pairs = 0;  // the most listed pairs of a step
+  for (int k = 0; k < (scene == "wet_migration" ? 1500 : 3000); ++k) {
+    sim.step();
+    warm_pairs = std::max(warm_pairs, sim.contacts().size());
+  }
   const std::uint64_t reorders = sim.work().reorders;
   std::size_t during = 0;
   {
     const AllocationWindow w;
-    for (int k = 0; k < 200; ++k) sim.step();
+    for (int k = 0; k < 200; ++k) {
+      sim.step();
+      window_pairs = std::max(window_pairs, sim.contacts().size());
+    }
     during = w.count();
   }
   set_thread_count(saved);
+
   EXPECT_EQ(sim.work().reorders - reorders, scene == "dry_periodic" ? 2u : 4u);
   const Diagnostics d = sim.diagnostics();
   EXPECT_GT(d.contacts, 0u);
   if (scene == "wet_migration") {
     EXPECT_GT(d.bridges, 0u);
   }
-  EXPECT_EQ(during, 0u) << "allocations in 200 steps";
+  if (window_pairs > warm_pairs) {
+    // A step of the window needs more pairs than any warm-up step (the dry periodic drum on the
+    // grids: 42 against 40): the search's pair buffers grow, geometrically, once for each
+    // thread's slice and once for the joined list. Nothing else may allocate.
+    EXPECT_LE(during, static_cast<std::size_t>(threads) + 1u)
+        << window_pairs << " pairs against " << warm_pairs << " in the warm-up";
+  } else {
+    EXPECT_EQ(during, 0u) << "allocations in 200 steps";
+  }
 }
 
 std::string case_name(const ::testing::TestParamInfo<Case>& info) {
