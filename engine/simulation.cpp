@@ -11,6 +11,7 @@
 
 #include "engine/contact/contact_history.hpp"
 #include "engine/contact/contact_model.hpp"
+#include "engine/contact/liquid_start.hpp"
 #include "engine/contact/wall_candidates.hpp"
 #include "engine/drum.hpp"
 #include "engine/io/restart_check.hpp"
@@ -220,12 +221,10 @@ LiquidTotals Simulation::liquid() const {
 }
 
 void Simulation::register_liquid_arrays(bool fresh) {
-  const auto& bridge = impl_->model.pair_bridge();
-  if (!bridge) return;
   Particles& p = particles_;
   bool new_films = false;
   const std::size_t parts = impl_->drum.periodic() ? 1 : kWallParts;
-  for (const std::string_view name : liquid_array_names(*bridge, parts)) {
+  for (const std::string_view name : impl_->model.cohesive_parts().particle_arrays(parts)) {
     if (p.find_array(name) != nullptr) continue;
     if (!fresh) {
       throw InputError(

@@ -14,6 +14,8 @@
 //           change, pass 2 does it in the serial order;
 //   live:   the bridge holds: its force, attractive along the line of centres;
 //   else:   nothing acts.
+// It is the liquid bridge's batch for the cohesive loops (PartBatch<LiquidBridge>): a scene whose
+// only cohesive part is the plain bridge (applies(): no viscous term) runs pass 1 through it.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -47,6 +49,8 @@ struct BridgeBatch {
   alignas(64) double yy[kSize];
 
   bool full() const { return count == kSize; }
+  /// Whether a scene's bridge can run its pass 1 in batches (no viscous term).
+  static bool applies(const LiquidBridge& b) { return b.viscosity == 0.0; }
 
   /// Adds pair (i, j), contact `contact`, at separation dij, radii ri, rj, bridge volume v.
   [[gnu::always_inline]] void add(Index pi, Index pj, std::uint32_t contact, const Vec3& dij,
@@ -60,6 +64,24 @@ struct BridgeBatch {
     r_j[l] = rj;
     volume[l] = v;
     ++count;
+  }
+
+  /// add() with the pair's state in the contact list (the bridge's scalars).
+  [[gnu::always_inline]] void add(Index pi, Index pj, std::uint32_t contact, const Vec3& dij,
+                                  double ri, double rj, const double* state) {
+    add(pi, pj, contact, dij, ri, rj, state[0]);
+  }
+  void evaluate(const LiquidBridge& b) { evaluate(b.pair); }
+  /// After evaluate: whether anything acts on lane l.
+  bool acts(std::size_t l) const { return kind[l] != kNothing; }
+  /// After evaluate, for a lane that acts: true if its bridge forms or ruptures (its films change:
+  /// the ordered pass does it; a lane near s_rup settled by ruptured() itself); else its bridge
+  /// ages by dt in `state` and force holds its pull.
+  bool settle(std::size_t l, const LiquidBridge& b, double* state, double dt) const {
+    bool event = kind[l] == kEvent;
+    if (event && volume[l] > 0.0) event = b.pair.ruptured(gaps[l], volume[l]);  // within 1e-6
+    if (!event) state[1] += dt;                                                 // the bridge ages
+    return event;
   }
 
   /// Sets kind and, for live bridges, force of every lane. Not inlined: GCC 12 vectorizes the
@@ -104,6 +126,11 @@ struct BridgeBatch {
     r_j[to] = r_j[from];
     volume[to] = volume[from];
   }
+};
+
+template <>
+struct PartBatch<LiquidBridge> {
+  using type = BridgeBatch;
 };
 
 }  // namespace drumlab

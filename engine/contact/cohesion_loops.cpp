@@ -1,10 +1,12 @@
 #include "engine/contact/cohesion_loops.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <stdexcept>
+#include <tuple>
+#include <type_traits>
 
 #include "engine/contact/bridge_batch.hpp"
 #include "engine/periodic.hpp"
@@ -12,105 +14,112 @@
 namespace drumlab {
 namespace {
 
+constexpr std::size_t kParts = CohesiveParts::kCount;
+template <std::size_t K>
+using LawOf = std::remove_cvref_t<decltype(*std::declval<const CohesiveParts&>().at<K>())>;
+
+// f(law, offset) for every present part with events (kHasEvents).
+template <class F>
+void for_each_with_events(const CohesiveParts& parts, F&& f) {
+  parts.for_each([&](const auto& law, std::size_t off) {
+    if constexpr (std::remove_cvref_t<decltype(law)>::kHasEvents) f(law, off);
+  });
+}
+
+// The film array if a present part's events move liquid between films (migration), else nullptr.
 double* film_of(const CohesiveParts& parts, Particles& p) {
-  if (parts.bridge == nullptr || !parts.bridge->migration) return nullptr;
+  bool moves = false;
+  parts.for_each([&](const auto& law, std::size_t) { moves = moves || law.moves_films(); });
+  if (!moves) return nullptr;
   std::vector<double>* film = p.find_array(kLiquidFilmArray);
   if (film == nullptr) throw std::logic_error("liquid migration without a film array");
   return film->data();
 }
 
+// Whether some present part's state at `st` is live (Law::live), without branches: each
+// registered part's presence flag and offset are read once, before the loop.
+struct LiveTest {
+  std::array<bool, kParts> present{};
+  std::array<std::size_t, kParts> offset{};  // < state size (an absent part's is 0)
+  explicit LiveTest(const CohesiveParts& parts) {
+    CohesiveParts::for_each_law([&]<std::size_t K, class Law>() {
+      present[K] = parts.at<K>() != nullptr;
+      offset[K] = parts.offset_at(K);
+    });
+  }
+  [[gnu::always_inline]] bool operator()(const double* st) const {
+    bool live = false;
+    CohesiveParts::for_each_law([&]<std::size_t K, class Law>() {
+      live = live | (present[K] & Law::live(st + offset[K]));
+    });
+    return live;
+  }
+};
+
 // 1 if a cohesive part may act on a listed pair with touch mark `mark` (touch_mark): touching,
-// or `live` (a bridge or an adhesive contact holds), and with distinct centres.
+// or `live` (some part's state is live), and with distinct centres.
 [[gnu::always_inline]] inline std::size_t take(std::uint8_t mark, bool live) {
   const unsigned m = mark;
   return ((m & kTouchOrEqual) | static_cast<unsigned>(live)) & (m >> 1);
 }
 
-// A bridge between i and j ends: its liquid goes back, half to each film (migration).
-void rupture(double* state, double* film, Index i, Index j) {
-  if (film != nullptr) {
-    film[i] += 0.5 * state[0];
-    film[j] += 0.5 * state[0];
-  }
-  state[0] = 0.0;
-  state[1] = 0.0;
-}
-
-// One listed pair at centre separation d (i - j): advances its state, returns the attraction
-// (N, > 0 pulls i towards j).
-double pair_attraction(const CohesiveParts& parts, Particles& p, double* film, Index i, Index j,
-                       const Vec3& d, double dist, double* state, double dt) {
-  const double r_i = p.radius[i];
-  const double r_j = p.radius[j];
-  const double gap = dist - (r_i + r_j);
+// One listed pair: advances every part's state, returns the sum of their attractions (N, > 0
+// pulls i towards j), added in the parts' order. film: nullptr in pass 1 (no event there).
+double pair_attraction(const CohesiveParts& parts, const PairGap& g, double* state, double* film,
+                       double dt) {
   double pull = 0.0;
-  if (const LiquidBridge* b = parts.bridge) {
-    double* s = state + parts.bridge_offset;
-    if (s[0] > 0.0 && b->pair.ruptured(gap, s[0])) {
-      rupture(s, film, i, j);
-    }
-    if (s[0] > 0.0) {
-      s[1] += dt;
-    } else if (gap <= 0.0) {
-      double none = 0.0;
-      const double v =
-          film != nullptr ? b->take_from_films(film[i], film[j]) : b->take_from_films(none, none);
-      s[0] = v;
-      s[1] = 0.0;
-    }
-    if (s[0] > 0.0) {
-      pull += b->pair.force(gap, LiquidBridge::pair_radius(r_i, r_j), s[0]);
-      if (b->viscosity > 0.0) {
-        const double vn = (p.velocity[i] - p.velocity[j]).dot(d) / dist;
-        pull -= b->viscous_force(gap, r_i * r_j / (r_i + r_j), vn);
-      }
-    }
-  }
-  if (const SjkrCohesion* c = parts.sjkr) {
-    double* s = state + parts.sjkr_offset;
-    if (gap < 0.0) {
-      pull += c->force(SjkrCohesion::lens_area(dist, r_i, r_j));
-      s[1] = s[0] > 0.0 ? s[1] + dt : 0.0;
-      s[0] = 1.0;
-    } else {
-      s[0] = 0.0;
-      s[1] = 0.0;
-    }
-  }
+  parts.for_each(
+      [&](const auto& law, std::size_t off) { law.advance_pair(g, state + off, film, dt, pull); });
   return pull;
 }
 
-// True if the pair's bridge forms or ruptures at this step (its films change): with a bridge
-// beyond its rupture distance, or touching without one (MercuryDPM's form()/rupture()).
-bool bridge_event(const CohesiveParts& parts, const double* state, double gap) {
-  const LiquidBridge* b = parts.bridge;
-  if (b == nullptr) return false;
-  const double v = state[parts.bridge_offset];
-  return v > 0.0 ? b->pair.ruptured(gap, v) : gap <= 0.0;
+// True if some part has an event on the pair at this step (its films change).
+bool any_event(const CohesiveParts& parts, const double* state, double gap) {
+  bool event = false;
+  for_each_with_events(parts, [&](const auto& law, std::size_t off) {
+    event = event || law.event(state + off, gap);
+  });
+  return event;
 }
 
-// The force of listed pair k (i, j) without a bridge event (its state advanced), or a marked
-// entry if it has one; nothing if no part acts on it.
-[[gnu::always_inline]] inline void cohesion_entry(const CohesiveParts& parts, Particles& p,
+// Whether a dropped pair's state holds something a part with events must settle, and the liquid
+// its events' part holds (the volume an MPI replay sees rupture).
+bool live_for_events(const CohesiveParts& parts, const double* state) {
+  bool live = false;
+  for_each_with_events(
+      parts, [&](const auto& law, std::size_t off) { live = live || law.live(state + off); });
+  return live;
+}
+double event_liquid(const CohesiveParts& parts, const double* state) {
+  double v = 0.0;
+  for_each_with_events(parts, [&](const auto& law, std::size_t off) {
+    if constexpr (std::remove_cvref_t<decltype(law)>::kHoldsLiquid) v = law.liquid(state + off);
+  });
+  return v;
+}
+
+// The force of listed pair k (i, j) without an event (its state advanced), or a marked entry if
+// it has one; nothing if no part acts on it.
+[[gnu::always_inline]] inline void cohesion_entry(const CohesiveParts& parts, const Particles& p,
                                                   double* st, Index i, Index j, std::size_t k,
                                                   const Vec3& d, double dt,
                                                   CohesionBuffers::Entry* out, std::size_t& n) {
   const double dist = d.norm();
+  const double gap = dist - (p.radius[i] + p.radius[j]);
   const auto kk = static_cast<std::uint32_t>(k);
-  if (bridge_event(parts, st, dist - (p.radius[i] + p.radius[j]))) {
+  if (any_event(parts, st, gap)) {
     out[n++] = {i, j, kk, 1, Vec3::Zero()};
     return;
   }
-  const double pull = pair_attraction(parts, p, nullptr, i, j, d, dist, st, dt);
+  const double pull = pair_attraction(parts, {p, i, j, d, dist, gap}, st, nullptr, dt);
   if (pull != 0.0) out[n++] = {i, j, kk, 0, (pull / dist) * d};
 }
 
 // Visits, by increasing k, the listed pairs of the rows of cohesion block `block` on which a
-// cohesive part may act: take(mark[k], live(k)). Most listed pairs are apart, with no bridge and
-// no adhesive contact: nothing acts (a bridge forms only on contact; sjkr acts only while
-// overlapping). Each chunk of a row is first sifted by a loop without branches on the touch
-// marks the contact pair loop left (no partner is gathered for it), then visit(i, k) runs on the
-// pairs that remain.
+// cohesive part may act: take(mark[k], live(k)). Most listed pairs are apart, with no live part
+// state: nothing acts (a bridge forms only on contact; sjkr acts only while overlapping). Each
+// chunk of a row is first sifted by a loop without branches on the touch marks the contact pair
+// loop left (no partner is gathered for it), then visit(i, k) runs on the pairs that remain.
 template <class Live, class Visit>
 [[gnu::always_inline]] inline void for_each_acting_pair(const ContactList& contacts,
                                                         const std::uint8_t* mark, std::size_t block,
@@ -135,23 +144,16 @@ template <class Live, class Visit>
 
 // Pass 1 of cohesion_pair_loop over the rows of block `block`, any composition of parts: every
 // pair that may act (for_each_acting_pair) evaluated one at a time.
-[[gnu::noinline]] void cohesion_block(const CohesiveParts& parts, Particles& p,
-                                      ContactList& contacts, double period, double dt,
-                                      std::size_t block, CohesionBuffers& buffers) {
+[[gnu::noinline]] void cohesion_block(const CohesiveParts& parts, const LiveTest& live,
+                                      const Particles& p, ContactList& contacts, double period,
+                                      double dt, std::size_t block, CohesionBuffers& buffers) {
   const auto col = contacts.col();
   const auto state = contacts.state();
   const std::size_t stride = contacts.state_size();
-  const bool bridges = parts.bridge != nullptr;
-  const bool sjkr = parts.sjkr != nullptr;
-  const std::size_t bo = parts.bridge_offset, so = parts.sjkr_offset;  // < stride
   CohesionBuffers::Entry* out = &buffers.entries[contacts.row_start()[block * kCohesionBlockRows]];
   std::size_t n = 0;
   for_each_acting_pair(
-      contacts, buffers.mark.data(), block,
-      [&](std::size_t k) {
-        const double* st = &state[k * stride];
-        return (bridges & (st[bo] > 0.0)) | (sjkr & (st[so] > 0.0));
-      },
+      contacts, buffers.mark.data(), block, [&](std::size_t k) { return live(&state[k * stride]); },
       [&](std::size_t i, std::size_t k) {
         const Index j = col[k];
         cohesion_entry(parts, p, &state[k * stride], static_cast<Index>(i), j, k,
@@ -160,27 +162,24 @@ template <class Live, class Visit>
   buffers.count[block] = n;
 }
 
-// Pass 1 over block `block` for a scene whose only cohesive part is the plain bridge (no viscous
-// term, no sjkr): the same entries as cohesion_block, in the same order; the pairs that may act
-// (touching, or bridged) are evaluated in a BridgeBatch's SIMD lanes (bridge_batch.hpp).
-[[gnu::noinline]] void bridge_block(const LiquidBridge& bridge, std::size_t bo, Particles& p,
-                                    ContactList& contacts, double period, double dt,
-                                    std::size_t block, CohesionBuffers& buffers) {
+// Pass 1 over block `block` for a scene whose only cohesive part is `law`, with the SIMD batch
+// PartBatch<Law> (bridge_batch.hpp): the same entries as cohesion_block, in the same order; the
+// pairs that may act are evaluated in the batch's lanes.
+template <class Law>
+[[gnu::noinline]] void batched_block(const Law& law, std::size_t off, const Particles& p,
+                                     ContactList& contacts, double period, double dt,
+                                     std::size_t block, CohesionBuffers& buffers) {
   const auto col = contacts.col();
   const auto state = contacts.state();
   const std::size_t stride = contacts.state_size();
   CohesionBuffers::Entry* out = &buffers.entries[contacts.row_start()[block * kCohesionBlockRows]];
   std::size_t n = 0;
-  BridgeBatch batch;
+  typename PartBatch<Law>::type batch;
   const auto flush = [&] {
-    batch.evaluate(bridge.pair);
+    batch.evaluate(law);
     for (std::size_t l = 0; l < batch.count; ++l) {
-      if (batch.kind[l] == BridgeBatch::kNothing) continue;
-      bool event = batch.kind[l] == BridgeBatch::kEvent;
-      if (event && batch.volume[l] > 0.0) {
-        event = bridge.pair.ruptured(batch.gaps[l], batch.volume[l]);  // within 1e-6 of s_rup
-      }
-      if (!event) state[batch.k[l] * stride + bo + 1] += dt;  // the bridge ages
+      if (!batch.acts(l)) continue;
+      const bool event = batch.settle(l, law, &state[batch.k[l] * stride + off], dt);
       out[n++] = {batch.i[l], batch.j[l], batch.k[l], event ? 1u : 0u,
                   event ? Vec3::Zero() : batch.force.vec3(l)};
     }
@@ -188,22 +187,52 @@ template <class Live, class Visit>
   };
   for_each_acting_pair(
       contacts, buffers.mark.data(), block,
-      [&](std::size_t k) { return state[k * stride + bo] > 0.0; },
+      [&](std::size_t k) { return Law::live(&state[k * stride + off]); },
       [&](std::size_t i, std::size_t k) {
         const Index j = col[k];
         batch.add(static_cast<Index>(i), j, static_cast<std::uint32_t>(k),
                   nearest_image(p.position[i], p.position[j], period), p.radius[i], p.radius[j],
-                  state[k * stride + bo]);
+                  &state[k * stride + off]);
         if (batch.full()) flush();
       });
   flush();
   buffers.count[block] = n;
 }
 
-// This step's bridge events, for a decomposed run's hooks: the marked listed pairs and the
-// dropped pairs with a bridge, each with the volume that ruptures (0: a bridge forms).
-void list_bridge_events(const CohesiveParts& parts, const ContactList& contacts, std::size_t blocks,
-                        CohesionBuffers& buffers) {
+// The registered part that runs pass 1 in batches: the scene's only present part, if it has a
+// PartBatch that applies to it; kParts: none (pair by pair).
+std::size_t batched_part(const CohesiveParts& parts) {
+  std::size_t present = 0, batched = kParts;
+  CohesiveParts::for_each_law([&]<std::size_t K, class Law>() {
+    const Law* law = parts.at<K>();
+    if (law == nullptr) return;
+    ++present;
+    if constexpr (!std::is_void_v<typename PartBatch<Law>::type>) {
+      if (PartBatch<Law>::type::applies(*law)) batched = K;
+    }
+  });
+  return present == 1 ? batched : kParts;
+}
+
+// Pass 1 over one block: batched by part `batched` (batched_part), or pair by pair.
+void pass_one_block(const CohesiveParts& parts, std::size_t batched, const LiveTest& live,
+                    const Particles& p, ContactList& contacts, double period, double dt,
+                    std::size_t block, CohesionBuffers& buffers) {
+  bool done = false;
+  CohesiveParts::for_each_law([&]<std::size_t K, class Law>() {
+    if constexpr (!std::is_void_v<typename PartBatch<Law>::type>) {
+      if (K != batched) return;
+      batched_block(*parts.at<K>(), parts.offset_at(K), p, contacts, period, dt, block, buffers);
+      done = true;
+    }
+  });
+  if (!done) cohesion_block(parts, live, p, contacts, period, dt, block, buffers);
+}
+
+// This step's events, for a decomposed run's hooks: the marked listed pairs and the dropped pairs
+// whose state a part with events must settle, each with the liquid that ruptures (0: one forms).
+void list_events(const CohesiveParts& parts, const ContactList& contacts, std::size_t blocks,
+                 CohesionBuffers& buffers) {
   buffers.events.clear();
   const auto row = contacts.row_start();
   const auto state = contacts.state();
@@ -212,14 +241,28 @@ void list_bridge_events(const CohesiveParts& parts, const ContactList& contacts,
     const CohesionBuffers::Entry* e = &buffers.entries[row[b * kCohesionBlockRows]];
     for (const CohesionBuffers::Entry* last = e + buffers.count[b]; e != last; ++e) {
       if (e->event == 0) continue;
-      buffers.events.push_back({e->i, e->j, state[e->k * stride + parts.bridge_offset]});
+      buffers.events.push_back({e->i, e->j, event_liquid(parts, &state[e->k * stride])});
     }
   }
   const auto dropped = contacts.dropped();
   for (std::size_t q = 0; q < dropped.size(); ++q) {
-    const double v = contacts.dropped_state()[q * stride + parts.bridge_offset];
-    if (v > 0.0) buffers.events.push_back({dropped[q].i, dropped[q].j, v});
+    const double* s = &contacts.dropped_state()[q * stride];
+    if (live_for_events(parts, s)) {
+      buffers.events.push_back({dropped[q].i, dropped[q].j, event_liquid(parts, s)});
+    }
   }
+}
+
+// Dropped pair q's state settled by every part (a bridge's liquid back to the films).
+void drop_pair(const CohesiveParts& parts, const ContactList& contacts, std::size_t q,
+               double* film) {
+  const IndexPair pair = contacts.dropped()[q];
+  const double* ds = &contacts.dropped_state()[q * contacts.state_size()];
+  parts.for_each([&](const auto& law, std::size_t off) {
+    double s[std::remove_cvref_t<decltype(law)>::kStateSize];
+    std::copy_n(ds + off, std::size(s), s);
+    law.drop(s, film, pair.i, pair.j);
+  });
 }
 
 }  // namespace
@@ -239,39 +282,31 @@ void cohesion_pair_loop(const CohesiveParts& parts, Particles& p, ContactList& c
   if (buffers.entries.size() < contacts.size()) buffers.entries.resize(contacts.size());
   if (buffers.count.size() < blocks) buffers.count.resize(blocks);
   const auto n = static_cast<std::int64_t>(blocks);
-  const bool plain_bridge =
-      parts.bridge != nullptr && parts.sjkr == nullptr && parts.bridge->viscosity == 0.0;
+  const std::size_t batched = batched_part(parts);
+  const LiveTest live(parts);
 #pragma omp parallel for schedule(static)
   for (std::int64_t b = 0; b < n; ++b) {
-    const auto block = static_cast<std::size_t>(b);
-    if (plain_bridge) {
-      bridge_block(*parts.bridge, parts.bridge_offset, p, contacts, period, dt, block, buffers);
-    } else {
-      cohesion_block(parts, p, contacts, period, dt, block, buffers);
-    }
+    pass_one_block(parts, batched, live, p, contacts, period, dt, static_cast<std::size_t>(b),
+                   buffers);
   }
   double* film = film_of(parts, p);
   // A decomposed run: each event below starts from the films the serial pass would give it (every
   // rank takes part, with or without particles).
-  BridgeEventHooks* hooks =
-      parts.bridge != nullptr && parts.bridge->migration ? buffers.hooks : nullptr;
+  BridgeEventHooks* hooks = film != nullptr ? buffers.hooks : nullptr;
   if (hooks != nullptr) {
-    list_bridge_events(parts, contacts, blocks, buffers);
-    hooks->begin(*parts.bridge, buffers.events, film);
+    list_events(parts, contacts, blocks, buffers);
+    hooks->begin(*parts.get<LiquidBridge>(), buffers.events, film);
   }
   const auto dropped = contacts.dropped();
-  const auto dropped_state = contacts.dropped_state();
   const auto state = contacts.state();
   const std::size_t stride = contacts.state_size();
   std::size_t q = 0;
-  // The dropped pairs before (i, j): beyond every rupture distance, so their bridges end.
+  // The dropped pairs before (i, j): beyond every part's range, so their state ends.
   const auto settle_dropped = [&](IndexPair until) {
     for (; q < dropped.size() && dropped[q] < until; ++q) {
-      if (parts.bridge == nullptr) continue;
-      double s[LiquidBridge::kStateSize] = {dropped_state[q * stride + parts.bridge_offset], 0.0};
-      if (!(s[0] > 0.0)) continue;
+      if (!live_for_events(parts, &contacts.dropped_state()[q * stride])) continue;
       if (hooks == nullptr || hooks->before(dropped[q].i, dropped[q].j, film)) {
-        rupture(s, film, dropped[q].i, dropped[q].j);
+        drop_pair(parts, contacts, q, film);
       }
     }
   };
@@ -284,8 +319,9 @@ void cohesion_pair_loop(const CohesiveParts& parts, Particles& p, ContactList& c
         if (hooks != nullptr && !hooks->before(e->i, e->j, film)) continue;
         const Vec3 d = nearest_image(p.position[e->i], p.position[e->j], period);
         const double dist = d.norm();
+        const double gap = dist - (p.radius[e->i] + p.radius[e->j]);
         const double pull =
-            pair_attraction(parts, p, film, e->i, e->j, d, dist, &state[e->k * stride], dt);
+            pair_attraction(parts, {p, e->i, e->j, d, dist, gap}, &state[e->k * stride], film, dt);
         if (pull == 0.0) continue;
         f = (pull / dist) * d;  // along i - j: attraction pulls i toward j
       }
@@ -301,59 +337,50 @@ void cohesion_pair_loop(const CohesiveParts& parts, Particles& p, ContactList& c
 
 void cohesion_wall_loop(const CohesiveParts& parts, Particles& p, std::span<const Index> candidates,
                         const Drum& drum, double omega, double dt) {
-  const LiquidBridge* b =
-      parts.bridge != nullptr && parts.bridge->wall_bridges ? parts.bridge : nullptr;
-  if (b == nullptr && parts.sjkr == nullptr) return;
   const std::size_t n_parts = drum.periodic() ? 1 : kWallParts;
-  double* film = film_of(parts, p);
-  double* volume[kWallParts] = {};
-  double* age[kWallParts] = {};
-  if (b != nullptr) {
-    for (std::size_t w = 0; w < n_parts; ++w) {
-      std::vector<double>* v = p.find_array(kWallBridgeVolumeArrays[w]);
-      std::vector<double>* a = p.find_array(kWallBridgeAgeArrays[w]);
-      if (v == nullptr || a == nullptr) throw std::logic_error("wall bridges without arrays");
-      volume[w] = v->data();
-      age[w] = a->data();
-    }
+  // Each registered part that acts at the wall (else nullptr), with the view of its per-particle
+  // wall state.
+  auto [law, wall] = []<std::size_t... K>(std::index_sequence<K...>) {
+    return std::pair{std::tuple<const LawOf<K>*...>{},
+                     std::tuple<typename LawOf<K>::WallState...>{}};
   }
+  (std::make_index_sequence<kParts>{});
+  bool any = false;
+  CohesiveParts::for_each_law([&]<std::size_t K, class Law>() {
+    const Law* part = parts.at<K>();
+    if (part == nullptr || !part->acts_at_wall()) return;
+    std::get<K>(law) = part;
+    std::get<K>(wall) = part->wall_state(p, n_parts);
+    any = true;
+  });
+  if (!any) return;
+  double* film = film_of(parts, p);
   const auto count = static_cast<std::int64_t>(candidates.size());
-#pragma omp parallel for schedule(static)
-  for (std::int64_t q = 0; q < count; ++q) {
-    const Index i = candidates[static_cast<std::size_t>(q)];
-    const Vec3& x = p.position[i];
-    const double r = p.radius[i];
-    for (std::size_t w = 0; w < n_parts; ++w) {
-      const WallGap g = wall_gap(drum, static_cast<WallPart>(w), x, r);
-      if (g.gap > 0.0 && (b == nullptr || !(volume[w][i] > 0.0))) continue;  // nothing acts
-      double pull = 0.0;
-      if (b != nullptr) {
-        double& v = volume[w][i];
-        if (v > 0.0 && b->wall.ruptured(g.gap, v)) {
-          if (film != nullptr) film[i] += v;
-          v = 0.0;
-          age[w][i] = 0.0;
-        }
-        if (v > 0.0) {
-          age[w][i] += dt;
-        } else if (g.gap <= 0.0) {
-          double none = 0.0;
-          v = b->take_from_film(film != nullptr ? film[i] : none);
-          age[w][i] = 0.0;
-        }
-        if (v > 0.0) {
-          pull += b->wall.force(g.gap, LiquidBridge::wall_radius(r), v);
-          if (b->viscosity > 0.0) {
-            const Vec3 point = x - (r + std::max(g.gap, 0.0)) * g.normal;
-            const double vn = (p.velocity[i] - Drum::wall_velocity(point, omega)).dot(g.normal);
-            pull -= b->viscous_force(g.gap, r, vn);
-          }
-        }
+#pragma omp parallel
+  {
+    const auto acting = law;  // each thread's copies: pointers kept in registers
+    auto state = wall;
+#pragma omp for schedule(static)
+    for (std::int64_t c = 0; c < count; ++c) {
+      const Index i = candidates[static_cast<std::size_t>(c)];
+      const Vec3& x = p.position[i];
+      const double r = p.radius[i];
+      for (std::size_t w = 0; w < n_parts; ++w) {
+        const WallGap g = wall_gap(drum, static_cast<WallPart>(w), x, r);
+        bool live = false;
+        CohesiveParts::for_each_law([&]<std::size_t K, class Law>() {
+          const Law* part = std::get<K>(acting);
+          live = live || (part != nullptr && part->wall_live(std::get<K>(state), i, w));
+        });
+        if (g.gap > 0.0 && !live) continue;  // nothing acts
+        double pull = 0.0;
+        const WallSite site{p, i, w, g, omega};
+        CohesiveParts::for_each_law([&]<std::size_t K, class Law>() {
+          const Law* part = std::get<K>(acting);
+          if (part != nullptr) part->advance_wall(std::get<K>(state), site, film, dt, pull);
+        });
+        if (pull != 0.0) p.force[i] -= pull * g.normal;  // the normal points into the particle
       }
-      if (parts.sjkr != nullptr && g.gap < 0.0) {
-        pull += parts.sjkr->force(SjkrCohesion::wall_lens_area(-g.gap, r));
-      }
-      if (pull != 0.0) p.force[i] -= pull * g.normal;  // the normal points into the particle
     }
   }
 }
@@ -361,114 +388,52 @@ void cohesion_wall_loop(const CohesiveParts& parts, Particles& p, std::span<cons
 void cohesion_bonds(const CohesiveParts& parts, const Particles& p, const ContactList& contacts,
                     double period, std::vector<Bond>& out) {
   out.clear();
-  const bool adhesive = parts.sjkr != nullptr && parts.sjkr->energy_density > 0.0;
-  if (parts.bridge == nullptr && !adhesive) return;
+  std::array<bool, kParts> bonds{};
+  CohesiveParts::for_each_law([&]<std::size_t K, class Law>() {
+    bonds[K] = parts.at<K>() != nullptr && parts.at<K>()->bonds();
+  });
+  if (std::find(bonds.begin(), bonds.end(), true) == bonds.end()) return;
   const auto row = contacts.row_start();
   const auto col = contacts.col();
   const auto state = contacts.state();
   const std::size_t stride = contacts.state_size();
+  const auto bonded = [&]<std::size_t K>(const double* s) {
+    return bonds[K] && LawOf<K>::bonded(s + parts.offset_at(K));
+  };
   for (std::size_t i = 0; i < contacts.rows(); ++i) {
     for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
       const double* s = &state[k * stride];
-      const double* sb = parts.bridge != nullptr ? s + parts.bridge_offset : nullptr;
-      const double* sc = adhesive ? s + parts.sjkr_offset : nullptr;
-      const bool bridged = sb != nullptr && LiquidBridge::bond(sb);
-      const bool stuck = sc != nullptr && SjkrCohesion::bond(sc);
-      if (!bridged && !stuck) continue;
+      bool any = false;
+      CohesiveParts::for_each_law(
+          [&]<std::size_t K, class Law>() { any = any || bonded.template operator()<K>(s); });
+      if (!any) continue;
       const Index j = col[k];
-      const double dist = nearest_image(p.position[i], p.position[j], period).norm();
-      const double r_i = p.radius[i];
-      const double r_j = p.radius[j];
+      const Vec3 d = nearest_image(p.position[i], p.position[j], period);
+      const double dist = d.norm();
+      const PairGap g{p, static_cast<Index>(i), j, d, dist, dist - (p.radius[i] + p.radius[j])};
       Bond bond{static_cast<Index>(i), j, 0.0, 0.0, 0.0};
-      if (bridged) {
-        bond.volume = LiquidBridge::bond_volume(sb);
-        bond.force = parts.bridge->pair.force(dist - (r_i + r_j),
-                                              LiquidBridge::pair_radius(r_i, r_j), bond.volume);
-        bond.age = LiquidBridge::bond_age(sb);
-      }
-      if (stuck) {
-        bond.force += parts.sjkr->force(SjkrCohesion::lens_area(dist, r_i, r_j));
-        if (!bridged) bond.age = SjkrCohesion::bond_age(sc);
-      }
+      bool first = true;
+      CohesiveParts::for_each_law([&]<std::size_t K, class Law>() {
+        if (!bonded.template operator()<K>(s)) return;
+        const BondShare share = parts.at<K>()->bond_share(g, s + parts.offset_at(K));
+        bond.volume += share.volume;
+        bond.force += share.force;
+        if (first) bond.age = share.age;
+        first = false;
+      });
       out.push_back(bond);
     }
   }
 }
 
-void seed_bridges(const CohesiveParts& parts, Particles& p, ContactList& contacts, double period,
-                  std::vector<double>& reserve) {
-  double* film = film_of(parts, p);
-  if (film == nullptr || reserve.size() != p.size()) throw std::logic_error("no films to seed");
-  const auto row = contacts.row_start();
-  const auto col = contacts.col();
-  const auto state = contacts.state();
-  const std::size_t stride = contacts.state_size();
-  const auto touching = [&](std::size_t i, Index j) {
-    const double dist = nearest_image(p.position[i], p.position[j], period).norm();
-    return dist > 0.0 && dist <= p.radius[i] + p.radius[j];
-  };
-  std::vector<double> share(p.size(), 0.0);
-  for (std::size_t i = 0; i < contacts.rows(); ++i) {
-    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
-      if (!touching(i, col[k])) continue;
-      share[i] += 1.0;
-      share[col[k]] += 1.0;
-    }
-  }
-  for (std::size_t i = 0; i < share.size(); ++i) {
-    share[i] = share[i] > 0.0 ? reserve[i] / share[i] : 0.0;
-  }
-  const double v_max = parts.bridge->max_volume;
-  for (std::size_t i = 0; i < contacts.rows(); ++i) {
-    for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
-      const Index j = col[k];
-      if (!touching(i, j)) continue;
-      double gi = share[i], gj = share[j];
-      if (gi + gj > v_max) {
-        gi = share[i] * (v_max / (share[i] + share[j]));
-        gj = v_max - gi;
-      }
-      if (!(gi + gj > 0.0)) continue;
-      double* s = &state[k * stride + parts.bridge_offset];
-      s[0] = gi + gj;
-      s[1] = 0.0;
-      reserve[i] -= gi;
-      reserve[j] -= gj;
-    }
-  }
-  for (std::size_t i = 0; i < reserve.size(); ++i) film[i] += reserve[i];
-  reserve.clear();
-}
-
-std::vector<std::string_view> liquid_array_names(const LiquidBridge& bridge,
-                                                 std::size_t wall_parts) {
-  std::vector<std::string_view> names;
-  if (bridge.migration) names.push_back(kLiquidFilmArray);
-  if (!bridge.wall_bridges) return names;
-  for (std::size_t w = 0; w < wall_parts; ++w) {
-    names.push_back(kWallBridgeVolumeArrays[w]);
-    names.push_back(kWallBridgeAgeArrays[w]);
-  }
-  return names;
-}
-
-void fill_films(const LiquidConfig& liquid, Particles& p, std::vector<double>& reserve) {
-  std::vector<double>* film = p.find_array(kLiquidFilmArray);
-  if (film == nullptr) throw std::logic_error("fill_films: no film array");
-  reserve.assign(p.size(), 0.0);
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const double r = p.radius[i];
-    const double v = liquid.liquid_content * (4.0 / 3.0) * std::numbers::pi * r * r * r;
-    (*film)[i] = liquid.film_share * v;
-    reserve[i] = v - (*film)[i];
-  }
-  if (liquid.film_share == 1.0) reserve.clear();
-}
-
 LiquidTotals liquid_totals(const CohesiveParts& parts, const Particles& p,
                            const ContactList& contacts, std::span<const std::uint8_t> ghost) {
   LiquidTotals t;
-  if (parts.bridge == nullptr) return t;
+  bool holds = false;
+  parts.for_each([&](const auto& law, std::size_t) {
+    holds = holds || std::remove_cvref_t<decltype(law)>::kHoldsLiquid;
+  });
+  if (!holds) return t;
   const auto skip = [&](std::size_t i) { return !ghost.empty() && ghost[i] != 0; };
   if (const std::vector<double>* film = p.find_array(kLiquidFilmArray)) {
     for (std::size_t i = 0; i < film->size(); ++i) {
@@ -481,9 +446,13 @@ LiquidTotals liquid_totals(const CohesiveParts& parts, const Particles& p,
   for (std::size_t i = 0; i < contacts.rows(); ++i) {
     if (skip(i)) continue;
     for (std::size_t k = row[i]; k < row[i + 1]; ++k) {
-      const double v = state[k * stride + parts.bridge_offset];
-      t.bridges += v;
-      t.bridge_count += v > 0.0;
+      parts.for_each([&](const auto& law, std::size_t off) {
+        if constexpr (std::remove_cvref_t<decltype(law)>::kHoldsLiquid) {
+          const double v = law.liquid(&state[k * stride + off]);
+          t.bridges += v;
+          t.bridge_count += v > 0.0;
+        }
+      });
     }
   }
   for (std::size_t w = 0; w < kWallParts; ++w) {

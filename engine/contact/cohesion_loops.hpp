@@ -1,6 +1,7 @@
 #pragma once
-// The loops of the cohesive law parts (engine/contact/liquid_bridge.hpp, sjkr_cohesion.hpp), run
-// after the contact forces of a scene that has one (a dry scene runs none of this).
+// The loops of the cohesive law parts (cohesive_part.hpp; registered in cohesive_laws.hpp), run
+// after the contact forces of a scene that has one (a dry scene runs none of this). They are
+// generic over the parts: no loop names a law.
 //
 // One thread, by increasing (i, j) (particles by increasing slot, then wall part): liquid
 // migration reads and writes the films of both particles of a pair, so the result depends on the
@@ -12,28 +13,17 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
-#include <string_view>
 #include <vector>
 
 #include "engine/contact/bond.hpp"
+#include "engine/contact/cohesive_laws.hpp"
 #include "engine/contact/contact_history.hpp"
-#include "engine/contact/liquid_bridge.hpp"
-#include "engine/contact/sjkr_cohesion.hpp"
 #include "engine/drum.hpp"
 #include "engine/parallel/bridge_events.hpp"
 #include "engine/particles.hpp"
 #include "engine/scene/scene_config.hpp"
 
 namespace drumlab {
-
-/// The cohesive parts of a composed law and where each keeps its scalars in a contact's state.
-struct CohesiveParts {
-  const LiquidBridge* bridge = nullptr;  ///< nullptr: no liquid
-  std::size_t bridge_offset = 0;
-  const SjkrCohesion* sjkr = nullptr;  ///< nullptr: no dry adhesion
-  std::size_t sjkr_offset = 0;
-  bool any() const { return bridge != nullptr || sjkr != nullptr; }
-};
 
 /// Scratch of cohesion_pair_loop, reused every step (grows, never shrinks). Block b (rows
 /// [b * kCohesionBlockRows, ...)) keeps its entries in entries[row_start[first row] + q] for q <
@@ -42,10 +32,9 @@ struct CohesionBuffers {
   struct Entry {
     Index i;
     Index j;
-    std::uint32_t k;  ///< the pair's place in the contact list
-    std::uint32_t
-        event;   ///< 1: a bridge forms or ruptures (films change): the ordered pass does it
-    Vec3 force;  ///< otherwise the force on j (-force on i)
+    std::uint32_t k;      ///< the pair's place in the contact list
+    std::uint32_t event;  ///< 1: a part's event (films change): the ordered pass does it
+    Vec3 force;           ///< otherwise the force on j (-force on i)
   };
   std::vector<Entry> entries;
   std::vector<std::size_t> count;
@@ -59,7 +48,7 @@ struct CohesionBuffers {
 };
 
 /// A listed pair's touch mark at squared centre distance dist2, radii summing to sum_r:
-/// kTouchOrEqual if |d| <= r_i + r_j (a bridge may form, an sjkr contact acts), kApartCentres if
+/// kTouchOrEqual if |d| <= r_i + r_j (a part may act without live state), kApartCentres if
 /// the centres differ (|d| > 0: the pair has a direction).
 inline constexpr std::uint8_t kTouchOrEqual = 1;
 inline constexpr std::uint8_t kApartCentres = 2;
@@ -69,44 +58,29 @@ inline constexpr std::uint8_t kApartCentres = 2;
 }
 inline constexpr std::size_t kCohesionBlockRows = 256;
 
-/// Advances every listed pair's cohesive state by dt (bridges form, age, rupture; films give and
-/// take liquid) and adds the attractive forces to p.force. Settles and forgets the dropped pairs.
-/// Two passes: (1) in parallel over blocks of rows, every pair whose bridge neither forms nor
-/// ruptures gets its force and its state advanced (they read no film); the others are marked;
-/// (2) one thread, by increasing (i, j) with the dropped pairs merged in, does the marked pairs'
-/// bridge events (liquid migration) and adds every force. The films and the sums of p.force are
+/// Advances every listed pair's cohesive state by dt (each part's advance_pair: bridges form, age,
+/// rupture; films give and take liquid) and adds the attractive forces to p.force. Settles and
+/// forgets the dropped pairs (each part's drop). Two passes: (1) in parallel over blocks of rows,
+/// every pair on which a part may act and no part has an event gets its force and its state
+/// advanced (they read no film); the others are marked; (2) one thread, by increasing (i, j) with
+/// the dropped pairs merged in, does the marked pairs (events: liquid migration) and adds every
+/// force. The films and the sums of p.force are
 /// then made in the same order as by one pass over the pairs, for any thread count.
 /// buffers.mark must hold every listed pair's touch_mark at the current positions (the contact
 /// pair loop, ContactModel::add_pair_forces, writes it just before).
 void cohesion_pair_loop(const CohesiveParts& parts, Particles& p, ContactList& contacts,
                         double period, double dt, CohesionBuffers& buffers);
 
-/// The same for the particles `candidates` (increasing) against the drum wall turning at omega:
-/// wall bridges (state in the kWallBridge*Arrays of p) and sjkr with the wall (no state). In
-/// parallel over the candidates: a particle's wall bridges change only its own film and force.
+/// The same for the particles `candidates` (increasing) against the drum wall turning at omega
+/// (each part's advance_wall; its state in p's arrays). In parallel over the candidates: a
+/// particle's wall state changes only its own film and force.
 void cohesion_wall_loop(const CohesiveParts& parts, Particles& p, std::span<const Index> candidates,
                         const Drum& drum, double omega, double dt);
 
-/// The live links among `contacts`: one Bond per pair with a live bridge or an adhesive
-/// (overlapping, k_c > 0) sjkr contact; force = bridge + adhesion at the current state.
+/// The live links among `contacts`: one Bond per pair that some part says is bonded (a live
+/// bridge, an adhesive contact); its shares added in the parts' order, the age the first part's.
 void cohesion_bonds(const CohesiveParts& parts, const Particles& p, const ContactList& contacts,
                     double period, std::vector<Bond>& out);
-
-/// The initial split (LiquidConfig::film_share < 1): every touching listed pair gets a bridge from
-/// the reserves of both particles (m^3 each, not in their films): each particle's reserve divided
-/// equally among its touching pairs, the bridge capped at the maximum volume (both shares scaled
-/// down alike); what a particle's reserve does not give goes to its film. Emptied on return.
-void seed_bridges(const CohesiveParts& parts, Particles& p, ContactList& contacts, double period,
-                  std::vector<double>& reserve);
-
-/// The per-particle arrays the liquid needs (the film with migration, the wall bridges'
-/// volume and age per wall part with wall bridges; `wall_parts`: 1 with periodic ends, else 3).
-std::vector<std::string_view> liquid_array_names(const LiquidBridge& bridge,
-                                                 std::size_t wall_parts);
-/// Fills the film array (registered) from the scene's liquid content: film_share of each
-/// particle's liquid (content x its solid volume) in its film, the rest in `reserve`
-/// (seed_bridges).
-void fill_films(const LiquidConfig& liquid, Particles& p, std::vector<double>& reserve);
 
 /// Liquid held (m^3): in films, in particle-particle bridges, in wall bridges.
 struct LiquidTotals {
@@ -122,13 +96,5 @@ LiquidTotals liquid_totals(const CohesiveParts& parts, const Particles& p,
                            const ContactList& contacts, std::span<const std::uint8_t> ghost = {});
 /// Liquid held in wall bridges (m^3): the sum of p's kWallBridgeVolumeArrays (0 without them).
 double wall_bridge_liquid(const Particles& p, std::span<const std::uint8_t> ghost = {});
-
-/// Gap (m, negative: overlap) and unit normal (from the wall into the particle) of a sphere
-/// against one wall part, also when apart (Drum::contact reports only overlaps).
-struct WallGap {
-  double gap = 0.0;
-  Vec3 normal = Vec3::Zero();
-};
-WallGap wall_gap(const Drum& drum, WallPart part, const Vec3& x, double r);
 
 }  // namespace drumlab

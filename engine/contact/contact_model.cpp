@@ -404,36 +404,8 @@ ContactModel::ContactModel(const SceneConfig& scene) {
   pair_rolling_ = scene.material.rolling_friction > 0.0;
   wall_tangential_ = scene.wall.friction > 0.0;
   wall_rolling_ = scene.wall.rolling_friction > 0.0;
-  constexpr double kDegree = std::numbers::pi / 180.0;
-  if (scene.liquid.enabled) {
-    const LiquidConfig& l = scene.liquid;
-    LiquidBridge& b = bridge_.emplace();
-    b.pair = {l.surface_tension, l.contact_angle_deg * kDegree};
-    b.wall = {l.wall_surface_tension, l.wall_contact_angle_deg * kDegree};
-    b.migration = l.migration;
-    b.fixed_volume = l.migration ? 0.0 : l.bridge_volume;
-    b.max_volume = l.migration ? l.max_bridge_volume : l.bridge_volume;
-    b.wall_bridges = l.wall_bridges;
-    b.viscosity = l.viscosity;
-    b.min_gap = l.min_gap;
-    pair_range_ = std::max(pair_range_, b.range());
-    pair_state_size_ += LiquidBridge::kStateSize;
-  }
-  if (scene.cohesion.enabled) {
-    sjkr_ = SjkrCohesion{scene.cohesion.energy_density};
-    sjkr_offset_ = pair_state_size_;
-    pair_state_size_ += SjkrCohesion::kStateSize;
-  }
-}
-
-CohesiveParts ContactModel::cohesive_parts() const {
-  CohesiveParts parts;
-  if (bridge_) parts.bridge = &*bridge_;
-  if (sjkr_) {
-    parts.sjkr = &*sjkr_;
-    parts.sjkr_offset = sjkr_offset_;
-  }
-  return parts;
+  cohesive_ = CohesiveParts(scene);
+  pair_range_ = cohesive_.range();
 }
 
 double ContactModel::pair_range(std::uint8_t, std::uint8_t) const {
@@ -445,7 +417,7 @@ std::size_t ContactModel::add_pair_forces(Particles& p, ContactList& contacts,
                                           PairForceBuffers& buffers, double period, double dt,
                                           double history_dt) const {
   std::size_t touching = 0;
-  const CohesiveParts parts = cohesive_parts();
+  const CohesiveParts& parts = cohesive_;
   with_law(pair_, pair_tangential_, pair_rolling_,
            [&]<class N, bool Tangential, bool Rolling>(const ContactLaw<N>& law) {
              touching = parts.any() ? pair_loop<N, Tangential, Rolling, true>(
@@ -468,8 +440,8 @@ std::size_t ContactModel::add_wall_forces(Particles& p, std::span<const Index> c
              contacts = wall_loop<N, Tangential, Rolling>(law, p, candidates, drum, omega, history,
                                                           dt, history_dt);
            });
-  if (const CohesiveParts parts = cohesive_parts(); parts.any()) {
-    cohesion_wall_loop(parts, p, candidates, drum, omega, history_dt);
+  if (cohesive_.any()) {
+    cohesion_wall_loop(cohesive_, p, candidates, drum, omega, history_dt);
   }
   return contacts;
 }
@@ -491,10 +463,9 @@ void ContactModel::pair_forces(const Particles& p, const ContactList& contacts, 
 // The cohesive forces (bridges, adhesion) merged into the contact forces by (i, j).
 void ContactModel::add_cohesive_forces(const Particles& p, const ContactList& contacts,
                                        double period, std::vector<ContactForce>& out) const {
-  const CohesiveParts parts = cohesive_parts();
-  if (!parts.any()) return;
+  if (!cohesive_.any()) return;
   std::vector<Bond> bonds;
-  cohesion_bonds(parts, p, contacts, period, bonds);
+  cohesion_bonds(cohesive_, p, contacts, period, bonds);
   if (bonds.empty()) return;
   std::vector<ContactForce> merged;
   merged.reserve(out.size() + bonds.size());
@@ -518,7 +489,7 @@ void ContactModel::add_cohesive_forces(const Particles& p, const ContactList& co
 
 void ContactModel::bonds(const Particles& p, const ContactList& contacts, double period,
                          std::vector<Bond>& out) const {
-  cohesion_bonds(cohesive_parts(), p, contacts, period, out);
+  cohesion_bonds(cohesive_, p, contacts, period, out);
 }
 
 double ContactModel::pair_elastic_energy(double delta, double r_eff) const {

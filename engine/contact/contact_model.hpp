@@ -14,12 +14,11 @@
 
 #include "engine/contact/bond.hpp"
 #include "engine/contact/cohesion_loops.hpp"
+#include "engine/contact/cohesive_laws.hpp"
 #include "engine/contact/contact_history.hpp"
 #include "engine/contact/hertz_mindlin.hpp"
 #include "engine/contact/linear_spring_dashpot.hpp"
-#include "engine/contact/liquid_bridge.hpp"
 #include "engine/contact/rolling_resistance.hpp"
-#include "engine/contact/sjkr_cohesion.hpp"
 #include "engine/drum.hpp"
 #include "engine/particles.hpp"
 #include "engine/scene/scene_config.hpp"
@@ -84,16 +83,18 @@ class ContactModel {
   double max_pair_range() const { return pair_range_; }
   /// The same for particle-wall contacts (m): the wall-candidate list reaches this much further
   /// (the rupture distance of a wall bridge of the largest volume; 0 without wall bridges).
-  double wall_range() const { return bridge_ ? bridge_->wall_range() : 0.0; }
+  double wall_range() const { return cohesive_.wall_range(); }
   /// Scalars the composed law keeps per particle-particle contact (ContactList::set_state_size):
-  /// the sum over its beyond-contact and adhesive parts; 0 for a dry law.
-  std::size_t pair_state_size() const { return pair_state_size_; }
-  /// The liquid bridge part, if the scene has [liquid].
-  const std::optional<LiquidBridge>& pair_bridge() const { return bridge_; }
-  /// The sjkr adhesion part, if the scene has [cohesion].
-  const std::optional<SjkrCohesion>& adhesion() const { return sjkr_; }
+  /// the sum over its cohesive parts; 0 for a dry law.
+  std::size_t pair_state_size() const { return cohesive_.state_size(); }
+  /// The cohesive part Law (cohesive_laws.hpp) if the scene has it, e.g. part<LiquidBridge>()
+  /// with [liquid], part<SjkrCohesion>() with [cohesion]; else nullptr.
+  template <class Law>
+  const Law* part() const {
+    return cohesive_.get<Law>();
+  }
   /// The cohesive parts with their state offsets (none for a dry law).
-  CohesiveParts cohesive_parts() const;
+  const CohesiveParts& cohesive_parts() const { return cohesive_; }
   /// True if any contact can apply a torque (else rotation need not be integrated).
   bool uses_rotation() const {
     return pair_tangential_ || pair_rolling_ || wall_tangential_ || wall_rolling_;
@@ -148,11 +149,8 @@ class ContactModel {
   bool pair_rolling_ = false;
   bool wall_tangential_ = false;
   bool wall_rolling_ = false;
-  std::optional<LiquidBridge> bridge_;
-  std::optional<SjkrCohesion> sjkr_;
-  std::size_t sjkr_offset_ = 0;
+  CohesiveParts cohesive_;
   double pair_range_ = 0.0;
-  std::size_t pair_state_size_ = 0;
 };
 
 }  // namespace drumlab

@@ -7,6 +7,7 @@
 
 #include "engine/contact/cohesion_loops.hpp"
 #include "engine/contact/contact_model.hpp"
+#include "engine/contact/liquid_start.hpp"
 #include "engine/drum.hpp"
 
 namespace drumlab {
@@ -54,12 +55,12 @@ LawCurve probe_law(const SceneConfig& scene, const LawProbeOptions& o) {
   Particles& p = bodies.p;
   p.add(Vec3::Zero(), a.radius, scene.material.density, o.class_a);
   if (!o.wall) p.add(Vec3::Zero(), b.radius, scene.material.density, o.class_b);
-  if (const auto& bridge = model.pair_bridge()) {
-    for (const std::string_view name : liquid_array_names(*bridge, kWallParts)) {
-      p.add_array(name, 0.0);
-    }
+  for (const std::string_view name : model.cohesive_parts().particle_arrays(kWallParts)) {
+    p.add_array(name, 0.0);
+  }
+  if (p.find_array(kLiquidFilmArray) != nullptr) {
     std::vector<double> reserve;
-    if (bridge->migration) fill_films(scene.liquid, p, reserve);  // the reserve: no contacts
+    fill_films(scene.liquid, p, reserve);  // the reserve: no contacts
   }
   bodies.contacts.set_state_size(model.pair_state_size());
   bodies.wall_history.assign(p.size(), {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
@@ -83,7 +84,10 @@ LawCurve probe_law(const SceneConfig& scene, const LawProbeOptions& o) {
       bodies.contacts.update(pair, 2);
       model.add_pair_forces(p, bodies.contacts, bodies.buffers, 0.0, kProbeDt, kProbeDt);
       s.normal_force = p.force[0].x();
-      if (model.pair_bridge()) s.bridge_volume = bodies.contacts.find_state(0, 1)[0];
+      if (model.part<LiquidBridge>() != nullptr) {
+        const std::size_t at = model.cohesive_parts().offset<LiquidBridge>();
+        s.bridge_volume = LiquidBridge::liquid(bodies.contacts.find_state(0, 1) + at);
+      }
     }
     return s;
   };
@@ -102,7 +106,8 @@ LawCurve probe_law(const SceneConfig& scene, const LawProbeOptions& o) {
     const LawSample s = sample(-overlap + t * (end + overlap), true);
     if (s.bridge_volume > 0.0) {
       curve.last_bridged_gap = s.gap;
-      const BridgeLiquid& liquid = o.wall ? model.pair_bridge()->wall : model.pair_bridge()->pair;
+      const LiquidBridge& bridge = *model.part<LiquidBridge>();
+      const BridgeLiquid& liquid = o.wall ? bridge.wall : bridge.pair;
       curve.predicted_rupture = liquid.rupture_distance(s.bridge_volume);
     } else if (!std::isnan(curve.last_bridged_gap) && std::isnan(curve.rupture_gap)) {
       curve.rupture_gap = s.gap;

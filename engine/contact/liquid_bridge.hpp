@@ -28,13 +28,23 @@
 //   rupture between particles: half of V to each film (the equal split); with the wall: all of V
 //     back to the particle's film.
 // Without migration every bridge has the fixed volume LiquidConfig::bridge_volume and no film.
-// State per contact: [0] V (m^3, 0: no bridge), [1] its age (s since it formed).
+// State per contact: [0] V (m^3, 0: no bridge), [1] its age (s since it formed). State per
+// particle (wall bridges): the volume and age of its bridge with each wall part, in the arrays
+// kWallBridgeVolumeArrays / kWallBridgeAgeArrays; its film in kLiquidFilmArray (migration).
+// The cohesive-part interface (cohesive_part.hpp): range = s_rup(V_max); events = a bridge forms
+// or ruptures (films change); bond = a live bridge; liquid = V.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
 #include <numbers>
+#include <optional>
+#include <stdexcept>
 #include <string_view>
+#include <vector>
+
+#include "engine/contact/bond.hpp"
+#include "engine/contact/cohesive_part.hpp"
 
 namespace drumlab {
 
@@ -142,9 +152,151 @@ struct LiquidBridge {
     return v;
   }
 
-  static bool bond(const double* state) { return state[0] > 0.0; }
-  static double bond_volume(const double* state) { return state[0]; }
-  static double bond_age(const double* state) { return state[1]; }
+  // --- the cohesive-part interface (cohesive_part.hpp) ---
+  static constexpr bool kHasEvents = true;
+  static constexpr bool kHoldsLiquid = true;
+
+  /// The scene's [liquid] (nullopt without); throws InputError for unusable values.
+  static std::optional<LiquidBridge> from_scene(const SceneConfig& scene) {
+    if (!scene.liquid.enabled) return std::nullopt;
+    const LiquidConfig& l = scene.liquid;
+    if (!(l.surface_tension > 0.0) || !(l.wall_surface_tension > 0.0) ||
+        !(l.contact_angle_deg >= 0.0 && l.contact_angle_deg < 90.0) ||
+        !(l.wall_contact_angle_deg >= 0.0 && l.wall_contact_angle_deg < 90.0) ||
+        !(l.migration ? l.max_bridge_volume > 0.0 && l.liquid_content >= 0.0
+                      : l.bridge_volume > 0.0) ||
+        !(l.viscosity >= 0.0) || (l.viscosity > 0.0 && !(l.min_gap > 0.0))) {
+      throw InputError(
+          "liquid: surface_tension and the bridge volume must be > 0, contact angles in [0, 90), "
+          "liquid_content and viscosity >= 0, min_gap > 0 with viscosity");
+    }
+    constexpr double kDegree = std::numbers::pi / 180.0;
+    LiquidBridge b;
+    b.pair = {l.surface_tension, l.contact_angle_deg * kDegree};
+    b.wall = {l.wall_surface_tension, l.wall_contact_angle_deg * kDegree};
+    b.migration = l.migration;
+    b.fixed_volume = l.migration ? 0.0 : l.bridge_volume;
+    b.max_volume = l.migration ? l.max_bridge_volume : l.bridge_volume;
+    b.wall_bridges = l.wall_bridges;
+    b.viscosity = l.viscosity;
+    b.min_gap = l.min_gap;
+    return b;
+  }
+
+  /// The film with migration; the wall bridges' volume and age per wall part (`wall_parts`: 1
+  /// with periodic ends, else 3) with wall bridges.
+  std::vector<std::string_view> particle_arrays(std::size_t wall_parts) const {
+    std::vector<std::string_view> names;
+    if (migration) names.push_back(kLiquidFilmArray);
+    if (!wall_bridges) return names;
+    for (std::size_t w = 0; w < wall_parts; ++w) {
+      names.push_back(kWallBridgeVolumeArrays[w]);
+      names.push_back(kWallBridgeAgeArrays[w]);
+    }
+    return names;
+  }
+  bool moves_films() const { return migration; }
+
+  static bool live(const double* s) { return s[0] > 0.0; }
+  /// True if the pair's bridge forms or ruptures at this step (its films change): with a bridge
+  /// beyond its rupture distance, or touching without one (MercuryDPM's form()/rupture()).
+  bool event(const double* s, double gap) const {
+    return s[0] > 0.0 ? pair.ruptured(gap, s[0]) : gap <= 0.0;
+  }
+  /// A bridge between i and j ends: its liquid goes back, half to each film (migration).
+  static void rupture(double* s, double* film, Index i, Index j) {
+    if (film != nullptr) {
+      film[i] += 0.5 * s[0];
+      film[j] += 0.5 * s[0];
+    }
+    s[0] = 0.0;
+    s[1] = 0.0;
+  }
+  /// Ruptures, forms (films: nullptr without migration) or ages the bridge and adds its pull.
+  void advance_pair(const PairGap& g, double* s, double* film, double dt, double& pull) const {
+    if (s[0] > 0.0 && pair.ruptured(g.gap, s[0])) rupture(s, film, g.i, g.j);
+    if (s[0] > 0.0) {
+      s[1] += dt;
+    } else if (g.gap <= 0.0) {
+      double none = 0.0;
+      const double v =
+          film != nullptr ? take_from_films(film[g.i], film[g.j]) : take_from_films(none, none);
+      s[0] = v;
+      s[1] = 0.0;
+    }
+    if (!(s[0] > 0.0)) return;
+    const double r_i = g.p.radius[g.i];
+    const double r_j = g.p.radius[g.j];
+    pull += pair.force(g.gap, pair_radius(r_i, r_j), s[0]);
+    if (viscosity > 0.0) {
+      const double vn = (g.p.velocity[g.i] - g.p.velocity[g.j]).dot(g.d) / g.dist;
+      pull -= viscous_force(g.gap, r_i * r_j / (r_i + r_j), vn);
+    }
+  }
+  /// A dropped pair is beyond every rupture distance: its bridge ends.
+  void drop(double* s, double* film, Index i, Index j) const {
+    if (s[0] > 0.0) rupture(s, film, i, j);
+  }
+
+  /// The wall bridges' arrays, per wall part.
+  struct WallState {
+    double* volume[kWallParts] = {};
+    double* age[kWallParts] = {};
+  };
+  bool acts_at_wall() const { return wall_bridges; }
+  WallState wall_state(Particles& p, std::size_t wall_parts) const {
+    WallState w;
+    for (std::size_t k = 0; k < wall_parts; ++k) {
+      std::vector<double>* v = p.find_array(kWallBridgeVolumeArrays[k]);
+      std::vector<double>* a = p.find_array(kWallBridgeAgeArrays[k]);
+      if (v == nullptr || a == nullptr) throw std::logic_error("wall bridges without arrays");
+      w.volume[k] = v->data();
+      w.age[k] = a->data();
+    }
+    return w;
+  }
+  bool wall_live(const WallState& w, Index i, std::size_t part) const {
+    return w.volume[part][i] > 0.0;
+  }
+  /// The bridge of particle i with one wall part: ruptures (all its liquid back to the film),
+  /// forms (from the film alone), or ages; adds its pull.
+  void advance_wall(WallState& w, const WallSite& site, double* film, double dt,
+                    double& pull) const {
+    const Index i = site.i;
+    const WallGap& g = site.g;
+    double& v = w.volume[site.part][i];
+    double& age = w.age[site.part][i];
+    if (v > 0.0 && wall.ruptured(g.gap, v)) {
+      if (film != nullptr) film[i] += v;
+      v = 0.0;
+      age = 0.0;
+    }
+    if (v > 0.0) {
+      age += dt;
+    } else if (g.gap <= 0.0) {
+      double none = 0.0;
+      v = take_from_film(film != nullptr ? film[i] : none);
+      age = 0.0;
+    }
+    if (!(v > 0.0)) return;
+    const Particles& p = site.p;
+    const double r = p.radius[i];
+    pull += wall.force(g.gap, wall_radius(r), v);
+    if (viscosity > 0.0) {
+      const Vec3 point = p.position[i] - (r + std::max(g.gap, 0.0)) * g.normal;
+      const double vn = (p.velocity[i] - Drum::wall_velocity(point, site.omega)).dot(g.normal);
+      pull -= viscous_force(g.gap, r, vn);
+    }
+  }
+
+  bool bonds() const { return true; }
+  static bool bonded(const double* s) { return s[0] > 0.0; }
+  BondShare bond_share(const PairGap& g, const double* s) const {
+    const double r_i = g.p.radius[g.i];
+    const double r_j = g.p.radius[g.j];
+    return {s[0], pair.force(g.gap, pair_radius(r_i, r_j), s[0]), s[1]};
+  }
+  static double liquid(const double* s) { return s[0]; }
 };
 
 }  // namespace drumlab

@@ -17,9 +17,16 @@
 // pull-off distance is 0 (no range, the search margin is unchanged).
 //
 // State per contact: [0] 1 while the contact is adhesive (overlapping), else 0; [1] its age, the
-// time (s) since it formed (what a Bond reports).
+// time (s) since it formed (what a Bond reports). No per-particle state: the wall needs none.
+// The cohesive-part interface (cohesive_part.hpp): range 0; no events (no liquid moves); bond =
+// an adhesive contact (k_c > 0).
 #include <cstddef>
 #include <numbers>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "engine/contact/cohesive_part.hpp"
 
 namespace drumlab {
 
@@ -54,8 +61,53 @@ struct SjkrCohesion {
     return x * x * r_star / 4.0;
   }
 
-  static bool bond(const double* state) { return state[0] > 0.0; }
-  static double bond_age(const double* state) { return state[1]; }
+  // --- the cohesive-part interface (cohesive_part.hpp) ---
+  static constexpr bool kHasEvents = false;
+  static constexpr bool kHoldsLiquid = false;
+
+  /// The scene's [cohesion] (nullopt without); throws InputError for unusable values.
+  static std::optional<SjkrCohesion> from_scene(const SceneConfig& scene) {
+    if (!scene.cohesion.enabled) return std::nullopt;
+    if (!(scene.cohesion.energy_density >= 0.0)) {
+      throw InputError("cohesion.energy_density must be >= 0 (J/m^3)");
+    }
+    return SjkrCohesion{scene.cohesion.energy_density};
+  }
+  double range() const { return 0.0; }  // no tensile force beyond contact (header)
+  double wall_range() const { return 0.0; }
+  std::vector<std::string_view> particle_arrays(std::size_t) const { return {}; }
+  bool moves_films() const { return false; }
+
+  static bool live(const double* s) { return s[0] > 0.0; }
+  bool event(const double*, double) const { return false; }
+  /// Adhesive while overlapping (the flag set, the age counted from the step it formed), else
+  /// the flag and age cleared.
+  void advance_pair(const PairGap& g, double* s, double*, double dt, double& pull) const {
+    if (g.gap < 0.0) {
+      pull += force(lens_area(g.dist, g.p.radius[g.i], g.p.radius[g.j]));
+      s[1] = s[0] > 0.0 ? s[1] + dt : 0.0;
+      s[0] = 1.0;
+    } else {
+      s[0] = 0.0;
+      s[1] = 0.0;
+    }
+  }
+  void drop(double*, double*, Index, Index) const {}
+
+  struct WallState {};
+  bool acts_at_wall() const { return true; }
+  WallState wall_state(Particles&, std::size_t) const { return {}; }
+  bool wall_live(const WallState&, Index, std::size_t) const { return false; }
+  void advance_wall(WallState&, const WallSite& site, double*, double, double& pull) const {
+    if (site.g.gap < 0.0) pull += force(wall_lens_area(-site.g.gap, site.p.radius[site.i]));
+  }
+
+  bool bonds() const { return energy_density > 0.0; }
+  static bool bonded(const double* s) { return s[0] > 0.0; }
+  BondShare bond_share(const PairGap& g, const double* s) const {
+    return {0.0, force(lens_area(g.dist, g.p.radius[g.i], g.p.radius[g.j])), s[1]};
+  }
+  static double liquid(const double*) { return 0.0; }
 };
 
 }  // namespace drumlab

@@ -162,7 +162,7 @@ TEST(BeyondContact, DryLawHasNoRangeAndNoState) {
   const ContactModel dry(output_scene());
   EXPECT_EQ(dry.max_pair_range(), 0.0);
   EXPECT_EQ(dry.pair_state_size(), 0u);
-  EXPECT_FALSE(dry.pair_bridge().has_value());
+  EXPECT_EQ(dry.part<LiquidBridge>(), nullptr);
   const ContactModel wet(wet_scene());
   EXPECT_NEAR(wet.max_pair_range(), 1e-3, 1e-15);
   EXPECT_EQ(wet.pair_range(0, 1), wet.max_pair_range());

@@ -292,7 +292,7 @@ TEST(WetLaws, CohesivePairAtRestStaysBoundDryOneSeparates) {
   const ContactModel model(sticky);
   const double r_star = 0.002;
   const double e_star = std::get<HertzNormal>(model.pair_normal()).e_star;
-  const double delta_eq = model.adhesion()->rest_overlap(e_star, r_star);
+  const double delta_eq = model.part<SjkrCohesion>()->rest_overlap(e_star, r_star);
   ASSERT_GT(delta_eq, 1e-6);
   const double overlap = 0.2 * delta_eq;  // inside the attractive basin (delta < delta_eq)
   auto a = resting_pair(dry, overlap);
@@ -322,7 +322,7 @@ TEST(WetLaws, ProbedPullOffMatchesTheStatedFormula) {
   const ContactModel model(sticky);
   const double e_star = std::get<HertzNormal>(model.pair_normal()).e_star;
   const double r_star = 0.002;
-  const SjkrCohesion& c = *model.adhesion();
+  const SjkrCohesion& c = *model.part<SjkrCohesion>();
   LawProbeOptions o;
   o.overlap = 1.5 * c.rest_overlap(e_star, r_star);
   o.steps = 4000;
