@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 #include <string_view>
 #include <utility>
 
@@ -99,6 +100,8 @@ struct Simulation::Impl {
   /// Each particle's liquid not put in its film at the start (LiquidConfig::film_share < 1), for
   /// the bridges of the first evaluation (seed_bridges); empty afterwards.
   std::vector<double> liquid_reserve;
+  /// A decomposed run's replay of this step's bridge events (replay_bridge_events).
+  BridgeEventFilms bridge_replay;
 };
 
 Simulation::Simulation(const SceneConfig& scene, Particles particles, SimulationOptions options)
@@ -382,8 +385,12 @@ void Simulation::compute_forces(double history_dt, bool count) {
     seed_bridges(impl_->model.cohesive_parts(), particles_, contacts, period,
                  impl_->liquid_reserve);
   }
-  const std::size_t touching = impl_->model.add_pair_forces(
-      particles_, contacts, impl_->pair_buffers, period, dt_, history_dt);
+  const bool replay = replays_bridge_events();
+  const std::size_t touching = impl_->model.add_pair_forces_parallel(
+      particles_, contacts, impl_->pair_buffers, period, dt_, history_dt, replay);
+  if (replay) replay_bridge_events();
+  impl_->model.add_pair_forces_ordered(particles_, contacts, impl_->pair_buffers, period,
+                                       history_dt, replay ? &impl_->bridge_replay : nullptr);
   if (impl_->verlet != nullptr) impl_->verlet->record_found(touching);
   const auto t2 = Clock::now();
   // Only the particles near the wall: the reach is the Verlet skin, for every search method, on
@@ -412,6 +419,22 @@ void Simulation::compute_forces(double history_dt, bool count) {
     work_.wall_candidates += impl_->walls.list().size();
     work_.wall_contacts += wall_contacts;
   }
+}
+
+bool Simulation::replays_bridge_events() const {
+  const LiquidBridge* bridge = impl_->model.part<LiquidBridge>();
+  return domain_ != nullptr && domain_->bridge_events() != nullptr && bridge != nullptr &&
+         bridge->moves_films();
+}
+
+void Simulation::replay_bridge_events() {
+  // Collective: every rank of a wet decomposed run calls it at every force evaluation, with or
+  // without events, between the cohesive parts' parallel pass and their ordered pass.
+  const std::vector<double>* film = particles_.find_array(kLiquidFilmArray);
+  if (film == nullptr) throw std::logic_error("bridge-event replay without a film array");
+  domain_->bridge_events()->replay(*impl_->model.part<LiquidBridge>(),
+                                   impl_->pair_buffers.cohesion.events, film->data(),
+                                   impl_->bridge_replay);
 }
 
 void Simulation::kick(double h) {
@@ -565,7 +588,6 @@ void Simulation::replace_local(SimulationState& state, std::vector<std::uint8_t>
 
 void Simulation::set_domain(DomainHooks* domain) {
   domain_ = domain;
-  impl_->pair_buffers.cohesion.hooks = domain != nullptr ? domain->bridge_events() : nullptr;
 }
 
 void Simulation::set_drum_omega(double omega) {

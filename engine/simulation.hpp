@@ -93,7 +93,8 @@ class Simulation {
 
   /// Makes this simulation one rank's part of a decomposed run (engine/parallel/domain_hooks.hpp):
   /// global decisions through `domain`'s reductions, ghosts refreshed between drift and search,
-  /// the liquid's bridge events through its bridge_events() (parallel/bridge_events.hpp).
+  /// the liquid's bridge events replayed through its bridge_events() between the two passes of
+  /// the cohesive parts (parallel/bridge_events.hpp).
   void set_domain(DomainHooks* domain);
   /// 1 for a ghost (another rank's particle), 0 for an owned one; empty: all owned (serial).
   /// Ghosts are neither integrated nor checked; their forces are computed and discarded.
@@ -174,6 +175,12 @@ class Simulation {
   /// Search, contact list update, pair and wall forces. history_dt: time since the last call
   /// (0 for the initial state); count: add to the timers and search totals.
   void compute_forces(double history_dt, bool count);
+  /// A decomposed run with liquid migration: this step's bridge events of every rank replayed in
+  /// the serial order (DomainHooks::bridge_events(), parallel/bridge_events.hpp), so that the
+  /// cohesive parts' ordered pass runs each from the films the serial run gives it. A step of
+  /// compute_forces, between the two passes; replays_bridge_events() says whether it runs.
+  bool replays_bridge_events() const;
+  void replay_bridge_events();
   SearchTuning search_tuning() const;
   /// Makes `search` the active method (and notes whether it is a Verlet list).
   void use_search(std::unique_ptr<ContactSearch> search);

@@ -142,7 +142,7 @@ template <class Live, class Visit>
   }
 }
 
-// Pass 1 of cohesion_pair_loop over the rows of block `block`, any composition of parts: every
+// Pass 1 (cohesion_pass_one) over the rows of block `block`, any composition of parts: every
 // pair that may act (for_each_acting_pair) evaluated one at a time.
 [[gnu::noinline]] void cohesion_block(const CohesiveParts& parts, const LiveTest& live,
                                       const Particles& p, ContactList& contacts, double period,
@@ -229,10 +229,11 @@ void pass_one_block(const CohesiveParts& parts, std::size_t batched, const LiveT
   if (!done) cohesion_block(parts, live, p, contacts, period, dt, block, buffers);
 }
 
-// This step's events, for a decomposed run's hooks: the marked listed pairs and the dropped pairs
-// whose state a part with events must settle, each with the liquid that ruptures (0: one forms).
-void list_events(const CohesiveParts& parts, const ContactList& contacts, std::size_t blocks,
-                 CohesionBuffers& buffers) {
+// This step's events, for a replay across MPI ranks: the marked listed pairs and the dropped
+// pairs whose state a part with events must settle, each with the liquid that ruptures (0: one
+// forms), in the order the ordered pass meets them (listed, then dropped, each by (i, j)).
+void list_events_of(const CohesiveParts& parts, const ContactList& contacts, std::size_t blocks,
+                    CohesionBuffers& buffers) {
   buffers.events.clear();
   const auto row = contacts.row_start();
   const auto state = contacts.state();
@@ -251,6 +252,18 @@ void list_events(const CohesiveParts& parts, const ContactList& contacts, std::s
       buffers.events.push_back({dropped[q].i, dropped[q].j, event_liquid(parts, s)});
     }
   }
+}
+
+// The marked listed pairs of pass 1 (those with an event).
+std::size_t marked_events(const ContactList& contacts, std::size_t blocks,
+                          const CohesionBuffers& buffers) {
+  std::size_t n = 0;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const CohesionBuffers::Entry* e =
+        &buffers.entries[contacts.row_start()[b * kCohesionBlockRows]];
+    for (std::size_t q = 0; q < buffers.count[b]; ++q) n += e[q].event;
+  }
+  return n;
 }
 
 // Dropped pair q's state settled by every part (a bridge's liquid back to the films).
@@ -275,9 +288,8 @@ WallGap wall_gap(const Drum& drum, WallPart part, const Vec3& x, double r) {
   return {drum.radius() - rho - r, Vec3(-x.x() / rho, -x.y() / rho, 0.0)};
 }
 
-void cohesion_pair_loop(const CohesiveParts& parts, Particles& p, ContactList& contacts,
-                        double period, double dt, CohesionBuffers& buffers) {
-  const auto row = contacts.row_start();
+void cohesion_pass_one(const CohesiveParts& parts, const Particles& p, ContactList& contacts,
+                       double period, double dt, CohesionBuffers& buffers, bool list_events) {
   const std::size_t blocks = (contacts.rows() + kCohesionBlockRows - 1) / kCohesionBlockRows;
   if (buffers.entries.size() < contacts.size()) buffers.entries.resize(contacts.size());
   if (buffers.count.size() < blocks) buffers.count.resize(blocks);
@@ -289,14 +301,31 @@ void cohesion_pair_loop(const CohesiveParts& parts, Particles& p, ContactList& c
     pass_one_block(parts, batched, live, p, contacts, period, dt, static_cast<std::size_t>(b),
                    buffers);
   }
+  if (list_events) list_events_of(parts, contacts, blocks, buffers);
+}
+
+void cohesion_ordered_pass(const CohesiveParts& parts, Particles& p, ContactList& contacts,
+                           double period, double dt, const CohesionBuffers& buffers,
+                           const BridgeEventFilms* replay) {
+  const auto row = contacts.row_start();
+  const std::size_t blocks = (contacts.rows() + kCohesionBlockRows - 1) / kCohesionBlockRows;
   double* film = film_of(parts, p);
-  // A decomposed run: each event below starts from the films the serial pass would give it (every
-  // rank takes part, with or without particles).
-  BridgeEventHooks* hooks = film != nullptr ? buffers.hooks : nullptr;
-  if (hooks != nullptr) {
-    list_events(parts, contacts, blocks, buffers);
-    hooks->begin(*parts.get<LiquidBridge>(), buffers.events, film);
+  if (replay != nullptr && (film == nullptr || replay->before.size() != buffers.events.size())) {
+    throw std::logic_error("bridge-event replay without films or of other events");
   }
+  // The listed events' places in buffers.events: the listed pairs' first, then the dropped ones'.
+  std::size_t next_listed = 0;
+  std::size_t next_dropped = replay != nullptr ? marked_events(contacts, blocks, buffers) : 0;
+  // A decomposed run: whether event `at` runs on this rank, from the films of the serial pass.
+  const auto run_here = [&](std::size_t at, Index i, Index j) {
+    if (replay == nullptr) return true;
+    const BridgeEventFilms::Before& b = replay->before[at];
+    if (b.run) {
+      film[i] = b.film_i;
+      film[j] = b.film_j;
+    }
+    return b.run;
+  };
   const auto dropped = contacts.dropped();
   const auto state = contacts.state();
   const std::size_t stride = contacts.state_size();
@@ -305,7 +334,7 @@ void cohesion_pair_loop(const CohesiveParts& parts, Particles& p, ContactList& c
   const auto settle_dropped = [&](IndexPair until) {
     for (; q < dropped.size() && dropped[q] < until; ++q) {
       if (!live_for_events(parts, &contacts.dropped_state()[q * stride])) continue;
-      if (hooks == nullptr || hooks->before(dropped[q].i, dropped[q].j, film)) {
+      if (run_here(next_dropped++, dropped[q].i, dropped[q].j)) {
         drop_pair(parts, contacts, q, film);
       }
     }
@@ -316,7 +345,7 @@ void cohesion_pair_loop(const CohesiveParts& parts, Particles& p, ContactList& c
       settle_dropped({e->i, e->j});
       Vec3 f = e->force;
       if (e->event != 0) {
-        if (hooks != nullptr && !hooks->before(e->i, e->j, film)) continue;
+        if (!run_here(next_listed++, e->i, e->j)) continue;
         const Vec3 d = nearest_image(p.position[e->i], p.position[e->j], period);
         const double dist = d.norm();
         const double gap = dist - (p.radius[e->i] + p.radius[e->j]);
@@ -332,7 +361,9 @@ void cohesion_pair_loop(const CohesiveParts& parts, Particles& p, ContactList& c
   constexpr Index kLast = std::numeric_limits<Index>::max();
   settle_dropped({kLast, kLast});
   contacts.clear_dropped();
-  if (hooks != nullptr) hooks->end(film);
+  if (replay != nullptr) {
+    for (const auto& [i, value] : replay->after) film[i] = value;
+  }
 }
 
 void cohesion_wall_loop(const CohesiveParts& parts, Particles& p, std::span<const Index> candidates,

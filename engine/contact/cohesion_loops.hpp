@@ -25,9 +25,10 @@
 
 namespace drumlab {
 
-/// Scratch of cohesion_pair_loop, reused every step (grows, never shrinks). Block b (rows
-/// [b * kCohesionBlockRows, ...)) keeps its entries in entries[row_start[first row] + q] for q <
-/// count[b]: every listed pair that changes a particle's force or a film, by increasing (i, j).
+/// Scratch of the cohesive passes (cohesion_pass_one, cohesion_ordered_pass), reused every step
+/// (grows, never shrinks). Block b (rows [b * kCohesionBlockRows, ...)) keeps its entries in
+/// entries[row_start[first row] + q] for q < count[b]: every listed pair that changes a particle's
+/// force or a film, by increasing (i, j).
 struct CohesionBuffers {
   struct Entry {
     Index i;
@@ -41,10 +42,10 @@ struct CohesionBuffers {
   /// touch_mark of every listed pair at this step, written by the contact pair loop (which
   /// computes each listed pair's distance anyway) and read by the cohesive pass.
   std::vector<std::uint8_t> mark;
-  /// A decomposed run's ordered pass with liquid migration (engine/parallel/bridge_events.hpp):
-  /// nullptr serially. `events`: its scratch, this step's bridge events.
-  BridgeEventHooks* hooks = nullptr;
-  std::vector<BridgeEventHooks::Event> events;
+  /// This step's events (pass 1 lists them when asked: a decomposed run with liquid migration
+  /// replays them across the ranks, parallel/bridge_events.hpp): the marked listed pairs by
+  /// increasing (i, j), then the dropped pairs that a part with events settles.
+  std::vector<BridgeEvent> events;
 };
 
 /// A listed pair's touch mark at squared centre distance dist2, radii summing to sum_r:
@@ -59,17 +60,22 @@ inline constexpr std::uint8_t kApartCentres = 2;
 inline constexpr std::size_t kCohesionBlockRows = 256;
 
 /// Advances every listed pair's cohesive state by dt (each part's advance_pair: bridges form, age,
-/// rupture; films give and take liquid) and adds the attractive forces to p.force. Settles and
-/// forgets the dropped pairs (each part's drop). Two passes: (1) in parallel over blocks of rows,
-/// every pair on which a part may act and no part has an event gets its force and its state
-/// advanced (they read no film); the others are marked; (2) one thread, by increasing (i, j) with
-/// the dropped pairs merged in, does the marked pairs (events: liquid migration) and adds every
-/// force. The films and the sums of p.force are
-/// then made in the same order as by one pass over the pairs, for any thread count.
+/// rupture; films give and take liquid) and adds the attractive forces to p.force, in two passes.
 /// buffers.mark must hold every listed pair's touch_mark at the current positions (the contact
-/// pair loop, ContactModel::add_pair_forces, writes it just before).
-void cohesion_pair_loop(const CohesiveParts& parts, Particles& p, ContactList& contacts,
-                        double period, double dt, CohesionBuffers& buffers);
+/// pair loop, ContactModel::add_pair_forces_parallel, writes it just before).
+/// Pass 1, in parallel over blocks of rows: every pair on which a part may act and no part has an
+/// event gets its force and its state advanced (they read no film); the others are marked.
+/// `list_events`: buffers.events lists this step's events for a replay across MPI ranks.
+void cohesion_pass_one(const CohesiveParts& parts, const Particles& p, ContactList& contacts,
+                       double period, double dt, CohesionBuffers& buffers, bool list_events);
+/// Pass 2, one thread, by increasing (i, j) with the dropped pairs merged in: the marked pairs
+/// (events: liquid migration) and every force added; the dropped pairs settled (each part's drop)
+/// and forgotten. The films and the sums of p.force are then made in the same order as by one
+/// pass over the pairs, for any thread count. `replay` (a decomposed run, nullptr serially): the
+/// films each listed event sees and whether it runs here; its final films written at the end.
+void cohesion_ordered_pass(const CohesiveParts& parts, Particles& p, ContactList& contacts,
+                           double period, double dt, const CohesionBuffers& buffers,
+                           const BridgeEventFilms* replay);
 
 /// The same for the particles `candidates` (increasing) against the drum wall turning at omega
 /// (each part's advance_wall; its state in p's arrays). In parallel over the candidates: a

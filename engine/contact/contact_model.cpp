@@ -416,19 +416,37 @@ double ContactModel::pair_range(std::uint8_t, std::uint8_t) const {
 std::size_t ContactModel::add_pair_forces(Particles& p, ContactList& contacts,
                                           PairForceBuffers& buffers, double period, double dt,
                                           double history_dt) const {
+  const std::size_t touching =
+      add_pair_forces_parallel(p, contacts, buffers, period, dt, history_dt, false);
+  add_pair_forces_ordered(p, contacts, buffers, period, history_dt, nullptr);
+  return touching;
+}
+
+std::size_t ContactModel::add_pair_forces_parallel(Particles& p, ContactList& contacts,
+                                                   PairForceBuffers& buffers, double period,
+                                                   double dt, double history_dt,
+                                                   bool list_events) const {
   std::size_t touching = 0;
-  const CohesiveParts& parts = cohesive_;
+  const bool cohesive = cohesive_.any();
   with_law(pair_, pair_tangential_, pair_rolling_,
            [&]<class N, bool Tangential, bool Rolling>(const ContactLaw<N>& law) {
-             touching = parts.any() ? pair_loop<N, Tangential, Rolling, true>(
-                                          law, p, contacts, buffers, period, dt, history_dt)
-                                    : pair_loop<N, Tangential, Rolling, false>(
-                                          law, p, contacts, buffers, period, dt, history_dt);
+             touching = cohesive ? pair_loop<N, Tangential, Rolling, true>(
+                                       law, p, contacts, buffers, period, dt, history_dt)
+                                 : pair_loop<N, Tangential, Rolling, false>(
+                                       law, p, contacts, buffers, period, dt, history_dt);
            });
-  if (parts.any()) {
-    cohesion_pair_loop(parts, p, contacts, period, history_dt, buffers.cohesion);
+  if (cohesive) {
+    cohesion_pass_one(cohesive_, p, contacts, period, history_dt, buffers.cohesion, list_events);
   }
   return touching;
+}
+
+void ContactModel::add_pair_forces_ordered(Particles& p, ContactList& contacts,
+                                           const PairForceBuffers& buffers, double period,
+                                           double history_dt,
+                                           const BridgeEventFilms* replay) const {
+  if (!cohesive_.any()) return;
+  cohesion_ordered_pass(cohesive_, p, contacts, period, history_dt, buffers.cohesion, replay);
 }
 
 std::size_t ContactModel::add_wall_forces(Particles& p, std::span<const Index> candidates,

@@ -112,6 +112,18 @@ class ContactModel {
   /// pairs within the touching tolerance (the contacts a search with margin 0 would find).
   std::size_t add_pair_forces(Particles& p, ContactList& contacts, PairForceBuffers& buffers,
                               double period, double dt, double history_dt) const;
+  /// add_pair_forces in its two halves, for a decomposed run that replays the cohesive parts'
+  /// events across MPI ranks between them (Simulation::compute_forces): the contact forces and
+  /// the cohesive parts' parallel pass (`list_events`: buffers.cohesion.events listed for the
+  /// replay); returns the pairs within the touching tolerance.
+  std::size_t add_pair_forces_parallel(Particles& p, ContactList& contacts,
+                                       PairForceBuffers& buffers, double period, double dt,
+                                       double history_dt, bool list_events) const;
+  /// Then the cohesive parts' ordered pass (`replay`: the films each listed event sees, nullptr
+  /// serially; cohesion_loops.hpp). Nothing for a dry law.
+  void add_pair_forces_ordered(Particles& p, ContactList& contacts, const PairForceBuffers& buffers,
+                               double period, double history_dt,
+                               const BridgeEventFilms* replay) const;
   /// Adds the wall forces of the drum turning at omega (rad/s) on the particles `candidates`
   /// (increasing; the others must not touch the wall, see WallCandidates).
   /// history.size() == p.size(). Returns the wall contacts (overlaps) the kernel evaluated.

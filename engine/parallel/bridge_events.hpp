@@ -1,7 +1,7 @@
 #pragma once
-// The liquid's migration across MPI ranks (engine/README.md, "Domain decomposition"): the seam in
-// the ordered pass of cohesion_pair_loop (engine/contact/cohesion_loops.cpp, pass 2) and the replay
-// of every rank's bridge events in the serial run's order.
+// The liquid's migration across MPI ranks (engine/README.md, "Domain decomposition"): a step of
+// Simulation::step() between the two passes of the cohesive parts (engine/contact/
+// cohesion_loops.hpp), and the replay of every rank's bridge events in the serial run's order.
 //
 // A bridge event changes two films (a bridge forms: take_from_films reads and takes from both; a
 // bridge ruptures: half its volume back to each). The serial pass runs the events one by one by
@@ -10,9 +10,9 @@
 // particle it owns (listed pairs and dropped pairs alike) and the films its owned particles hold
 // before the pass; the lists are gathered on every rank, and every rank replays all events in the
 // serial order (BridgeReplay), which gives it each event's films as they stand just before it, and
-// each film as the pass leaves it. The rank's own ordered pass then runs each of its events from
-// those films (its force and its pair's state come out as in the serial run) and ends with the
-// replay's final films. A serial run has no hooks and runs none of this.
+// each film as the pass leaves it (BridgeEventFilms). The rank's own ordered pass then runs each
+// of its events from those films (its force and its pair's state come out as in the serial run)
+// and ends with the replay's final films. A serial run has no hooks and runs none of this.
 #include <cstdint>
 #include <span>
 #include <utility>
@@ -23,25 +23,36 @@
 
 namespace drumlab {
 
-/// A rank's side of the ordered pass (films: the kLiquidFilmArray of its local particles).
+/// One bridge event of this step, by local rows i < j: `volume` > 0: a bridge of that volume
+/// ruptures; 0: a bridge forms.
+struct BridgeEvent {
+  Index i;
+  Index j;
+  double volume;
+};
+
+/// What the replay tells a rank's ordered pass: for each of its events, in the order listed,
+/// whether it runs here and the films of i and j just before it; then every local film an event
+/// changed, as the serial pass leaves it.
+struct BridgeEventFilms {
+  struct Before {
+    bool run = false;  ///< false: not this rank's to run (a pair of two ghosts, or no event)
+    double film_i = 0.0;
+    double film_j = 0.0;
+  };
+  std::vector<Before> before;
+  std::vector<std::pair<Index, double>> after;  ///< (local particle, film)
+};
+
+/// A rank's side of the replay (films: the kLiquidFilmArray of its local particles).
 class BridgeEventHooks {
  public:
-  /// One bridge event of this step, by local rows i < j: `volume` > 0: a bridge of that volume
-  /// ruptures; 0: a bridge forms.
-  struct Event {
-    Index i;
-    Index j;
-    double volume;
-  };
   virtual ~BridgeEventHooks() = default;
-  /// Before the ordered pass, with all of this rank's events (every rank calls it: collective).
-  virtual void begin(const LiquidBridge& bridge, std::span<const Event> events,
-                     const double* film) = 0;
-  /// Before event (i, j) of the ordered pass: sets film[i] and film[j] to the serial pass's
-  /// values at that point and returns true; false: the event is not this rank's to run.
-  virtual bool before(Index i, Index j, double* film) = 0;
-  /// After the ordered pass: every local film that an event changed, as the serial pass leaves it.
-  virtual void end(double* film) = 0;
+  /// Replays all ranks' events of this step in the serial order (collective: every rank calls
+  /// it, with or without events): `events` this rank's, `film` its films before the ordered
+  /// pass. Replaces `out`.
+  virtual void replay(const LiquidBridge& bridge, std::span<const BridgeEvent> events,
+                      const double* film, BridgeEventFilms& out) = 0;
 };
 
 /// A bridge event keyed by the serial slots a < b of its pair, with the films of a and b as the

@@ -27,8 +27,9 @@ class DomainHooks {
   /// angular velocities from their owners (and migration with a new ghost layer when due).
   /// `moved`: a bound on how far any particle of any rank moved in this drift (m).
   virtual void refresh_ghosts(Simulation& sim, double moved) = 0;
-  /// The ordered pass of the liquid's migration across ranks (parallel/bridge_events.hpp), or
-  /// nullptr where the ranks' own films suffice (one rank).
+  /// The replay of the liquid's bridge events across ranks (parallel/bridge_events.hpp), which
+  /// Simulation::compute_forces runs between the cohesive parts' parallel and ordered passes of
+  /// a scene with liquid migration; nullptr where the ranks' own films suffice (one rank).
   virtual BridgeEventHooks* bridge_events() { return nullptr; }
 };
 

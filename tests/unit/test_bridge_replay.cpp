@@ -34,7 +34,7 @@ TEST(BridgeReplay, ShuffledEventsGiveTheFilmsOfOnePassInTheSerialOrder) {
       events.push_back({a, b, (a + b) % 2 == 0 ? u(rng) : 0.0, -1.0, -1.0});
     }
   }
-  // The oracle: one pass in (a, b) order over the array, as cohesion_pair_loop runs the events.
+  // The oracle: one pass in (a, b) order over the array, as cohesion_ordered_pass runs the events.
   std::vector<double> want = film;
   std::vector<std::pair<double, double>> seen;
   double formed = 0.0, ruptured = 0.0;

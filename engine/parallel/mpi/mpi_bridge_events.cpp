@@ -7,14 +7,13 @@
 
 namespace drumlab {
 
-void MpiBridgeEvents::begin(const LiquidBridge& bridge, std::span<const Event> events,
-                            const double* film) {
-  if (ghost_ == nullptr) throw std::logic_error("MpiBridgeEvents: no ghost mask");
+void MpiBridgeEvents::gather(const LiquidBridge& bridge, std::span<const BridgeEvent> events,
+                             const double* film) {
   // This rank's message: its events whose first particle it owns (the serial pass's slots), then
   // the films of its owned particles in any of its events (as they stand before the pass).
   std::vector<SlotEvent> mine;
   std::vector<Index> touched;
-  for (const Event& e : events) {
+  for (const BridgeEvent& e : events) {
     if (owned(e.i)) mine.push_back({slot_[e.i], slot_[e.j], e.volume, film[e.i], film[e.j]});
     for (const Index x : {e.i, e.j}) {
       if (owned(x)) touched.push_back(x);
@@ -41,20 +40,27 @@ void MpiBridgeEvents::begin(const LiquidBridge& bridge, std::span<const Event> e
   replayed_ += replay_.size();
 }
 
-bool MpiBridgeEvents::before(Index i, Index j, double* film) {
-  // A pair of two ghosts: its force is discarded and its films come from end().
-  if (!owned(i) && !owned(j)) return false;
-  const std::pair<double, double>* f = replay_.before(slot_[i], slot_[j]);
-  if (f == nullptr) return false;
-  film[i] = f->first;
-  film[j] = f->second;
-  return true;
-}
-
-void MpiBridgeEvents::end(double* film) {
+void MpiBridgeEvents::replay(const LiquidBridge& bridge, std::span<const BridgeEvent> events,
+                             const double* film, BridgeEventFilms& out) {
+  if (ghost_ == nullptr) throw std::logic_error("MpiBridgeEvents: no ghost mask");
+  gather(bridge, events, film);
+  out.before.clear();
+  for (const BridgeEvent& e : events) {
+    BridgeEventFilms::Before b;
+    // A pair of two ghosts: its force is discarded and its films come from `after`.
+    if (owned(e.i) || owned(e.j)) {
+      if (const std::pair<double, double>* f = replay_.before(slot_[e.i], slot_[e.j])) {
+        b = {true, f->first, f->second};
+      }
+    }
+    out.before.push_back(b);
+  }
+  out.after.clear();
   for (const SlotFilm& f : replay_.films()) {
     const auto it = std::lower_bound(slot_.begin(), slot_.end(), f.slot);
-    if (it != slot_.end() && *it == f.slot) film[it - slot_.begin()] = f.film;
+    if (it != slot_.end() && *it == f.slot) {
+      out.after.emplace_back(static_cast<Index>(it - slot_.begin()), f.film);
+    }
   }
 }
 

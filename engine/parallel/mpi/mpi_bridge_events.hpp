@@ -1,7 +1,7 @@
 #pragma once
-// The ordered pass of the liquid's migration on MPI ranks (engine/parallel/bridge_events.hpp):
-// each rank sends its events with an owned first particle and its owned particles' films in any
-// of its events, one MPI_Allgatherv a step, and replays all of them (BridgeReplay).
+// The replay of the liquid's bridge events on MPI ranks (engine/parallel/bridge_events.hpp): each
+// rank sends its events with an owned first particle and its owned particles' films in any of its
+// events, one MPI_Allgatherv a step, and replays all of them (BridgeReplay).
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -19,16 +19,16 @@ class MpiBridgeEvents final : public BridgeEventHooks {
       : comm_(comm), slot_(slot) {}
   void set_ghosts(const std::vector<std::uint8_t>* ghost) { ghost_ = ghost; }
 
-  void begin(const LiquidBridge& bridge, std::span<const Event> events,
-             const double* film) override;
-  bool before(Index i, Index j, double* film) override;
-  void end(double* film) override;
+  void replay(const LiquidBridge& bridge, std::span<const BridgeEvent> events, const double* film,
+              BridgeEventFilms& out) override;
 
   /// Events replayed so far, over all steps (every rank the same).
   std::uint64_t replayed() const { return replayed_; }
 
  private:
   bool owned(Index i) const { return (*ghost_)[i] == 0; }
+  /// All ranks' events and their owners' films, gathered from this rank's.
+  void gather(const LiquidBridge& bridge, std::span<const BridgeEvent> events, const double* film);
 
   MpiComm& comm_;
   const std::vector<std::uint64_t>& slot_;
