@@ -33,8 +33,8 @@
 //              bonded(s), bond_share(): the link's liquid, force and age (contact/bond.hpp).
 //   liquid     kHoldsLiquid, liquid(s): the liquid a pair's state holds (m^3, in
 //              LiquidTotals::bridges); films and wall bridges are per-particle arrays.
-//   scene      from_scene(): the part of a scene (nullopt: the scene does not have it), its
-//              parameters checked (InputError naming the key).
+//   scene      from_scene(): the part of a scene (nullopt: the scene does not have it); its
+//              parameters are checked before, by validate_laws (scene/scene_validation.hpp).
 //   batch      optional, for speed: PartBatch<P>::type, a batch that evaluates pass 1 of a scene
 //              whose only cohesive part is P in SIMD lanes with the same bits (bridge_batch.hpp:
 //              add(), evaluate(), acts(), settle(), the lanes' i, j, k, force; applies(law)).
@@ -133,7 +133,7 @@ class CohesivePartsOf {
   static constexpr std::size_t kCount = sizeof...(Laws);
 
   CohesivePartsOf() = default;
-  /// Each law's part of `scene` (Law::from_scene; throws InputError), state laid out in order.
+  /// Each law's part of a validated `scene` (Law::from_scene), state laid out in order.
   explicit CohesivePartsOf(const SceneConfig& scene) {
     std::size_t size = 0;
     for_each_law([&]<std::size_t K, class Law>() {

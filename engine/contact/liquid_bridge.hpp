@@ -156,20 +156,11 @@ struct LiquidBridge {
   static constexpr bool kHasEvents = true;
   static constexpr bool kHoldsLiquid = true;
 
-  /// The scene's [liquid] (nullopt without); throws InputError for unusable values.
+  /// The scene's [liquid] (nullopt without), its values checked by the scene validation
+  /// (engine/scene/scene_validation.hpp, law_problem), which the contact model runs first.
   static std::optional<LiquidBridge> from_scene(const SceneConfig& scene) {
     if (!scene.liquid.enabled) return std::nullopt;
     const LiquidConfig& l = scene.liquid;
-    if (!(l.surface_tension > 0.0) || !(l.wall_surface_tension > 0.0) ||
-        !(l.contact_angle_deg >= 0.0 && l.contact_angle_deg < 90.0) ||
-        !(l.wall_contact_angle_deg >= 0.0 && l.wall_contact_angle_deg < 90.0) ||
-        !(l.migration ? l.max_bridge_volume > 0.0 && l.liquid_content >= 0.0
-                      : l.bridge_volume > 0.0) ||
-        !(l.viscosity >= 0.0) || (l.viscosity > 0.0 && !(l.min_gap > 0.0))) {
-      throw InputError(
-          "liquid: surface_tension and the bridge volume must be > 0, contact angles in [0, 90), "
-          "liquid_content and viscosity >= 0, min_gap > 0 with viscosity");
-    }
     constexpr double kDegree = std::numbers::pi / 180.0;
     LiquidBridge b;
     b.pair = {l.surface_tension, l.contact_angle_deg * kDegree};

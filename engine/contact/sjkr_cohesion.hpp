@@ -65,12 +65,10 @@ struct SjkrCohesion {
   static constexpr bool kHasEvents = false;
   static constexpr bool kHoldsLiquid = false;
 
-  /// The scene's [cohesion] (nullopt without); throws InputError for unusable values.
+  /// The scene's [cohesion] (nullopt without), its values checked by the scene validation
+  /// (engine/scene/scene_validation.hpp, law_problem), which the contact model runs first.
   static std::optional<SjkrCohesion> from_scene(const SceneConfig& scene) {
     if (!scene.cohesion.enabled) return std::nullopt;
-    if (!(scene.cohesion.energy_density >= 0.0)) {
-      throw InputError("cohesion.energy_density must be >= 0 (J/m^3)");
-    }
     return SjkrCohesion{scene.cohesion.energy_density};
   }
   double range() const { return 0.0; }  // no tensile force beyond contact (header)
