@@ -108,8 +108,115 @@ double max_over_mean(const std::vector<double>& v) {
   return sum > 0.0 ? max * static_cast<double>(v.size()) / sum : 0.0;
 }
 
+/// One core's particle-steps/s: --rate, or measured on the scene (--rate-steps, or chunks of 1,
+/// 2, 4, ... steps until the run has taken a second). Returns the rate and where it came from.
+std::pair<double, std::string> compute_rate(RunSession& session, const DecomposeOptions& opt) {
+  if (opt.rate > 0.0) return {opt.rate, "--rate"};
+  std::uint64_t steps = 0;
+  double wall = 0.0;
+  for (std::uint64_t chunk = opt.rate_steps > 0 ? opt.rate_steps : 1;
+       steps == 0 || (opt.rate_steps == 0 && wall < 1.0 && steps < 100000); chunk *= 2) {
+    const TurnResult turn = session.run_turn(chunk, 0, {});
+    steps += turn.stats.steps;
+    wall += turn.stats.wall_seconds;
+  }
+  const auto n = static_cast<double>(session.simulation().particles().size());
+  return {n * static_cast<double>(steps) / std::max(wall, 1e-9),
+          fmt::format("measured: {} steps of {} on one core, {:.2f} s", steps,
+                      session.scene().search_method, wall)};
+}
+
+/// What every rank count shares: the run's state, the cost model's inputs.
+struct DecomposeSetup {
+  std::vector<double> work;     ///< 1 + pairs tested, per particle
+  std::vector<double> weights;  ///< what RCB balances (empty: the count)
+  Box domain;
+  std::optional<double> period;
+  GhostReach reach;
+  NetworkModel net;
+  double rate = 0.0;
+};
+
+/// The lines before the table: the reach, the domain, the weight, the rate and the network.
+void print_setup(const DecomposeOptions& opt, const SceneConfig& run, const DecomposeSetup& s,
+                 const std::string& rate_source) {
+  const auto parsed = parse_search_method(run.search_method);
+  const bool verlet = parsed && parsed->verlet;
+  fmt::print(
+      "reach             r + {:.6g} m (r: the ghost's radius; largest {:.6g} m) = r + r_max {:.6g} "
+      "+ pair range {:.3g}{}\n",
+      s.reach.beyond, s.reach.largest(), run.max_radius(), ContactModel(run).max_pair_range(),
+      verlet ? fmt::format(" + Verlet skin {:.3g}", run.performance.verlet_skin * run.min_radius())
+             : std::string(" (no Verlet skin: not a list)"));
+  const Box& domain = s.domain;
+  fmt::print(
+      "domain            [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] m, {} ends\n",
+      domain.lo.x(), domain.hi.x(), domain.lo.y(), domain.hi.y(), domain.lo.z(), domain.hi.z(),
+      s.period ? "periodic" : "capped");
+  fmt::print("weight            {}\n",
+             opt.weight == "pairs"
+                 ? "pairs: 1 + the pairs each particle's search tested in the last step"
+                 : "count: one per particle");
+  fmt::print("compute rate      {:.4g} particle-steps/s ({})\n", s.rate, rate_source);
+  fmt::print(
+      "network           {:g} GB/s and {:g} us per message; {} B per ghost per step (position, "
+      "velocity, omega; pairs across a boundary computed on both sides, no forces back)\n",
+      opt.bandwidth_gbs, opt.latency_us, kGhostBytesPerStep);
+  fmt::print(
+      "\n{:>6} {:>25} {:>6} {:>6} {:>25} {:>7} {:>5} {:>8} {:>8} {:>6} {:>8} {:>6} {:>7} {:>10} "
+      "{:>6}\n",
+      "ranks", "owned min/mean/max", "imbal", "work", "ghosts min/mean/max", "gh/own", "nbrs",
+      "MB/step", "comm us", "twice", "comp ms", "c/c", "speedup", "cuts", "time s");
+}
+
+/// Decomposes into r ranks and prints its row (and the ranks' own rows when asked); returns the
+/// seconds RCB and the ghost layer took.
+double print_rank_count(const DecomposeOptions& opt, const Simulation& sim, const DecomposeSetup& s,
+                        int r) {
+  const auto positions = std::span<const Vec3>(sim.particles().position);
+  const auto start = std::chrono::steady_clock::now();
+  const Decomposition d = rcb_decompose(positions, s.weights, s.domain, r);
+  const GhostLayer g = ghost_layer(d, positions, sim.particles().radius, s.reach, s.period);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const std::vector<double> rank_work = rank_sums(d, s.work);
+  const ContactList& listed = sim.contacts();
+  const PairsAcross across = pairs_across(d, listed.row_start(), listed.col());
+  const DecompositionCost c = decomposition_cost(d, g, s.rate, s.net, rank_work, &across);
+  const Stat owned = stat_of(c, [](const RankCost& x) { return double(x.owned); });
+  const Stat ghosts = stat_of(c, [](const RankCost& x) { return double(x.ghosts); });
+  const Stat nbrs = stat_of(c, [](const RankCost& x) { return double(x.neighbours); });
+  const Stat bytes = stat_of(c, [](const RankCost& x) { return x.bytes; });
+  const double work_imbalance = max_over_mean(rank_work);
+  fmt::print(
+      "{:>6} {:>25} {:>6.3f} {:>6.3f} {:>25} {:>7.3f} {:>5.0f} {:>8.3f} {:>8.1f} {:>6.3f} "
+      "{:>8.3f} {:>6.3f} {:>7.1f} {:>10} {:>6.2f}\n",
+      r, fmt::format("{:.0f}/{:.0f}/{:.0f}", owned.min, owned.mean, owned.max),
+      owned.mean > 0 ? owned.max / owned.mean : 0.0, work_imbalance,
+      fmt::format("{:.0f}/{:.0f}/{:.0f}", ghosts.min, ghosts.mean, ghosts.max),
+      owned.mean > 0 ? ghosts.mean / owned.mean : 0.0, nbrs.max, bytes.max / 1e6, c.step_comm * 1e6,
+      c.duplicated, c.step_compute * 1e3, c.step_compute > 0 ? c.step_comm / c.step_compute : 0.0,
+      c.speedup(), cut_axes(d), seconds);
+  if (opt.per_rank || (opt.ranks.size() == 1 && r <= 16)) print_per_rank(d, c);
+  return seconds;
+}
+
+void print_legend(std::size_t rank_counts, double seconds) {
+  fmt::print(
+      "\nimbal: max/mean owned; work: max/mean of the work 1 + pairs tested per particle "
+      "(whatever --weight balances); gh/own: mean ghosts per owned particle; nbrs: most ranks one "
+      "rank receives from; MB/step: most bytes one rank receives per step; comm: slowest rank's "
+      "exchange (nbrs x latency + bytes / bandwidth); twice: the listed pairs across a boundary, "
+      "computed by both ranks, over all pairs; comp: slowest rank's share of the work at the "
+      "compute rate plus half its pairs across (its neighbour's share, computed again), each at "
+      "a whole step's time over all pairs; c/c: comm / comp; speedup: one core's step time / (comp "
+      "+ comm), "
+      "exchange not overlapped; cuts: cut planes normal to each axis.\n");
+  fmt::print("decomposition     {} rank counts in {:.2f} s (RCB + ghost layer)\n", rank_counts,
+             seconds);
+}
+
 void decompose(const DecomposeOptions& opt) {
-  const std::vector<int>& ranks = opt.ranks;
   if (!opt.method.empty() && opt.method != "auto") {
     try {
       make_search(opt.method);
@@ -130,27 +237,13 @@ void decompose(const DecomposeOptions& opt) {
   const Simulation& sim = session.simulation();
   const std::uint64_t start_step = sim.steps();
   const SceneConfig& run = session.scene();
-  const std::size_t n = sim.particles().size();
-  fmt::print("scene             {} ({}), {} particles, search {}\n", run.name, opt.scene, n,
-             run.search_method);
+  fmt::print("scene             {} ({}), {} particles, search {}\n", run.name, opt.scene,
+             sim.particles().size(), run.search_method);
   const SessionPlan plan = session.plan();
   settle_with_progress(session, plan.settle_steps);
-  double rate = opt.rate;
-  std::string rate_source = "--rate";
-  if (!(rate > 0.0)) {
-    // --rate-steps, or chunks of 1, 2, 4, ... steps until the run has taken a second.
-    std::uint64_t steps = 0;
-    double wall = 0.0;
-    for (std::uint64_t chunk = opt.rate_steps > 0 ? opt.rate_steps : 1;
-         steps == 0 || (opt.rate_steps == 0 && wall < 1.0 && steps < 100000); chunk *= 2) {
-      const TurnResult turn = session.run_turn(chunk, 0, {});
-      steps += turn.stats.steps;
-      wall += turn.stats.wall_seconds;
-    }
-    rate = static_cast<double>(n) * static_cast<double>(steps) / std::max(wall, 1e-9);
-    rate_source = fmt::format("measured: {} steps of {} on one core, {:.2f} s", steps,
-                              run.search_method, wall);
-  }
+  DecomposeSetup setup;
+  std::string rate_source;
+  std::tie(setup.rate, rate_source) = compute_rate(session, opt);
   const double prepare_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - fill_start).count();
   const std::string state =
@@ -159,80 +252,16 @@ void decompose(const DecomposeOptions& opt) {
                               : std::string("fill only (no settling)");
   fmt::print("state             {} ({:.1f} s incl. the rate run)\n", state, prepare_seconds);
 
-  const auto positions = std::span<const Vec3>(sim.particles().position);
-  const std::vector<double> work = pair_weights(sim);
-  const std::vector<double> weights = opt.weight == "pairs" ? work : std::vector<double>{};
-  const Box domain = drum_domain(run.drum.diameter, run.drum.depth);
-  const std::optional<double> period =
-      run.drum.ends == DrumEnds::periodic ? std::optional<double>(run.drum.depth) : std::nullopt;
-  const auto parsed = parse_search_method(run.search_method);
-  const bool verlet = parsed && parsed->verlet;
-  const GhostReach reach = ghost_reach(run);
-  fmt::print(
-      "reach             r + {:.6g} m (r: the ghost's radius; largest {:.6g} m) = r + r_max {:.6g} "
-      "+ pair range {:.3g}{}\n",
-      reach.beyond, reach.largest(), run.max_radius(), ContactModel(run).max_pair_range(),
-      verlet ? fmt::format(" + Verlet skin {:.3g}", run.performance.verlet_skin * run.min_radius())
-             : std::string(" (no Verlet skin: not a list)"));
-  fmt::print(
-      "domain            [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] x [{:.4g}, {:.4g}] m, {} ends\n",
-      domain.lo.x(), domain.hi.x(), domain.lo.y(), domain.hi.y(), domain.lo.z(), domain.hi.z(),
-      period ? "periodic" : "capped");
-  fmt::print("weight            {}\n",
-             opt.weight == "pairs"
-                 ? "pairs: 1 + the pairs each particle's search tested in the last step"
-                 : "count: one per particle");
-  const NetworkModel net{opt.bandwidth_gbs * 1e9, opt.latency_us * 1e-6};
-  fmt::print("compute rate      {:.4g} particle-steps/s ({})\n", rate, rate_source);
-  fmt::print(
-      "network           {:g} GB/s and {:g} us per message; {} B per ghost per step (position, "
-      "velocity, omega; pairs across a boundary computed on both sides, no forces back)\n",
-      opt.bandwidth_gbs, opt.latency_us, kGhostBytesPerStep);
-  fmt::print(
-      "\n{:>6} {:>25} {:>6} {:>6} {:>25} {:>7} {:>5} {:>8} {:>8} {:>6} {:>8} {:>6} {:>7} {:>10} "
-      "{:>6}\n",
-      "ranks", "owned min/mean/max", "imbal", "work", "ghosts min/mean/max", "gh/own", "nbrs",
-      "MB/step", "comm us", "twice", "comp ms", "c/c", "speedup", "cuts", "time s");
-  const ContactList& listed = sim.contacts();
+  setup.work = pair_weights(sim);
+  if (opt.weight == "pairs") setup.weights = setup.work;
+  setup.domain = drum_domain(run.drum.diameter, run.drum.depth);
+  if (run.drum.ends == DrumEnds::periodic) setup.period = run.drum.depth;
+  setup.reach = ghost_reach(run);
+  setup.net = NetworkModel{opt.bandwidth_gbs * 1e9, opt.latency_us * 1e-6};
+  print_setup(opt, run, setup, rate_source);
   double total_seconds = 0.0;
-  for (const int r : ranks) {
-    const auto start = std::chrono::steady_clock::now();
-    const Decomposition d = rcb_decompose(positions, weights, domain, r);
-    const GhostLayer g = ghost_layer(d, positions, sim.particles().radius, reach, period);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    total_seconds += seconds;
-    const std::vector<double> rank_work = rank_sums(d, work);
-    const PairsAcross across = pairs_across(d, listed.row_start(), listed.col());
-    const DecompositionCost c = decomposition_cost(d, g, rate, net, rank_work, &across);
-    const Stat owned = stat_of(c, [](const RankCost& x) { return double(x.owned); });
-    const Stat ghosts = stat_of(c, [](const RankCost& x) { return double(x.ghosts); });
-    const Stat nbrs = stat_of(c, [](const RankCost& x) { return double(x.neighbours); });
-    const Stat bytes = stat_of(c, [](const RankCost& x) { return x.bytes; });
-    const double work_imbalance = max_over_mean(rank_work);
-    fmt::print(
-        "{:>6} {:>25} {:>6.3f} {:>6.3f} {:>25} {:>7.3f} {:>5.0f} {:>8.3f} {:>8.1f} {:>6.3f} "
-        "{:>8.3f} {:>6.3f} {:>7.1f} {:>10} {:>6.2f}\n",
-        r, fmt::format("{:.0f}/{:.0f}/{:.0f}", owned.min, owned.mean, owned.max),
-        owned.mean > 0 ? owned.max / owned.mean : 0.0, work_imbalance,
-        fmt::format("{:.0f}/{:.0f}/{:.0f}", ghosts.min, ghosts.mean, ghosts.max),
-        owned.mean > 0 ? ghosts.mean / owned.mean : 0.0, nbrs.max, bytes.max / 1e6,
-        c.step_comm * 1e6, c.duplicated, c.step_compute * 1e3,
-        c.step_compute > 0 ? c.step_comm / c.step_compute : 0.0, c.speedup(), cut_axes(d), seconds);
-    if (opt.per_rank || (ranks.size() == 1 && r <= 16)) print_per_rank(d, c);
-  }
-  fmt::print(
-      "\nimbal: max/mean owned; work: max/mean of the work 1 + pairs tested per particle "
-      "(whatever --weight balances); gh/own: mean ghosts per owned particle; nbrs: most ranks one "
-      "rank receives from; MB/step: most bytes one rank receives per step; comm: slowest rank's "
-      "exchange (nbrs x latency + bytes / bandwidth); twice: the listed pairs across a boundary, "
-      "computed by both ranks, over all pairs; comp: slowest rank's share of the work at the "
-      "compute rate plus half its pairs across (its neighbour's share, computed again), each at "
-      "a whole step's time over all pairs; c/c: comm / comp; speedup: one core's step time / (comp "
-      "+ comm), "
-      "exchange not overlapped; cuts: cut planes normal to each axis.\n");
-  fmt::print("decomposition     {} rank counts in {:.2f} s (RCB + ghost layer)\n", ranks.size(),
-             total_seconds);
+  for (const int r : opt.ranks) total_seconds += print_rank_count(opt, sim, setup, r);
+  print_legend(opt.ranks.size(), total_seconds);
 }
 
 }  // namespace
