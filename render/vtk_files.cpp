@@ -2,7 +2,6 @@
 
 #include <unistd.h>
 
-#include <sstream>
 #include <system_error>
 
 #include <fmt/format.h>
@@ -80,19 +79,6 @@ void write_vtk_xml(vtkDataObject* data, const std::filesystem::path& file) {
     fs::remove(tmp, ignored);
     throw InputError(fmt::format("{}: cannot rename into place: {}", file.string(), ec.message()));
   }
-}
-
-std::string pvd_text(const std::vector<PvdEntry>& entries) {
-  std::ostringstream out;
-  out << "<?xml version=\"1.0\"?>\n"
-         "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-         "  <Collection>\n";
-  for (const PvdEntry& e : entries) {
-    out << fmt::format("    <DataSet timestep=\"{:.17g}\" group=\"\" part=\"0\" file=\"{}\"/>\n",
-                       e.time, e.file);
-  }
-  out << "  </Collection>\n</VTKFile>\n";
-  return out.str();
 }
 
 }  // namespace drumlab::render

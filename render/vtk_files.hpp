@@ -1,10 +1,8 @@
 #pragma once
 // Writing VTK XML files safely: binary, zlib-compressed, under a temporary name that is renamed
-// into place only when the writer reports success; and the .pvd collection that ties a time series
-// together for ParaView.
+// into place only when the writer reports success (the .pvd collections that tie a series together:
+// engine/io/paraview/pvd_series.hpp).
 #include <filesystem>
-#include <string>
-#include <vector>
 
 class vtkDataObject;
 
@@ -13,13 +11,5 @@ namespace drumlab::render {
 /// Writes `data` with the VTK XML writer matching its type (.vtu, .vtp, .vti) to `file`. Throws
 /// InputError naming the file if it cannot be written; no file is left under the final name.
 void write_vtk_xml(vtkDataObject* data, const std::filesystem::path& file);
-
-struct PvdEntry {
-  double time = 0.0;
-  std::string file;  ///< relative to the .pvd
-};
-
-/// The text of a VTK "Collection" file (ParaView's .pvd).
-std::string pvd_text(const std::vector<PvdEntry>& entries);
 
 }  // namespace drumlab::render

@@ -1,6 +1,6 @@
 #pragma once
 // The VTU/PVD time series for ParaView. Each frame writes, into one directory,
-//   particles_NNNNNN.vtu   particles with their arrays (see particles_dataset)
+//   particles_NNNNNN.vtu   particles with their arrays (engine/io/paraview/frame_datasets.hpp)
 //   drum_NNNNNN.vtp        the analytic drum wall, turned by the drum angle
 //   contacts_NNNNNN.vtp    contacts as lines with force magnitude (on request)
 //   grid_NNNNNN.vti        contact-search grid occupancy (on request; grid methods only)
@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "engine/io/h5_series.hpp"
+#include "engine/io/paraview/pvd_series.hpp"
 #include "engine/simulation.hpp"
-#include "render/vtk_files.hpp"
 
 namespace drumlab::render {
 
@@ -36,17 +36,12 @@ class VtuSeriesWriter {
   /// (bonds_dataset). The series holds no drum geometry, forces or contacts.
   void write_frame(const SeriesFrame& frame);
 
-  const std::filesystem::path& directory() const { return dir_; }
-  std::size_t frames() const { return frames_; }
-  static std::string frame_name(const std::string& stem, std::size_t frame, const char* ext);
+  const std::filesystem::path& directory() const { return series_.directory(); }
+  std::size_t frames() const { return series_.frames(); }
 
  private:
-  void add(const std::string& series, const std::string& file, double time);
-
-  std::filesystem::path dir_;
+  paraview::PvdSeries series_;
   VtuSeriesOptions options_;
-  std::size_t frames_ = 0;
-  std::vector<std::pair<std::string, std::vector<PvdEntry>>> series_;
 };
 
 }  // namespace drumlab::render
