@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/io/h5_series.hpp"
 #include "engine/io/paraview/pvd_series.hpp"
+#include "engine/io/series_frame.hpp"
 #include "engine/simulation.hpp"
 
 namespace drumlab::render {

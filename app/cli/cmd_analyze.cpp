@@ -1,6 +1,9 @@
 // drumlab analyze SERIES.h5 --agglomerates FILE.csv [--granule-age T]
 // The agglomerate table of `run --agglomerates` computed afterwards from an HDF5 series (which
 // stores the bond graph of every frame of a scene with bonds), with its chart FILE.png.
+// drumlab analyze TABLE.csv
+// The chart TABLE.png of a finished table (drumlab-mpi writes the table, and has this drawn: an
+// MPI executable links no VTK).
 #include <fmt/format.h>
 
 #include "app/cli/commands.hpp"
@@ -19,7 +22,29 @@ struct AnalyzeOptions {
   double granule_age = -1.0;
 };
 
+void chart(const std::filesystem::path& table) {
+  const std::vector<AgglomerateStats> rows = read_agglomerate_table(table);
+#ifdef DRUMLAB_WITH_RENDER
+  std::filesystem::path png = table;
+  png.replace_extension(".png");
+  render::write_agglomerate_chart(rows, png);
+  fmt::print("agglomerate chart {} ({} frames)\n", png.string(), rows.size());
+#else
+  throw InputError(fmt::format("{}: this build has no VTK to draw the chart", table.string()));
+#endif
+}
+
 void analyze(const AnalyzeOptions& o) {
+  if (o.series.ends_with(".csv")) {
+    if (!o.agglomerates.empty()) {
+      throw InputError(fmt::format("--agglomerates: {} is already a table", o.series));
+    }
+    chart(o.series);
+    return;
+  }
+  if (o.agglomerates.empty()) {
+    throw InputError("--agglomerates FILE.csv: where the table of the series goes (required)");
+  }
   const SeriesInfo info = read_series_info(o.series);
   if (info.frames == 0) throw InputError(fmt::format("{}: the series has no frames", o.series));
   if (!info.has_bonds) {
@@ -66,10 +91,11 @@ void add_analyze_command(CLI::App& app) {
   auto o = std::make_shared<AnalyzeOptions>();
   CLI::App* cmd = app.add_subcommand(
       "analyze", "Agglomerate statistics per frame of an HDF5 series (drumlab run --h5)");
-  cmd->add_option("series", o->series, "HDF5 series written by run --h5")->required();
-  cmd->add_option("--agglomerates", o->agglomerates,
-                  "write the statistics to FILE.csv and their chart to FILE.png")
+  cmd->add_option("series", o->series,
+                  "HDF5 series written by run --h5, or an agglomerate table FILE.csv to chart")
       ->required();
+  cmd->add_option("--agglomerates", o->agglomerates,
+                  "write the statistics to FILE.csv and their chart to FILE.png");
   cmd->add_option("--granule-age", o->granule_age,
                   "granule criterion: bonds older than T s join (0: plain components; default: "
                   "one drum revolution)")

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "app/run/output_schedule.hpp"
+#include "app/run/plain_vtu_series.hpp"
 #include "engine/io/checkpoint.hpp"
 #include "engine/io/h5_series.hpp"
 #include "engine/io/h5_series_frame.hpp"
@@ -22,12 +23,25 @@ class VtuObserver final : public FrameObserver {
   VtuObserver(const std::string& dir, render::VtuSeriesOptions options) : writer_(dir, options) {}
   void on_frame(const Simulation& sim, std::uint64_t) override { writer_.write_frame(sim); }
   void on_finish(const Simulation&) override {
-    fmt::print("vtu               {} frames in {} (open particles.pvd in ParaView)\n",
-               writer_.frames(), writer_.directory().string());
+    print_vtu_written(writer_.frames(), writer_.directory());
   }
 
  private:
   render::VtuSeriesWriter writer_;
+};
+#else
+/// --vtu without VTK: the same frames by the plain XML writer.
+class PlainVtuObserver final : public FrameObserver {
+ public:
+  explicit PlainVtuObserver(const RunOptions& opt)
+      : series_(opt.vtu_dir, opt.contacts_vtk, opt.granule_age) {}
+  void on_frame(const Simulation& sim, std::uint64_t) override { series_.write_frame(sim); }
+  void on_finish(const Simulation&) override {
+    print_vtu_written(series_.frames(), series_.directory());
+  }
+
+ private:
+  PlainVtuSeries series_;
 };
 #endif
 
@@ -81,7 +95,11 @@ std::vector<std::unique_ptr<FrameObserver>> make_output_observers(const RunOptio
     v.granule_age = opt.granule_age;
     out.push_back(std::make_unique<VtuObserver>(opt.vtu_dir, v));
 #else
-    throw InputError("--vtu: this build has no VTK (configure with DRUMLAB_BUILD_RENDER=ON)");
+    if (opt.grid_vtk) {
+      throw InputError(
+          "--grid-vtk: this build has no VTK (configure with DRUMLAB_BUILD_RENDER=ON)");
+    }
+    out.push_back(std::make_unique<PlainVtuObserver>(opt));
 #endif
   }
   if (!opt.h5_file.empty()) {

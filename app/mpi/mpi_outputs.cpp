@@ -1,11 +1,18 @@
 #include "app/mpi/mpi_outputs.hpp"
 
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
 #include <optional>
 #include <string>
 
 #include <fmt/format.h>
 
 #include "app/run/output_schedule.hpp"
+#include "app/run/plain_vtu_series.hpp"
 #include "engine/io/checkpoint.hpp"
 #include "engine/io/h5_series_frame.hpp"
 #include "engine/io/mpi/checkpoint_mpi.hpp"
@@ -74,6 +81,33 @@ class SeriesWriter final : public FrameObserver {
   std::vector<Bond> bonds_;  ///< rank 0's scratch for a gathered frame of a scene with bonds
 };
 
+/// The table's chart FILE.png, drawn as `drumlab run` draws it, by the `drumlab` executable beside
+/// this one (`drumlab analyze FILE.csv`): the chart needs VTK, which an MPI executable does not
+/// link. Without that executable, a line says how to draw it; if it fails, InputError.
+void draw_chart(const std::filesystem::path& table) {
+  std::error_code ec;
+  const auto drumlab =
+      std::filesystem::read_symlink("/proc/self/exe", ec).parent_path() / "drumlab";
+  if (ec || ::access(drumlab.c_str(), X_OK) != 0) {
+    fmt::print(
+        "agglomerate chart not drawn: no drumlab beside drumlab-mpi; "
+        "`drumlab analyze {}` draws it\n",
+        table.string());
+    return;
+  }
+  std::fflush(stdout);
+  const std::string path = drumlab.string(), command = "analyze", file = table.string();
+  char* argv[] = {const_cast<char*>(path.c_str()), const_cast<char*>(command.c_str()),
+                  const_cast<char*>(file.c_str()), nullptr};
+  pid_t child = 0;
+  int status = 0;
+  if (::posix_spawn(&child, path.c_str(), nullptr, nullptr, argv, environ) != 0 ||
+      ::waitpid(child, &status, 0) != child || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    throw InputError(
+        fmt::format("{}: its chart was not drawn (`{} analyze {}` failed)", file, path, file));
+  }
+}
+
 /// --agglomerates FILE.csv: the state gathered on rank 0, its agglomerates found there.
 class AgglomerateWriter final : public FrameObserver {
  public:
@@ -87,7 +121,10 @@ class AgglomerateWriter final : public FrameObserver {
                 [&] { rows_->add(Simulation(sim.scene(), std::move(*state))); });
   }
   void on_finish(const Simulation&) override {
-    h5::on_root(domain_.comm().comm(), [&] { rows_->finish(); });
+    h5::on_root(domain_.comm().comm(), [&] {
+      rows_->finish();
+      draw_chart(rows_->table().file());
+    });
   }
 
  private:
@@ -95,17 +132,44 @@ class AgglomerateWriter final : public FrameObserver {
   std::optional<cli::AgglomerateRows> rows_;  ///< rank 0's
 };
 
+/// --vtu DIR: the state gathered on rank 0 and written there as the serial run writes it (an MPI
+/// executable links no VTK: app/run/plain_vtu_series.hpp).
+class VtuWriter final : public FrameObserver {
+ public:
+  VtuWriter(MpiDomain& domain, const cli::RunOptions& opt, OutputTimes& times)
+      : domain_(domain), times_(times) {
+    h5::on_root(root(), [&] { series_.emplace(opt.vtu_dir, opt.contacts_vtk, opt.granule_age); });
+  }
+  void on_frame(const Simulation& sim, std::uint64_t) override {
+    const Timed t(times_.frame_seconds);
+    std::optional<SimulationState> state = domain_.gather(sim);
+    h5::on_root(root(), [&] {
+      series_->write_frame(Simulation(sim.scene(), std::move(*state)));  // the serial run's state
+    });
+  }
+  void on_finish(const Simulation&) override {
+    if (series_) cli::print_vtu_written(series_->frames(), series_->directory());
+  }
+
+ private:
+  MPI_Comm root() { return domain_.comm().comm(); }
+  MpiDomain& domain_;
+  OutputTimes& times_;
+  std::optional<cli::PlainVtuSeries> series_;  ///< rank 0's
+};
+
 }  // namespace
 
 std::vector<std::unique_ptr<FrameObserver>> make_mpi_outputs(MpiDomain& domain,
                                                              const cli::RunOptions& opt,
                                                              bool gather, OutputTimes& times) {
-  if (!opt.vtu_dir.empty()) {
+  if (opt.grid_vtk) {
     throw InputError(
-        "--vtu: drumlab-mpi writes no VTU (it must not link VTK): write --h5 FILE and convert it "
-        "with `drumlab convert FILE --vtu DIR`");
+        "--grid-vtk: each rank searches its own box, so a decomposed run has no one grid to "
+        "write; `drumlab run --vtu DIR --grid-vtk` writes the serial run's");
   }
   std::vector<std::unique_ptr<FrameObserver>> out;
+  if (!opt.vtu_dir.empty()) out.push_back(std::make_unique<VtuWriter>(domain, opt, times));
   if (!opt.h5_file.empty()) {
     out.push_back(
         std::make_unique<SeriesWriter>(domain, opt.h5_file, opt.granule_age, gather, times));

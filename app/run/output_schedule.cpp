@@ -66,6 +66,11 @@ void AgglomerateRows::finish() {
       1000.0 * last.d50, 100.0 * last.largest_plain_share);
 }
 
+void print_vtu_written(std::size_t frames, const std::filesystem::path& directory) {
+  fmt::print("vtu               {} frames in {} (open particles.pvd in ParaView)\n", frames,
+             directory.string());
+}
+
 void print_series_written(std::size_t frames, const std::filesystem::path& file,
                           const std::filesystem::path& xdmf) {
   fmt::print("h5                {} frames in {} (open {} in ParaView)\n", frames, file.string(),

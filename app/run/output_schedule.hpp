@@ -63,6 +63,9 @@ class AgglomerateRows {
   std::vector<Bond> bonds_;
 };
 
+/// The line of a VTU/PVD series at the end of the run.
+void print_vtu_written(std::size_t frames, const std::filesystem::path& directory);
+
 /// The line of an HDF5 series at the end of the run.
 void print_series_written(std::size_t frames, const std::filesystem::path& file,
                           const std::filesystem::path& xdmf);

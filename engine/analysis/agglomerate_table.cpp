@@ -1,5 +1,9 @@
 #include "engine/analysis/agglomerate_table.hpp"
 
+#include <charconv>
+#include <sstream>
+#include <string>
+
 #include <fmt/format.h>
 
 #include "engine/types.hpp"
@@ -54,6 +58,56 @@ void AgglomerateTable::finish() {
     std::filesystem::remove(part_file(), ignored);
     throw InputError(fmt::format("{}: cannot write ({})", file_.string(), ec.message()));
   }
+}
+
+namespace {
+
+/// The fields of one CSV row (the table has no quoted fields: the criterion has no comma).
+std::vector<std::string> fields_of(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream in(line);
+  for (std::string f; std::getline(in, f, ',');) out.push_back(f);
+  return out;
+}
+
+template <class T>
+bool parse(const std::string& text, T& value) {
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  return ec == std::errc() && ptr == end;
+}
+
+bool parse_row(const std::vector<std::string>& f, AgglomerateStats& s) {
+  if (f.size() != 13) return false;
+  s.criterion = f[1];
+  return parse(f[0], s.time) && parse(f[2], s.count) && parse(f[3], s.mean_size) &&
+         parse(f[4], s.largest) && parse(f[5], s.d10) && parse(f[6], s.d50) && parse(f[7], s.d90) &&
+         parse(f[8], s.bonds) && parse(f[9], s.free_liquid) && parse(f[10], s.bridge_liquid) &&
+         parse(f[11], s.wall_liquid) && parse(f[12], s.largest_plain_share);
+}
+
+}  // namespace
+
+std::vector<AgglomerateStats> read_agglomerate_table(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw InputError(fmt::format("{}: cannot read", file.string()));
+  std::string line;
+  if (!std::getline(in, line) || line != agglomerate_csv_header()) {
+    throw InputError(
+        fmt::format("{}:1: not an agglomerate table (its header differs from "
+                    "`drumlab run --agglomerates`)",
+                    file.string()));
+  }
+  std::vector<AgglomerateStats> rows;
+  for (std::size_t number = 2; std::getline(in, line); ++number) {
+    AgglomerateStats s;
+    if (!parse_row(fields_of(line), s)) {
+      throw InputError(fmt::format("{}:{}: not a row of the table", file.string(), number));
+    }
+    rows.push_back(s);
+  }
+  if (rows.empty()) throw InputError(fmt::format("{}: the table has no rows", file.string()));
+  return rows;
 }
 
 }  // namespace drumlab

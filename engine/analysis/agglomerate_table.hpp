@@ -38,4 +38,9 @@ class AgglomerateTable {
   bool finished_ = false;
 };
 
+/// The rows of a finished table (FILE.csv as AgglomerateTable writes it), for its chart drawn
+/// afterwards (`drumlab analyze FILE.csv`). Throws InputError naming the file and line if it
+/// cannot be read, its header is not the table's or a row does not parse.
+std::vector<AgglomerateStats> read_agglomerate_table(const std::filesystem::path& file);
+
 }  // namespace drumlab

@@ -29,6 +29,7 @@
 
 #include "engine/contact/bond.hpp"
 #include "engine/io/h5_file.hpp"
+#include "engine/io/series_frame.hpp"
 #include "engine/particles.hpp"
 
 namespace drumlab {
@@ -120,28 +121,6 @@ std::string h5_frame_group(std::size_t k);
 std::string xdmf_for_series(const std::string& h5_name, const std::vector<double>& times,
                             const std::vector<std::size_t>& counts,
                             const std::vector<bool>& with_bonds = {});
-
-/// One frame of a series as written (bonds in storage slots). The bond part (mass, film,
-/// agglomerate_id, bonds, period, drum_omega) is filled only for a frame with a bond graph
-/// (has_bonds); the agglomerate analysis and `drumlab convert` read frames this way.
-struct SeriesFrame {
-  double time = 0.0;
-  std::uint64_t step = 0;
-  std::vector<Vec3> position;
-  std::vector<Vec3> velocity;
-  std::vector<Vec3> omega;
-  std::vector<double> radius;
-  std::vector<std::uint32_t> id;
-  std::vector<std::uint8_t> size_class;
-  bool has_bonds = false;
-  std::vector<double> mass;
-  std::vector<double> film;
-  std::vector<std::uint32_t> agglomerate_id;
-  std::vector<Bond> bonds;
-  double wall_liquid = 0.0;  ///< liquid in wall bridges (frame attribute; 0 in older series)
-  double period = 0.0;
-  double drum_omega = 0.0;
-};
 
 /// Reads a series: the number of complete frames (the length of /time) and whether it was
 /// finished. Throws InputError naming the file if it is not a series.

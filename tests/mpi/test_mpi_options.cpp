@@ -59,15 +59,17 @@ TEST_F(MpiOptions, ContradictingFlagsAreOneLineAndExitTwoInBothExecutables) {
     EXPECT_EQ(count(mpi.output, "drumlab-mpi: error: " + flag), 1u) << mpi.output;
   }
   EXPECT_FALSE(std::filesystem::exists(dir.file("c.h5")));
-  // VTU needs VTK, which must not enter the MPI process: one line naming the way round.
-  const Ran vtu = shell(mpirun(2) + "--timeout 60 " + DRUMLAB_MPI_CLI + " run " + scene +
-                        " --steps 5 --vtu " + dir.file("vtu"));
-  EXPECT_EQ(vtu.exit_code, 2) << vtu.output;
-  EXPECT_EQ(count(vtu.output, "drumlab-mpi: error: --vtu"), 1u) << vtu.output;
-  EXPECT_NE(vtu.output.find("drumlab convert"), std::string::npos) << vtu.output;
+  // The grid occupancy needs the one search grid a decomposed run does not have.
+  const Ran grid = shell(mpirun(2) + "--timeout 60 " + DRUMLAB_MPI_CLI + " run " + scene +
+                         " --steps 5 --vtu " + dir.file("vtu") + " --grid-vtk");
+  EXPECT_EQ(grid.exit_code, 2) << grid.output;
+  EXPECT_EQ(count(grid.output, "drumlab-mpi: error: --grid-vtk: each rank searches its own box"),
+            1u)
+      << grid.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("vtu")));
 }
 
-// --agglomerates (the gathered state's table on rank 0), --team, --unsafe-dt and
+// --agglomerates (the gathered state's table on rank 0, its chart), --team, --unsafe-dt and
 // --checkpoint-every under mpirun: the serial run's table, checkpoint and summary lines.
 TEST_F(MpiOptions, SharedOptionsGiveTheSerialRunsResults) {
   const std::string scene = dir.write("scene.toml", small_scene());
@@ -84,6 +86,10 @@ TEST_F(MpiOptions, SharedOptionsGiveTheSerialRunsResults) {
   const std::string table = read_text(dir.file("serial.csv"));
   EXPECT_EQ(count(table, "\n"), 4u) << table;  // the header and frames 0, 20, 40
   EXPECT_EQ(read_text(dir.file("mpi.csv")), table);
+  // The chart, drawn by the drumlab beside drumlab-mpi (which links no VTK) from the table.
+  EXPECT_NE(last_output.find("agglomerate chart " + dir.file("mpi.png")), std::string::npos)
+      << last_output;
+  EXPECT_GT(std::filesystem::file_size(dir.file("mpi.png")), 1000u);
   for (const std::string label : {"scene ", "plan ", "particles ", "steps ", "search method "}) {
     EXPECT_FALSE(line(s.output, label).empty()) << label << s.output;
     EXPECT_EQ(line(last_output, label), line(s.output, label)) << last_output;

@@ -1,6 +1,7 @@
 // The agglomerate outputs end to end: the HDF5 series stores the bond graph of a wet drum and
 // reads it back; `run --agglomerates` writes its table through a .part file and a chart beside
-// it; `analyze` of the run's series gives the same table byte for byte; a run killed with SIGKILL
+// it; `analyze` of the run's series gives the same table byte for byte, and the table reads back
+// (a damaged one: one line naming file and line); a run killed with SIGKILL
 // leaves a series whose complete frames and sidecar open; a dry scene's series has no bond graph
 // and `analyze` refuses it with one line.
 #include <gtest/gtest.h>
@@ -14,6 +15,7 @@
 #include <sstream>
 #include <thread>
 
+#include "engine/analysis/agglomerate_table.hpp"
 #include "engine/analysis/agglomerates.hpp"
 #include "engine/io/h5_file.hpp"
 #include "engine/io/h5_series.hpp"
@@ -113,6 +115,40 @@ TEST(AgglomerateOutputs, AnalyzeOfTheRunsSeriesEqualsTheRunsTable) {
   r = run_cli("analyze " + d + "s.h5 --granule-age 0 --agglomerates " + d + "plain.csv");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(count_of(read_text(d + "plain.csv"), ",components,"), 7u);
+
+  // The table read back gives the rows it was written from (drumlab analyze TABLE.csv charts it).
+  const std::vector<AgglomerateStats> rows = read_agglomerate_table(d + "run.csv");
+  ASSERT_EQ(rows.size(), 7u);
+  std::string again = agglomerate_csv_header() + "\n";
+  for (const AgglomerateStats& row : rows) again += agglomerate_csv_row(row) + "\n";
+  EXPECT_EQ(again, table);
+  std::filesystem::remove(d + "run.png");
+  r = run_cli("analyze " + d + "run.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_GT(std::filesystem::file_size(d + "run.png"), 1000u);
+}
+
+TEST(AgglomerateOutputs, DamagedTableIsOneLineNamingFileAndLine) {
+  TempDir dir("agglo-table");
+  const std::string header = agglomerate_csv_header() + "\n";
+  const std::string good = "0.5,components,2,2.5,3,0.001,0.002,0.003,4,1e-9,2e-9,0,0.5\n";
+  EXPECT_EQ(read_agglomerate_table(dir.write("ok.csv", header + good)).size(), 1u);
+  for (const auto& [text, where] :
+       {std::pair<std::string, std::string>{"time,x\n" + good, "bad.csv:1:"},
+        {header + good + "0.5,components,2,2.5\n", "bad.csv:3:"},
+        {header + "0.5,components,two,2.5,3,0.001,0.002,0.003,4,1e-9,2e-9,0,0.5\n", "bad.csv:2:"},
+        {header, "bad.csv: the table has no rows"}}) {
+    const auto file = dir.write("bad.csv", text);
+    try {
+      read_agglomerate_table(file);
+      ADD_FAILURE() << "accepted: " << text;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(where), std::string::npos) << e.what();
+    }
+    const auto r = run_cli("analyze " + file.string());
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_EQ(count_of(r.output, "\n"), 1u) << r.output;
+  }
 }
 
 TEST(AgglomerateOutputs, DrySeriesHasNoBondGraphAndAnalyzeRefusesIt) {

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <span>
 
-#include "engine/io/h5_series.hpp"
 #include "engine/io/paraview/dataset.hpp"
+#include "engine/io/series_frame.hpp"
 #include "engine/simulation.hpp"
 
 namespace drumlab::paraview {

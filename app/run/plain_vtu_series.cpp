@@ -1,0 +1,26 @@
+#include "app/run/plain_vtu_series.hpp"
+
+#include <utility>
+#include <vector>
+
+#include "engine/io/paraview/frame_datasets.hpp"
+#include "engine/io/paraview/xml_writer.hpp"
+
+namespace drumlab::cli {
+
+PlainVtuSeries::PlainVtuSeries(const std::string& directory, bool contacts, double granule_age)
+    : series_(directory), contacts_(contacts), granule_age_(granule_age) {}
+
+void PlainVtuSeries::write_frame(const Simulation& whole) {
+  std::vector<std::pair<std::string, std::string>> files;
+  const auto write = [&](const char* stem, const char* ext, const paraview::DataSet& d) {
+    files.emplace_back(stem, series_.file_name(stem, ext));
+    paraview::write_xml_file(d, directory() / files.back().second);
+  };
+  write("particles", "vtu", paraview::particles(whole, granule_age_));
+  write("drum", "vtp", paraview::drum(whole));
+  if (contacts_) write("contacts", "vtp", paraview::contacts(whole));
+  series_.commit(files, whole.time());  // the collections, once every file of the frame exists
+}
+
+}  // namespace drumlab::cli
