@@ -11,24 +11,11 @@
 #include <string>
 
 #include "tests/mpi/mpi_runner.hpp"
+#include "tests/mpi/wet_drum_text.hpp"
 #include "tests/render/vtk_compare.hpp"
-#include "tests/small_drum_text.hpp"
 
 namespace drumlab::test {
 namespace {
-
-std::string wet_scene_text() {
-  SmallDrumText t;
-  t.search = "verlet:m2";
-  t.omega = "6.0";
-  t.time = "dt_factor = 0.2\nduration = 0.01";
-  t.depth = "0.1";
-  t.fill = "count = 300\nsettle_time = 0.004\nseed = 5";
-  t.gravity = "[0.0, -150.0, 0.0]";
-  return t.text() + "[performance]\nsort_every = 30\nverlet_skin = 0.1\n" +
-         "[liquid]\nsurface_tension = 0.072\ncontact_angle_deg = 20\nliquid_content = 0.02\n"
-         "max_bridge_volume = 2e-9\nfilm_share = 0.5\n";
-}
 
 std::set<std::string> files_in(const std::filesystem::path& dir) {
   std::set<std::string> names;
@@ -41,7 +28,7 @@ std::set<std::string> files_in(const std::filesystem::path& dir) {
 class MpiVtu : public MpiCase {};
 
 TEST_F(MpiVtu, SeriesOnTwoAndThreeRanksIsTheSerialRuns) {
-  const std::string scene = dir.write("wet.toml", wet_scene_text());
+  const std::string scene = dir.write("wet.toml", scene_text(wet_law()));
   const std::string args = " --steps 400 --every 100 --granule-age 0 --contacts-vtk --vtu ";
   serial(scene, args + dir.file("serial"), "serial.h5");
   const std::set<std::string> expected = files_in(dir.file("serial"));
