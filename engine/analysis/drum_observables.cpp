@@ -222,6 +222,9 @@ DrumObservables measure_drum(const Particles& p, const DrumGeometry& drum,
   obs.solid_body_energy = sb / n;
   obs.centre_of_mass = mx / mass;
   obs.com_offset = std::hypot(obs.centre_of_mass.x(), obs.centre_of_mass.y()) / drum.radius;
+  obs.com_angle_deg =
+      std::atan2(obs.carry.dot(obs.centre_of_mass), -obs.up.dot(obs.centre_of_mass)) * 180.0 /
+      std::numbers::pi;
   obs.upper_fraction = static_cast<double>(upper) / n;
   obs.relative_speed = rel / n;
   obs.wall_speed = std::abs(drum.omega) * drum.radius;

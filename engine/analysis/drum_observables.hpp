@@ -95,7 +95,12 @@ struct DrumObservables {
   double mean_rotational_energy = 0.0;  ///< J per particle
   double solid_body_energy = 0.0;       ///< mean 1/2 m (omega rho)^2 of a bed turning rigidly, J
   Vec3 centre_of_mass = Vec3::Zero();   ///< mass-weighted, m
-  double com_offset = 0.0;         ///< distance of the COM from the axis in the cross-section / R
+  double com_offset = 0.0;  ///< distance of the COM from the axis in the cross-section / R
+  /// Angle of repose from the centre of mass (MercuryDPM's RotatingDrumWet: the angle of the COM
+  /// about the axis from straight down, atan2(com . carry, -com . up), degrees). For a bed whose
+  /// cross-section is a circular segment under a flat surface it equals the surface's angle (the
+  /// COM lies on the chord's perpendicular through the axis); it needs no surface fit.
+  double com_angle_deg = 0.0;
   double airborne_fraction = 0.0;  ///< share of particles in free flight
   double upper_fraction = 0.0;     ///< share of particle centres above the axis (along up)
   double relative_speed = 0.0;     ///< mean |v - omega z_hat x x| over the particles, m/s

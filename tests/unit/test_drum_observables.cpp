@@ -89,6 +89,12 @@ TEST(DrumObservables, SlabCentreOfMassMatchesTheCircularSegment) {
   EXPECT_NEAR(o.centre_of_mass.y(), expected.y(), 1e-3);
   EXPECT_NEAR(o.centre_of_mass.z(), 0.5 * s.depth, 1e-12);  // 5 symmetric layers
   EXPECT_NEAR(o.com_offset, expected.norm() / s.radius_drum, 2.0 * s.r / s.radius_drum);
+  // The segment's centroid lies on the chord's perpendicular through the axis: the angle of the
+  // COM from straight down is the surface's (the lattice's staircase costs a fraction of a degree).
+  EXPECT_NEAR(o.com_angle_deg, s.theta_deg, 0.5);
+  SlabSpec flat = s;
+  flat.theta_deg = -12.0;
+  EXPECT_NEAR(measure_drum(tilted_slab(flat), geometry(flat)).com_angle_deg, -12.0, 0.5);
 }
 
 TEST(DrumObservables, CentreOfMassAndEnergyOfTwoParticles) {
