@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "app/run/observable_rows.hpp"
 #include "app/run/output_schedule.hpp"
 #include "app/run/plain_vtu_series.hpp"
 #include "engine/io/checkpoint.hpp"
@@ -44,6 +45,17 @@ class PlainVtuObserver final : public FrameObserver {
   PlainVtuSeries series_;
 };
 #endif
+
+/// --observables FILE.csv: a row of drum observables per frame.
+class ObservableObserver final : public FrameObserver {
+ public:
+  explicit ObservableObserver(const std::string& file) : rows_(file) {}
+  void on_frame(const Simulation& sim, std::uint64_t) override { rows_.add(sim); }
+  void on_finish(const Simulation&) override { rows_.finish(); }
+
+ private:
+  ObservableRows rows_;
+};
 
 class H5Observer final : public FrameObserver {
  public:
@@ -112,6 +124,10 @@ std::vector<std::unique_ptr<FrameObserver>> make_output_observers(const RunOptio
         file, opt.checkpoint_every,
         [file](const Simulation& sim) { write_checkpoint(file, sim.state(), sim.scene().name); },
         true));
+  }
+  if (!opt.observables.empty()) {  // it opens FILE.part at once
+    check_parent_directory(opt.observables, "--observables");
+    out.push_back(std::make_unique<ObservableObserver>(opt.observables));
   }
   if (!opt.agglomerates.empty()) {  // last: it opens FILE.part at once
     check_parent_directory(opt.agglomerates, "--agglomerates");

@@ -15,8 +15,7 @@ void run_session(const RunOptions& opt, std::span<FrameObserver* const> extra_ob
   for (const auto& o : outputs) observers.push_back(o.get());
   RunSession session(scene, session_options(opt));
   print_session_choices(session);
-  const bool frames_taken = !extra_observers.empty() || !opt.h5_file.empty() ||
-                            !opt.vtu_dir.empty() || !opt.agglomerates.empty();
+  const bool frames_taken = !extra_observers.empty() || opt.frame_outputs();
   const std::uint64_t every = frame_every(opt, session.plan().turn_steps, frames_taken);
   const TurnResult turn = settle_and_turn(session, every, observers, true);
   const Simulation& sim = session.simulation();

@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include "app/run/observable_rows.hpp"
 #include "app/run/output_schedule.hpp"
 #include "app/run/plain_vtu_series.hpp"
 #include "engine/io/checkpoint.hpp"
@@ -79,6 +80,26 @@ class SeriesWriter final : public FrameObserver {
   OutputTimes& times_;
   std::optional<H5Series> series_;
   std::vector<Bond> bonds_;  ///< rank 0's scratch for a gathered frame of a scene with bonds
+};
+
+/// --observables FILE.csv: the state gathered on rank 0, its observables measured there.
+class ObservableWriter final : public FrameObserver {
+ public:
+  ObservableWriter(MpiDomain& domain, const std::string& file) : domain_(domain) {
+    h5::on_root(domain_.comm().comm(), [&] { rows_.emplace(file); });
+  }
+  void on_frame(const Simulation& sim, std::uint64_t) override {
+    std::optional<SimulationState> state = domain_.gather(sim);
+    h5::on_root(domain_.comm().comm(),
+                [&] { rows_->add(Simulation(sim.scene(), std::move(*state))); });
+  }
+  void on_finish(const Simulation&) override {
+    h5::on_root(domain_.comm().comm(), [&] { rows_->finish(); });
+  }
+
+ private:
+  MpiDomain& domain_;
+  std::optional<cli::ObservableRows> rows_;  ///< rank 0's
 };
 
 /// The table's chart FILE.png, drawn as `drumlab run` draws it, by the `drumlab` executable beside
@@ -190,6 +211,10 @@ std::vector<std::unique_ptr<FrameObserver>> make_mpi_outputs(MpiDomain& domain,
     };
     out.push_back(std::make_unique<cli::CheckpointSchedule>(file, opt.checkpoint_every, write,
                                                             domain.comm().rank() == 0));
+  }
+  if (!opt.observables.empty()) {  // it opens FILE.part at once
+    cli::check_parent_directory(opt.observables, "--observables");
+    out.push_back(std::make_unique<ObservableWriter>(domain, opt.observables));
   }
   if (!opt.agglomerates.empty()) {  // last: it opens FILE.part at once
     cli::check_parent_directory(opt.agglomerates, "--agglomerates");

@@ -181,7 +181,7 @@ void run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
   RunSession session(start.scene, session_options, std::move(sim), start.restart,
                      start.auto_choice);
   if (rank == 0) cli::print_session_choices(session);
-  const bool frames_taken = !opt.h5_file.empty() || !opt.agglomerates.empty();
+  const bool frames_taken = opt.frame_outputs();
   const std::uint64_t every = cli::frame_every(opt, session.plan().turn_steps, frames_taken);
   MPI_Barrier(comm);
   const double t0 = MPI_Wtime();

@@ -47,6 +47,9 @@ void add_run_options(CLI::App* cmd, RunOptions& opt) {
                   "granule criterion: bonds older than T s join (0: plain components; default: "
                   "one drum revolution)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--observables", opt.observables,
+                  "write the drum observables per frame (angle of repose by surface fit and by "
+                  "centre of mass, flowing layer, liquid) to FILE.csv");
   cmd->add_option("--checkpoint", opt.checkpoint, "write a restart checkpoint (HDF5) at the end");
   cmd->add_option("--checkpoint-every", opt.checkpoint_every,
                   "also rewrite the checkpoint every K turning steps")
@@ -59,8 +62,8 @@ void add_run_arguments(CLI::App* run, RunOptions& opt) {
   run->add_option("scene", opt.scene, "scene file (TOML)")->required();
   add_run_options(run, opt);
   run->add_option("--every", opt.every,
-                  "steps between the frames of --h5, --vtu and --agglomerates (default: 1/100 of "
-                  "the turn)")
+                  "steps between the frames of --h5, --vtu, --agglomerates and --observables "
+                  "(default: 1/100 of the turn)")
       ->check(CLI::PositiveNumber);
 }
 
@@ -110,11 +113,10 @@ void check_run_options(const RunOptions& opt, bool frames_taken) {
   if (opt.checkpoint.empty() && opt.checkpoint_every > 0) {
     throw InputError("--checkpoint-every needs --checkpoint FILE");
   }
-  const bool writers = !opt.h5_file.empty() || !opt.vtu_dir.empty() || !opt.agglomerates.empty();
-  if (opt.every > 0 && !writers && !frames_taken) {
+  if (opt.every > 0 && !opt.frame_outputs() && !frames_taken) {
     throw InputError(
-        "--every: no output takes frames (give --h5 FILE, --vtu DIR or --agglomerates FILE; the "
-        "checkpoint keeps --checkpoint-every)");
+        "--every: no output takes frames (give --h5 FILE, --vtu DIR, --agglomerates FILE or "
+        "--observables FILE; the checkpoint keeps --checkpoint-every)");
   }
   if (!opt.h5_file.empty() && !opt.checkpoint.empty() && same_file(opt.h5_file, opt.checkpoint)) {
     throw InputError(fmt::format("--h5 and --checkpoint both name {}", opt.h5_file));

@@ -36,7 +36,13 @@ struct RunOptions {
   std::uint64_t checkpoint_every = 0;
   std::string agglomerates;   ///< --agglomerates FILE.csv (+ FILE.png)
   double granule_age = -1.0;  ///< --granule-age T (s); < 0: one drum revolution
+  std::string observables;    ///< --observables FILE.csv (observable_rows.hpp)
   std::string restart;        ///< --restart FILE: skip fill and settling, continue from the file
+
+  /// Whether an output takes frames (--h5, --vtu, --agglomerates, --observables).
+  bool frame_outputs() const {
+    return !h5_file.empty() || !vtu_dir.empty() || !agglomerates.empty() || !observables.empty();
+  }
 };
 
 /// Adds the options of RunOptions (except the scene and the frame schedule --every/--frames, which

@@ -69,23 +69,29 @@ TEST_F(MpiOptions, ContradictingFlagsAreOneLineAndExitTwoInBothExecutables) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("vtu")));
 }
 
-// --agglomerates (the gathered state's table on rank 0, its chart), --team, --unsafe-dt and
+// --agglomerates (the gathered state's table on rank 0, its chart), --observables, --team,
+// --unsafe-dt and
 // --checkpoint-every under mpirun: the serial run's table, checkpoint and summary lines.
 TEST_F(MpiOptions, SharedOptionsGiveTheSerialRunsResults) {
   const std::string scene = dir.write("scene.toml", small_scene());
   const std::string args =
       " --steps 40 --every 20 --team fixed --unsafe-dt --checkpoint-every 15 --agglomerates ";
   const Ran s = shell(std::string(DRUMLAB_CLI) + " run " + scene + " --threads 1" + args +
-                      dir.file("serial.csv") + " --checkpoint " + dir.file("serial.h5"));
+                      dir.file("serial.csv") + " --observables " + dir.file("serial_obs.csv") +
+                      " --checkpoint " + dir.file("serial.h5"));
   ASSERT_EQ(s.exit_code, 0) << s.output;
   const SimulationState want = read_checkpoint(dir.file("serial.h5")).state;
-  const SimulationState got = parallel(2, scene, args + dir.file("mpi.csv"), "mpi.h5");
+  const SimulationState got = parallel(
+      2, scene, args + dir.file("mpi.csv") + " --observables " + dir.file("mpi_obs.csv"), "mpi.h5");
   EXPECT_TRUE(same_bits(want.particles.position, got.particles.position));
   EXPECT_TRUE(same_bits(want.particles.velocity, got.particles.velocity));
   EXPECT_EQ(want.steps, got.steps);
   const std::string table = read_text(dir.file("serial.csv"));
   EXPECT_EQ(count(table, "\n"), 4u) << table;  // the header and frames 0, 20, 40
   EXPECT_EQ(read_text(dir.file("mpi.csv")), table);
+  const std::string observables = read_text(dir.file("serial_obs.csv"));
+  EXPECT_EQ(count(observables, "\n"), 4u) << observables;
+  EXPECT_EQ(read_text(dir.file("mpi_obs.csv")), observables);
   // The chart, drawn by the drumlab beside drumlab-mpi (which links no VTK) from the table.
   EXPECT_NE(last_output.find("agglomerate chart " + dir.file("mpi.png")), std::string::npos)
       << last_output;

@@ -1,0 +1,46 @@
+#pragma once
+// --observables FILE.csv: the drum observables of every frame
+// (engine/analysis/drum_observables.hpp) and the liquid's accounting, a row per frame of the whole
+// state (the serial simulation, or the state a decomposed run gathered on rank 0). Rows are
+// streamed to FILE.csv.part, flushed as they come, and renamed into place at the end: a killed run
+// leaves no file that looks complete. Columns (observable_columns): time (s), revolutions (the
+// drum's turn since the start of the turning phase), angle_fit_deg (surface fit; nan without a
+// surface), angle_com_deg (from the centre of mass), flowing_layer (m), bed_depth (m),
+// surface_curvature, relative_speed (m/s), airborne_fraction, free_liquid, bridge_liquid,
+// wall_liquid (m^3: films, pair bridges, wall bridges; their sum is the scene's liquid, conserved
+// to round-off), bridges (pair bridges).
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "engine/simulation.hpp"
+
+namespace drumlab::cli {
+
+/// The header line of the table.
+std::string observable_columns();
+
+class ObservableRows {
+ public:
+  /// Opens FILE.part; throws InputError naming the flag and file if it cannot be created.
+  explicit ObservableRows(std::filesystem::path file);
+  /// Removes the .part file of a table that was not finished.
+  ~ObservableRows();
+  ObservableRows(const ObservableRows&) = delete;
+  ObservableRows& operator=(const ObservableRows&) = delete;
+
+  /// Appends and flushes the row of `whole`'s current state; InputError if the write fails.
+  void add(const Simulation& whole);
+  /// Renames the table into place and prints its line.
+  void finish();
+
+ private:
+  std::filesystem::path part() const;
+  std::filesystem::path file_;
+  std::ofstream out_;
+  std::size_t rows_ = 0;
+  double last_angle_ = 0.0;
+  bool finished_ = false;
+};
+
+}  // namespace drumlab::cli
