@@ -30,6 +30,35 @@ bool drawable(double v, bool log) {
   return std::isfinite(v) && (!log || v > 0.0);
 }
 
+/// Each point's error bar as a two-point line in the series' colour, without a legend entry.
+void add_error_bars(vtkChartXY* chart, const XYSeries& s, const XYPanel& panel, vtkPlot* like) {
+  for (std::size_t k = 0; k < s.y_error.size() && k < s.x.size() && k < s.y.size(); ++k) {
+    const double lo = s.y[k] - s.y_error[k], hi = s.y[k] + s.y_error[k];
+    if (!(s.y_error[k] > 0.0) || !drawable(s.x[k], panel.log_x) || !drawable(lo, panel.log_y) ||
+        !drawable(hi, panel.log_y)) {
+      continue;
+    }
+    vtkNew<vtkTable> table;
+    vtkNew<vtkDoubleArray> x, y;
+    x->SetName("x");
+    y->SetName("error");
+    const double xv = panel.log_x ? std::log10(s.x[k]) : s.x[k];
+    for (const double v : {lo, hi}) {
+      x->InsertNextValue(xv);
+      y->InsertNextValue(panel.log_y ? std::log10(v) : v);
+    }
+    table->AddColumn(x);
+    table->AddColumn(y);
+    vtkPlot* bar = chart->AddPlot(vtkChart::LINE);
+    bar->SetInputData(table, 0, 1);
+    bar->SetLegendVisibility(false);
+    unsigned char rgb[3];
+    like->GetColor(rgb);
+    bar->SetColor(rgb[0], rgb[1], rgb[2], 255);
+    bar->SetWidth(1.5f);
+  }
+}
+
 void add_series(vtkChartXY* chart, const XYSeries& s, const XYPanel& panel, std::size_t index) {
   vtkNew<vtkTable> table;
   vtkNew<vtkDoubleArray> x;
@@ -45,7 +74,8 @@ void add_series(vtkChartXY* chart, const XYSeries& s, const XYPanel& panel, std:
   table->AddColumn(x);
   table->AddColumn(y);
   // A line needs two points; a single point is drawn as a marker.
-  vtkPlot* line = chart->AddPlot(x->GetNumberOfTuples() > 1 ? vtkChart::LINE : vtkChart::POINTS);
+  const bool points_only = s.markers_only || x->GetNumberOfTuples() == 1;
+  vtkPlot* line = chart->AddPlot(points_only ? vtkChart::POINTS : vtkChart::LINE);
   line->SetInputData(table, 0, 1);
   line->SetLabel(s.name);
   if (s.emphasised) {
@@ -60,6 +90,7 @@ void add_series(vtkChartXY* chart, const XYSeries& s, const XYPanel& panel, std:
     points->SetMarkerStyle(s.emphasised ? vtkPlotPoints::SQUARE : vtkPlotPoints::CIRCLE);
     points->SetMarkerSize(s.emphasised ? 12.0f : 8.0f);
   }
+  add_error_bars(chart, s, panel, line);
 }
 
 /// Range of the drawn values along one axis (log10 when `log`); {inf, -inf} when none.
@@ -106,6 +137,32 @@ void set_log_axis(vtkAxis* axis, std::pair<double, double> range) {
   axis->SetRange(lo, hi);
 }
 
+/// Linear axes of a panel with markers or error bars: the points and bars with a margin, so that
+/// none sits on the frame.
+void pad_linear_axes(vtkChartXY* chart, const XYPanel& panel) {
+  double x_lo = std::numeric_limits<double>::infinity(), x_hi = -x_lo, y_lo = x_lo, y_hi = -x_lo;
+  bool padded = false;
+  for (const XYSeries& s : panel.series) {
+    padded = padded || s.markers_only || !s.y_error.empty();
+    for (std::size_t k = 0; k < s.x.size() && k < s.y.size(); ++k) {
+      const double e = k < s.y_error.size() && std::isfinite(s.y_error[k]) ? s.y_error[k] : 0.0;
+      if (!std::isfinite(s.x[k]) || !std::isfinite(s.y[k])) continue;
+      x_lo = std::min(x_lo, s.x[k]);
+      x_hi = std::max(x_hi, s.x[k]);
+      y_lo = std::min(y_lo, s.y[k] - e);
+      y_hi = std::max(y_hi, s.y[k] + e);
+    }
+  }
+  if (!padded || !std::isfinite(x_lo)) return;
+  const auto set = [](vtkAxis* axis, double lo, double hi) {
+    const double margin = hi > lo ? 0.08 * (hi - lo) : std::max(1.0, std::abs(lo)) * 0.1;
+    axis->SetBehavior(vtkAxis::FIXED);
+    axis->SetRange(lo - margin, hi + margin);
+  };
+  if (!panel.log_x) set(chart->GetAxis(vtkAxis::BOTTOM), x_lo, x_hi);
+  if (!panel.log_y) set(chart->GetAxis(vtkAxis::LEFT), y_lo, y_hi);
+}
+
 void fill_chart(vtkChartXY* chart, const XYPanel& panel) {
   std::size_t colour = 0;
   for (const XYSeries& s : panel.series) {
@@ -121,6 +178,7 @@ void fill_chart(vtkChartXY* chart, const XYPanel& panel) {
   vtkAxis* ya = chart->GetAxis(vtkAxis::LEFT);
   ya->SetTitle(panel.y_label);
   if (panel.log_y) set_log_axis(ya, drawn_range(panel, true));
+  pad_linear_axes(chart, panel);
 }
 
 }  // namespace

@@ -11,7 +11,9 @@ struct XYSeries {
   std::string name;       ///< legend entry
   std::vector<double> x;  ///< points in drawing order; pairs with a non-finite value are skipped
   std::vector<double> y;
-  bool emphasised = false;  ///< drawn black and thicker (e.g. a Pareto front)
+  bool emphasised = false;        ///< drawn black and thicker (e.g. a Pareto front)
+  bool markers_only = false;      ///< points without a connecting line
+  std::vector<double> y_error{};  ///< if given: a bar from y - e to y + e at each point
 };
 
 struct XYPanel {

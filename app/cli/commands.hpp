@@ -13,6 +13,7 @@ void add_run_command(CLI::App& app);
 void add_info_command(CLI::App& app);
 void add_law_command(CLI::App& app);
 void add_stress_command(CLI::App& app);
+void add_sweep_command(CLI::App& app);
 // Built only with DRUMLAB_WITH_RENDER:
 void add_render_command(CLI::App& app);
 void add_teach_command(CLI::App& app);

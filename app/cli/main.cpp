@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   drumlab::cli::add_paper_table_command(app);
   drumlab::cli::add_bench_command(app);
   drumlab::cli::add_stress_command(app);
+  drumlab::cli::add_sweep_command(app);
 #ifdef DRUMLAB_WITH_RENDER
   drumlab::cli::add_render_command(app);
   drumlab::cli::add_teach_command(app);

@@ -215,9 +215,13 @@ std::string scene_to_toml(const SceneConfig& scene, const fs::path& folder) {
   std::ostringstream toml_text;
   toml_text << toml::toml_formatter(scene_table(scene, folder),
                                     toml::format_flags::allow_unicode_strings);
-  std::string out =
-      "# Written by drumlab (engine/scene/scene_writer.cpp); keys: scenes/README.md.\n\n";
-  std::istringstream lines(std::move(toml_text).str());
+  return "# Written by drumlab (engine/scene/scene_writer.cpp); keys: scenes/README.md.\n\n" +
+         with_shortest_floats(toml_text.str());
+}
+
+std::string with_shortest_floats(const std::string& toml_text) {
+  std::string out;
+  std::istringstream lines(toml_text);
   for (std::string line; std::getline(lines, line);) out += shortest_floats(line) + '\n';
   return out;
 }

@@ -21,6 +21,10 @@ std::string scene_to_toml(const SceneConfig& scene, const std::filesystem::path&
 /// it).
 std::string scene_to_toml(const SceneConfig& scene);
 
+/// toml++'s output (`out << table`) with every float reprinted as the shortest decimal that
+/// parses back to the same bits (Debian's toml++ prints 17 digits: 0.59999999999999998).
+std::string with_shortest_floats(const std::string& toml_text);
+
 /// Writes scene_to_toml(scene, folder of `file`) to `file` atomically (engine/io/atomic_file.hpp):
 /// a failed write leaves no file. Throws InputError with one line naming the file.
 void save_scene(const SceneConfig& scene, const std::filesystem::path& file);

@@ -1,0 +1,153 @@
+#include "app/cli/sweep_plan.hpp"
+
+#include <charconv>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "engine/analysis/agglomerates.hpp"
+#include "engine/scene/scene_config.hpp"
+#include "engine/scene/scene_writer.hpp"
+
+namespace drumlab::cli {
+namespace {
+
+std::vector<std::string> split(const std::string& text, char by) {
+  std::vector<std::string> out;
+  std::stringstream in(text);
+  for (std::string part; std::getline(in, part, by);) out.push_back(part);
+  return out;
+}
+
+template <class T>
+bool parse_number(const std::string& text, T& value) {
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  return ec == std::errc() && ptr == end;
+}
+
+/// Sets `key` (dotted) in `root` to `text`, typed as the existing value is (else as the text
+/// reads: integer, float, true/false, string). Throws InputError naming the set.
+void set_key(toml::table& root, const std::string& key, const std::string& text,
+             const std::string& set) {
+  toml::table* table = &root;
+  const std::vector<std::string> path = split(key, '.');
+  for (std::size_t k = 0; k + 1 < path.size(); ++k) {
+    toml::node* next = table->get(path[k]);
+    if (next == nullptr) next = &table->insert(path[k], toml::table{}).first->second;
+    table = next->as_table();
+    if (table == nullptr) {
+      throw InputError(fmt::format("--set {}: '{}' is not a table in the scene", set, path[k]));
+    }
+  }
+  const std::string& leaf = path.back();
+  const toml::node* old = table->get(leaf);
+  std::int64_t i = 0;
+  double d = 0.0;
+  const auto bad = [&](const char* what) {
+    return InputError(fmt::format("--set {}: '{}' is not {}", set, text, what));
+  };
+  if (old != nullptr && old->is_integer()) {
+    if (!parse_number(text, i)) throw bad("a whole number");
+    table->insert_or_assign(leaf, i);
+  } else if (old != nullptr && old->is_floating_point()) {
+    if (!parse_number(text, d)) throw bad("a number");
+    table->insert_or_assign(leaf, d);
+  } else if (old != nullptr && old->is_boolean()) {
+    if (text != "true" && text != "false") throw bad("true or false");
+    table->insert_or_assign(leaf, text == "true");
+  } else if (old != nullptr && !old->is_string()) {
+    throw InputError(fmt::format("--set {}: {} is an array or table, not a value", set, key));
+  } else if (old == nullptr && parse_number(text, i)) {
+    table->insert_or_assign(leaf, i);
+  } else if (old == nullptr && parse_number(text, d)) {
+    table->insert_or_assign(leaf, d);
+  } else if (old == nullptr && (text == "true" || text == "false")) {
+    table->insert_or_assign(leaf, text == "true");
+  } else {
+    table->insert_or_assign(leaf, text);
+  }
+}
+
+std::string run_name(std::size_t index, const std::vector<SweepSet>& sets,
+                     const std::vector<std::string>& values, std::int64_t seed) {
+  std::string name = fmt::format("r{:03d}", index);
+  for (std::size_t k = 0; k < sets.size(); ++k) name += "_" + sets[k].key + "=" + values[k];
+  if (seed >= 0) name += fmt::format("_seed={}", seed);
+  for (char& c : name) {
+    if (c == '/' || c == ' ') c = '_';
+  }
+  return name;
+}
+
+}  // namespace
+
+SweepSet parse_sweep_set(const std::string& spec) {
+  const auto eq = spec.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == spec.size()) {
+    throw InputError(
+        fmt::format("--set '{}': not KEY=V1,V2,... (a dotted scene key such as "
+                    "liquid.surface_tension)",
+                    spec));
+  }
+  SweepSet s{spec.substr(0, eq), split(spec.substr(eq + 1), ',')};
+  for (const std::string& v : s.values) {
+    if (v.empty()) throw InputError(fmt::format("--set '{}': an empty value", spec));
+  }
+  return s;
+}
+
+std::vector<SweepRun> plan_sweep(const std::filesystem::path& scene,
+                                 const std::vector<SweepSet>& sets,
+                                 const std::vector<std::int64_t>& seeds) {
+  toml::table base;
+  try {
+    base = toml::parse_file(scene.string());
+  } catch (const toml::parse_error& e) {
+    throw InputError(fmt::format("{}: {}", scene.string(), e.description()));
+  }
+  if (auto* file = base["fill"]["file"].as_string()) {  // the runs' scenes live elsewhere
+    const std::filesystem::path csv = file->get();
+    if (csv.is_relative()) *file = std::filesystem::absolute(scene.parent_path() / csv).string();
+  }
+  std::vector<std::vector<std::string>> combos{{}};
+  for (const SweepSet& s : sets) {
+    std::vector<std::vector<std::string>> next;
+    for (const auto& c : combos) {
+      for (const std::string& v : s.values) {
+        next.push_back(c);
+        next.back().push_back(v);
+      }
+    }
+    combos = std::move(next);
+  }
+  const std::vector<std::int64_t> seed_list = seeds.empty() ? std::vector<std::int64_t>{-1} : seeds;
+  std::vector<SweepRun> runs;
+  for (const auto& values : combos) {
+    for (const std::int64_t seed : seed_list) {
+      toml::table t = base;
+      std::string label = scene.string();
+      for (std::size_t k = 0; k < sets.size(); ++k) {
+        const std::string set = sets[k].key + "=" + values[k];
+        set_key(t, sets[k].key, values[k], set);
+        label += " --set " + set;
+      }
+      if (seed >= 0) set_key(t, "fill.seed", std::to_string(seed), "(--seeds)");
+      std::ostringstream text;
+      text << t << '\n';
+      SweepRun run{run_name(runs.size(), sets, values, seed), values, seed,
+                   with_shortest_floats(text.str()), false};
+      try {
+        run.has_bonds = scene_has_bonds(parse_scene(run.scene_text, label));
+      } catch (const InputError& e) {
+        throw InputError(fmt::format("--set: {}", e.what()));
+      }
+      runs.push_back(std::move(run));
+    }
+  }
+  return runs;
+}
+
+}  // namespace drumlab::cli
