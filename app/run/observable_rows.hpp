@@ -10,9 +10,9 @@
 // wall_liquid (m^3: films, pair bridges, wall bridges; their sum is the scene's liquid, conserved
 // to round-off), bridges (pair bridges).
 #include <filesystem>
-#include <fstream>
 #include <string>
 
+#include "engine/io/streamed_table.hpp"
 #include "engine/simulation.hpp"
 
 namespace drumlab::cli {
@@ -24,10 +24,6 @@ class ObservableRows {
  public:
   /// Opens FILE.part; throws InputError naming the flag and file if it cannot be created.
   explicit ObservableRows(std::filesystem::path file);
-  /// Removes the .part file of a table that was not finished.
-  ~ObservableRows();
-  ObservableRows(const ObservableRows&) = delete;
-  ObservableRows& operator=(const ObservableRows&) = delete;
 
   /// Appends and flushes the row of `whole`'s current state; InputError if the write fails.
   void add(const Simulation& whole);
@@ -35,12 +31,8 @@ class ObservableRows {
   void finish();
 
  private:
-  std::filesystem::path part() const;
-  std::filesystem::path file_;
-  std::ofstream out_;
-  std::size_t rows_ = 0;
+  StreamedTable table_;
   double last_angle_ = 0.0;
-  bool finished_ = false;
 };
 
 }  // namespace drumlab::cli
