@@ -366,6 +366,14 @@ NormalVariant make_normal(const SceneConfig& s, const Material& other, double re
   if (s.contact.normal == NormalLaw::linear) {
     return LinearSpringDashpot(s.contact.linear_stiffness, restitution);
   }
+  if (s.contact.normal == NormalLaw::linear_viscoelastic) {
+    // m = 2 m* of two reference spheres = the mass of one (the peer's argument).
+    const double r = s.contact.reference_radius;
+    const double mass = s.material.density * (4.0 / 3.0) * std::numbers::pi * r * r * r;
+    return LinearViscoelastic::from_collision(s.contact.collision_time, restitution, mass,
+                                              s.contact.tangential_stiffness_ratio,
+                                              s.contact.tangential_damping_ratio);
+  }
   return HertzNormal(effective_youngs_modulus(s.material, other),
                      effective_shear_modulus(s.material, other), restitution);
 }

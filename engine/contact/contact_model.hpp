@@ -18,6 +18,7 @@
 #include "engine/contact/contact_history.hpp"
 #include "engine/contact/hertz_mindlin.hpp"
 #include "engine/contact/linear_spring_dashpot.hpp"
+#include "engine/contact/linear_viscoelastic.hpp"
 #include "engine/contact/rolling_resistance.hpp"
 #include "engine/drum.hpp"
 #include "engine/particles.hpp"
@@ -27,7 +28,8 @@ namespace drumlab {
 
 /// One composed contact law. Tangential/rolling parts are only used when the flags say so. The
 /// model keeps ContactLaw<NormalVariant> (the normal law chosen at run time); the force loops get
-/// ContactLaw<HertzNormal> or ContactLaw<LinearSpringDashpot>, so the chosen law inlines.
+/// ContactLaw<HertzNormal>, ContactLaw<LinearSpringDashpot> or ContactLaw<LinearViscoelastic>, so
+/// the chosen law inlines.
 template <class Normal>
 struct ContactLaw {
   Normal normal;
@@ -35,7 +37,7 @@ struct ContactLaw {
   RollingResistance rolling;
 };
 
-using NormalVariant = std::variant<HertzNormal, LinearSpringDashpot>;
+using NormalVariant = std::variant<HertzNormal, LinearSpringDashpot, LinearViscoelastic>;
 
 /// A particle-particle contact (i < j) with the force on i (N).
 struct ContactForce {

@@ -24,6 +24,8 @@
 //   forming between particles: the bridge takes V = min(film_i + film_j, V_max), half from each
 //     film; a film holding less than half gives all it has and the other gives the rest. Both
 //     films empty: no bridge (the pair touches dry and tries again at the next step it touches).
+//     With `proportional_draw` ([liquid] bridge_draw = "proportional", MercuryDPM's form()): a
+//     bridge of V_max takes V_max film_i / (film_i + film_j) from i and the rest from j.
 //   forming with the wall: V = min(film_i, V_max), all from the particle's film.
 //   rupture between particles: half of V to each film (the equal split); with the wall: all of V
 //     back to the particle's film.
@@ -102,6 +104,7 @@ struct LiquidBridge {
   /// Largest bridge volume (m^3): the fixed volume, or the migration's maximum.
   double max_volume = 0.0;
   bool migration = false;
+  bool proportional_draw = false;  ///< a bridge of V_max draws from the films in proportion
   bool wall_bridges = false;
   double viscosity = 0.0;  ///< eta, Pa s; 0: no viscous term
   double min_gap = 0.0;    ///< s_min of the viscous term, m
@@ -130,6 +133,12 @@ struct LiquidBridge {
       fi = 0.0;
       fj = 0.0;
       return available;
+    }
+    if (proportional_draw) {
+      const double share = fi / available;
+      fi -= share * max_volume;
+      fj -= (1.0 - share) * max_volume;
+      return max_volume;
     }
     const double half = 0.5 * max_volume;
     if (fi <= half) {
@@ -166,6 +175,7 @@ struct LiquidBridge {
     b.pair = {l.surface_tension, l.contact_angle_deg * kDegree};
     b.wall = {l.wall_surface_tension, l.wall_contact_angle_deg * kDegree};
     b.migration = l.migration;
+    b.proportional_draw = l.proportional_draw;
     b.fixed_volume = l.migration ? 0.0 : l.bridge_volume;
     b.max_volume = l.migration ? l.max_bridge_volume : l.bridge_volume;
     b.wall_bridges = l.wall_bridges;

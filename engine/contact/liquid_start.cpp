@@ -12,7 +12,7 @@ void fill_films(const LiquidConfig& liquid, Particles& p, std::vector<double>& r
   if (film == nullptr) throw std::logic_error("fill_films: no film array");
   reserve.assign(p.size(), 0.0);
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const double r = p.radius[i];
+    const double r = liquid.film_radius > 0.0 ? liquid.film_radius : p.radius[i];
     const double v = liquid.liquid_content * (4.0 / 3.0) * std::numbers::pi * r * r * r;
     (*film)[i] = liquid.film_share * v;
     reserve[i] = v - (*film)[i];

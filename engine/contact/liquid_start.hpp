@@ -1,8 +1,8 @@
 #pragma once
 // The liquid's initial condition (a scene with [liquid] and migration): each particle's liquid
-// (liquid_content x its solid volume) split between its film and the bridges of the contacts
-// present at the start (LiquidConfig::film_share). Run once, before the first step; the step's
-// loops are cohesion_loops.hpp.
+// (liquid_content x its solid volume, or x the volume of a sphere of film_radius) split between its
+// film and the bridges of the contacts present at the start (LiquidConfig::film_share). Run once,
+// before the first step; the step's loops are cohesion_loops.hpp.
 #include <vector>
 
 #include "engine/contact/cohesive_laws.hpp"

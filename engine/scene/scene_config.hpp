@@ -23,12 +23,23 @@ struct Material {
   friend bool operator==(const Material&, const Material&) = default;
 };
 
-enum class NormalLaw { hertz, linear };
+/// hertz: hertz_mindlin.hpp; linear: linear_spring_dashpot.hpp (k given, damping from e per pair);
+/// linear_viscoelastic: linear_viscoelastic.hpp (k and damping from a collision time and e).
+enum class NormalLaw { hertz, linear, linear_viscoelastic };
 
 struct ContactConfig {
   NormalLaw normal = NormalLaw::hertz;
   /// Normal stiffness of the linear spring-dashpot law (N/m); only used with NormalLaw::linear.
   double linear_stiffness = 0.0;
+  /// NormalLaw::linear_viscoelastic only: the collision time t_c (s) and the radius (m) of the
+  /// reference pair (two spheres of the material's density) that collides for exactly t_c with
+  /// exactly the restitution of [material] (of [wall] for the wall's law).
+  double collision_time = 0.0;
+  double reference_radius = 0.0;
+  /// NormalLaw::linear_viscoelastic only: k_t / k and gamma_t / gamma of the tangential spring
+  /// and dashpot (MercuryDPM's drum: 2/7 each).
+  double tangential_stiffness_ratio = 2.0 / 7.0;
+  double tangential_damping_ratio = 2.0 / 7.0;
 
   friend bool operator==(const ContactConfig&, const ContactConfig&) = default;
 };
@@ -110,9 +121,16 @@ struct LiquidConfig {
   /// bridges of the contacts present at the start (none: all stays in the film).
   double film_share = 1.0;
   double max_bridge_volume = 0.0;  ///< m^3, > 0 (migration)
-  double viscosity = 0.0;          ///< eta of the liquid, Pa s; 0: no viscous term
-  double min_gap = 0.0;            ///< m, > 0 with viscosity: the viscous term's smallest gap
-  bool wall_bridges = true;        ///< particle-wall bridges (R = 2 Rp)
+  /// Migration: 0 gives each particle liquid_content times its own volume; > 0 (m) gives every
+  /// particle liquid_content times the volume of a sphere of this radius (MercuryDPM's drum: the
+  /// same film on every particle, from the mean radius).
+  double film_radius = 0.0;
+  /// Migration: a new bridge of V_max draws half from each film (false) or from the two films in
+  /// proportion to their volumes (true, MercuryDPM's LiquidMigrationWilletInteraction::form).
+  bool proportional_draw = false;
+  double viscosity = 0.0;    ///< eta of the liquid, Pa s; 0: no viscous term
+  double min_gap = 0.0;      ///< m, > 0 with viscosity: the viscous term's smallest gap
+  bool wall_bridges = true;  ///< particle-wall bridges (R = 2 Rp)
   /// N/m; the loader sets it to surface_tension when the scene gives none (a config built in
   /// code must set it too)
   double wall_surface_tension = 0.0;

@@ -232,11 +232,28 @@ void read_drum(const Scope& root, SceneConfig& scene) {
   }
 }
 
+void read_linear_viscoelastic(const Scope& s, ContactConfig& c) {
+  c.normal = NormalLaw::linear_viscoelastic;
+  c.collision_time = s.required_number("collision_time", "collision time of the reference pair, s");
+  c.reference_radius = s.required_number(
+      "reference_radius", "radius of the reference pair's spheres (e.g. the mean radius), m");
+  c.tangential_stiffness_ratio =
+      s.number_or("tangential_stiffness_ratio", c.tangential_stiffness_ratio);
+  c.tangential_damping_ratio = s.number_or("tangential_damping_ratio", c.tangential_damping_ratio);
+}
+
 void read_contact(const Scope& root, SceneConfig& scene) {
   const auto s = root.table("contact");
   if (!s) return;
-  s->allow_only({"normal", "linear_stiffness"});
+  s->allow_only({"normal", "linear_stiffness", "collision_time", "reference_radius",
+                 "tangential_stiffness_ratio", "tangential_damping_ratio"});
   const std::string normal = s->string("normal").value_or("hertz");
+  if (normal != "linear_viscoelastic") {
+    for (const char* key : {"collision_time", "reference_radius", "tangential_stiffness_ratio",
+                            "tangential_damping_ratio"}) {
+      if (s->has(key)) s->fail(key, "only used with normal = \"linear_viscoelastic\"");
+    }
+  }
   if (normal == "hertz") {
     scene.contact.normal = NormalLaw::hertz;
     if (s->has("linear_stiffness")) {
@@ -246,8 +263,14 @@ void read_contact(const Scope& root, SceneConfig& scene) {
     scene.contact.normal = NormalLaw::linear;
     scene.contact.linear_stiffness =
         s->required_number("linear_stiffness", "normal spring stiffness of the linear law, N/m");
+  } else if (normal == "linear_viscoelastic") {
+    if (s->has("linear_stiffness")) {
+      s->fail("linear_stiffness", "only used with normal = \"linear\"");
+    }
+    read_linear_viscoelastic(*s, scene.contact);
   } else {
-    s->fail("normal", fmt::format("unknown value '{}' (valid: hertz, linear)", normal));
+    s->fail("normal",
+            fmt::format("unknown value '{}' (valid: hertz, linear, linear_viscoelastic)", normal));
   }
 }
 
@@ -347,8 +370,8 @@ void read_liquid(const Scope& root, SceneConfig& scene) {
   const auto s = root.table("liquid");
   if (!s) return;
   s->allow_only({"surface_tension", "contact_angle_deg", "bridge_volume", "liquid_content",
-                 "film_share", "max_bridge_volume", "viscosity", "min_gap", "wall_bridges",
-                 "wall_surface_tension", "wall_contact_angle_deg"});
+                 "film_share", "max_bridge_volume", "film_radius", "bridge_draw", "viscosity",
+                 "min_gap", "wall_bridges", "wall_surface_tension", "wall_contact_angle_deg"});
   LiquidConfig& l = scene.liquid;
   l.enabled = true;
   l.surface_tension = s->required_number("surface_tension", "N/m, > 0");
@@ -368,13 +391,19 @@ void read_liquid(const Scope& root, SceneConfig& scene) {
   if (!l.migration) {
     l.bridge_volume = s->required_number(
         "bridge_volume", "m^3, > 0; or liquid_content with max_bridge_volume for migration");
-    for (const char* key : {"film_share", "max_bridge_volume"}) {
+    for (const char* key : {"film_share", "max_bridge_volume", "film_radius", "bridge_draw"}) {
       if (s->has(key)) s->fail(key, "only with liquid_content (liquid migration)");
     }
   } else {
     l.liquid_content = s->required_number("liquid_content", "liquid / solid volume, >= 0");
     l.film_share = s->number_or("film_share", 1.0);
     l.max_bridge_volume = s->required_number("max_bridge_volume", "m^3, > 0");
+    l.film_radius = s->number_or("film_radius", 0.0);
+    const std::string draw = s->string("bridge_draw").value_or("halves");
+    if (draw != "halves" && draw != "proportional") {
+      s->fail("bridge_draw", fmt::format("unknown value '{}' (valid: halves, proportional)", draw));
+    }
+    l.proportional_draw = draw == "proportional";
   }
   l.viscosity = s->number_or("viscosity", 0.0);
   l.min_gap = s->number_or("min_gap", 0.0);

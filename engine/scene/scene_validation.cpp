@@ -112,8 +112,16 @@ Problem check_material(std::string_view table, const Material& m, bool with_dens
 }
 
 Problem check_contact(const SceneConfig& s) {
-  if (s.contact.normal != NormalLaw::linear) return std::nullopt;
-  return positive("contact.linear_stiffness", s.contact.linear_stiffness);
+  const ContactConfig& c = s.contact;
+  if (c.normal == NormalLaw::linear)
+    return positive("contact.linear_stiffness", c.linear_stiffness);
+  if (c.normal != NormalLaw::linear_viscoelastic) return std::nullopt;
+  if (auto p = positive("contact.collision_time", c.collision_time, " s")) return p;
+  if (auto p = positive("contact.reference_radius", c.reference_radius, " m")) return p;
+  if (auto p = positive("contact.tangential_stiffness_ratio", c.tangential_stiffness_ratio)) {
+    return p;
+  }
+  return non_negative("contact.tangential_damping_ratio", c.tangential_damping_ratio);
 }
 
 /// A bridge of volume `v` reaches `rupture_distance(v)` beyond contact: every method's search
@@ -149,6 +157,7 @@ Problem check_liquid_volumes(const SceneConfig& s) {
         "liquid.liquid_content",
         fmt::format("must be in [0, 1] (liquid volume / solid volume), got {}", l.liquid_content));
   }
+  if (auto p = non_negative("liquid.film_radius", l.film_radius)) return p;
   if (!(l.film_share >= 0.0 && l.film_share <= 1.0)) {
     return fail("liquid.film_share", fmt::format("must be in [0, 1], got {}", l.film_share));
   }

@@ -120,6 +120,13 @@ toml::table contact_table(const ContactConfig& c) {
   if (c.normal == NormalLaw::linear) {
     return toml::table{{"normal", "linear"}, {"linear_stiffness", c.linear_stiffness}};
   }
+  if (c.normal == NormalLaw::linear_viscoelastic) {
+    return toml::table{{"normal", "linear_viscoelastic"},
+                       {"collision_time", c.collision_time},
+                       {"reference_radius", c.reference_radius},
+                       {"tangential_stiffness_ratio", c.tangential_stiffness_ratio},
+                       {"tangential_damping_ratio", c.tangential_damping_ratio}};
+  }
   return toml::table{{"normal", "hertz"}};
 }
 
@@ -133,6 +140,8 @@ toml::table liquid_table(const LiquidConfig& l) {
     t.insert("liquid_content", l.liquid_content);
     t.insert("film_share", l.film_share);
     t.insert("max_bridge_volume", l.max_bridge_volume);
+    if (l.film_radius > 0.0) t.insert("film_radius", l.film_radius);
+    if (l.proportional_draw) t.insert("bridge_draw", "proportional");
   } else {
     t.insert("bridge_volume", l.bridge_volume);
   }

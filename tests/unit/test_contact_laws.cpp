@@ -6,6 +6,7 @@
 
 #include "engine/contact/hertz_mindlin.hpp"
 #include "engine/contact/linear_spring_dashpot.hpp"
+#include "engine/contact/linear_viscoelastic.hpp"
 #include "engine/contact/rolling_resistance.hpp"
 
 namespace drumlab {
@@ -89,6 +90,48 @@ TEST(LinearSpringDashpot, ForceAndDampingForExactRestitution) {
               1e-15);
   EXPECT_NEAR(law.elastic_energy(2e-3, 0.0), 0.5 * k * 4e-6, 1e-15);
   EXPECT_NEAR(law.tangential(0.0, 0.0, m).stiffness, 2.0 / 7.0 * k, 1e-12);
+}
+
+// MercuryDPM's setCollisionTimeAndRestitutionCoefficient(t_c, e, m): gamma = -m ln(e) / t_c,
+// k = m/2 (pi^2/t_c^2 + (gamma/m)^2); the reference pair (m* = m/2) has exactly t_c and e, a wall
+// contact (m* = m) neither; the tangential spring and dashpot are 2/7 of the normal ones.
+TEST(LinearViscoelastic, CollisionTimeAndRestitutionSetStiffnessAndDamping) {
+  const double t_c = 1.4e-3, e = 0.5, m = 5e-5;
+  const auto law = LinearViscoelastic::from_collision(t_c, e, m, 2.0 / 7.0, 2.0 / 7.0);
+  const double gamma = -m * std::log(e) / t_c;
+  const double k = 0.5 * m * (std::pow(std::numbers::pi / t_c, 2) + std::pow(gamma / m, 2));
+  EXPECT_NEAR(law.damping_coefficient, gamma, 1e-14 * gamma);
+  EXPECT_NEAR(law.stiffness, k, 1e-14 * k);
+  EXPECT_NEAR(law.contact_duration(0.5 * m), t_c, 1e-13 * t_c);
+  EXPECT_NEAR(law.restitution(0.5 * m), e, 1e-13);
+  // The same k and gamma for a wall contact: a longer contact, a higher restitution.
+  const double wd = std::sqrt(k / m - std::pow(gamma / (2.0 * m), 2));
+  EXPECT_NEAR(law.contact_duration(m), std::numbers::pi / wd, 1e-13 * t_c);
+  EXPECT_NEAR(law.restitution(m), std::exp(-gamma * std::numbers::pi / wd / (2.0 * m)), 1e-13);
+  EXPECT_GT(law.restitution(m), e + 0.1);
+  // Constant damping: the force does not depend on m*; not clipped.
+  EXPECT_DOUBLE_EQ(law.force(1e-5, -0.1, 0.0, m), law.force(1e-5, -0.1, 0.0, 0.1 * m));
+  EXPECT_NEAR(law.force(1e-5, -0.1, 0.0, m), k * 1e-5 + gamma * 0.1, 1e-12 * k * 1e-5);
+  EXPECT_LT(law.force(1e-9, 0.5, 0.0, m), 0.0);
+  const TangentialCoefficients tc = law.tangential(1e-5, 0.0, m);
+  EXPECT_DOUBLE_EQ(tc.stiffness, 2.0 / 7.0 * law.stiffness);
+  EXPECT_DOUBLE_EQ(tc.damping, 2.0 / 7.0 * law.damping_coefficient);
+  EXPECT_NEAR(law.elastic_energy(2e-5, 0.0), 0.5 * k * 4e-10, 1e-12 * k * 4e-10);
+  // Elastic (e = 1): no damping, k = m pi^2 / (2 t_c^2).
+  const auto elastic = LinearViscoelastic::from_collision(t_c, 1.0, m, 0.4, 0.1);
+  EXPECT_EQ(elastic.damping_coefficient, 0.0);
+  EXPECT_NEAR(elastic.stiffness, 0.5 * m * std::pow(std::numbers::pi / t_c, 2), 1e-14 * k);
+  EXPECT_DOUBLE_EQ(elastic.tangential(0.0, 0.0, m).stiffness, 0.4 * elastic.stiffness);
+}
+
+// The peer's own figures: RotatingDrumWet (r = 2 mm, rho = 1500, t_c = 0.1 sqrt(r / g), e = 0.5)
+// logs "set stiffness to 127.461 and dissipation to 0.024389" (6 significant digits).
+TEST(LinearViscoelastic, MatchesTheMercuryDrumsLoggedStiffnessAndDissipation) {
+  const double r = 2e-3, mass = 1500.0 * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+  const auto law =
+      LinearViscoelastic::from_collision(0.1 * std::sqrt(r / 9.8), 0.5, mass, 2.0 / 7.0, 2.0 / 7.0);
+  EXPECT_NEAR(law.stiffness, 127.461, 0.0005);
+  EXPECT_NEAR(law.damping_coefficient, 0.024389, 0.0000005);
 }
 
 TEST(MindlinTangential, StickingSpringAccumulatesDisplacement) {

@@ -43,6 +43,10 @@ TEST(SceneValidation, EveryShippedSceneIsValid) {
   }
 }
 
+double nan_of() {
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
 TEST(SceneValidation, ValuesSetInCodeNameTheirKey) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   struct Case {
@@ -63,6 +67,24 @@ TEST(SceneValidation, ValuesSetInCodeNameTheirKey) {
       {"performance.verlet_skin", [](SceneConfig& s) { s.performance.verlet_skin = 0.0; }},
       {"search", [](SceneConfig& s) { s.search_method = "m9"; }},
       {"output.diagnostics_every", [](SceneConfig& s) { s.output.diagnostics_every = 0; }},
+      {"contact.collision_time",
+       [](SceneConfig& s) {
+         s.contact.normal = NormalLaw::linear_viscoelastic;
+         s.contact.collision_time = nan_of();
+         s.contact.reference_radius = 0.002;
+       }},
+      {"contact.reference_radius",
+       [](SceneConfig& s) {
+         s.contact.normal = NormalLaw::linear_viscoelastic;
+         s.contact.collision_time = 1e-3;
+       }},
+      {"contact.tangential_damping_ratio",
+       [](SceneConfig& s) {
+         s.contact.normal = NormalLaw::linear_viscoelastic;
+         s.contact.collision_time = 1e-3;
+         s.contact.reference_radius = 0.002;
+         s.contact.tangential_damping_ratio = -0.1;
+       }},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE(c.key);

@@ -276,7 +276,7 @@ TEST(SceneWriter, SeedBeyondTomlIntegersIsRefusedNamingTheKey) {
 /// makes this fail to compile. Then give the field a setter in `field_setters()`, write it in
 /// engine/scene/scene_writer.cpp and raise its count here.
 constexpr int kSceneFields = 16, kDrumFields = 5, kClassFields = 3, kMaterialFields = 6,
-              kContactFields = 2, kLiquidFields = 13, kCohesionFields = 2, kFillFields = 7,
+              kContactFields = 6, kLiquidFields = 15, kCohesionFields = 2, kFillFields = 7,
               kTimeFields = 4, kPerformanceFields = 2, kOutputFields = 2;
 
 [[maybe_unused]] void field_counts(const SceneConfig& s) {
@@ -287,10 +287,11 @@ constexpr int kSceneFields = 16, kDrumFields = 5, kClassFields = 3, kMaterialFie
   [[maybe_unused]] const auto& [class_name, radius, class_fraction] = s.classes.front();
   [[maybe_unused]] const auto& [density, youngs, poisson, restitution, friction, rolling] =
       s.material;
-  [[maybe_unused]] const auto& [normal, stiffness] = s.contact;
+  [[maybe_unused]] const auto& [normal, stiffness, collision_time, reference_radius,
+                                tangential_stiffness, tangential_damping] = s.contact;
   [[maybe_unused]] const auto& [enabled, tension, angle, volume, migration, content, film_share,
-                                max_volume, viscosity, min_gap, wall_bridges, wall_tension,
-                                wall_angle] = s.liquid;
+                                max_volume, film_radius, proportional_draw, viscosity, min_gap,
+                                wall_bridges, wall_tension, wall_angle] = s.liquid;
   [[maybe_unused]] const auto& [cohesive, energy_density] = s.cohesion;
   [[maybe_unused]] const auto& [kind, count, fraction, seed, settle, box, file] = s.fill;
   [[maybe_unused]] const auto& [dt, dt_factor, duration, revolutions] = s.time;
@@ -312,6 +313,14 @@ void migrate(SceneConfig& s, double content, double max_bridge_volume) {
   s.liquid.bridge_volume = 0.0;
   s.liquid.liquid_content = content;
   s.liquid.max_bridge_volume = max_bridge_volume;
+}
+
+/// The normal law set by a collision time and a restitution (linear_viscoelastic.hpp).
+void linear_viscoelastic(SceneConfig& s, double collision_time, double reference_radius) {
+  s.contact.normal = NormalLaw::linear_viscoelastic;
+  s.contact.linear_stiffness = 0.0;
+  s.contact.collision_time = collision_time;
+  s.contact.reference_radius = reference_radius;
 }
 
 std::vector<FieldSetter> field_setters(const fs::path& other_csv) {
@@ -359,6 +368,20 @@ std::vector<FieldSetter> field_setters(const fs::path& other_csv) {
        }},
       {"contact.linear_stiffness", B::every_key,
        [](SceneConfig& s) { s.contact.linear_stiffness = 2.5e5; }},
+      {"contact.collision_time", B::every_key,
+       [](SceneConfig& s) { linear_viscoelastic(s, 1e-3 / 3.0, 0.01); }},
+      {"contact.reference_radius", B::every_key,
+       [](SceneConfig& s) { linear_viscoelastic(s, 1e-3, 0.1 / 7.0); }},
+      {"contact.tangential_stiffness_ratio", B::every_key,
+       [](SceneConfig& s) {
+         linear_viscoelastic(s, 1e-3, 0.01);
+         s.contact.tangential_stiffness_ratio = 0.4;
+       }},
+      {"contact.tangential_damping_ratio", B::every_key,
+       [](SceneConfig& s) {
+         linear_viscoelastic(s, 1e-3, 0.01);
+         s.contact.tangential_damping_ratio = 0.0;
+       }},
       {"liquid.enabled", B::every_key, [](SceneConfig& s) { s.liquid = LiquidConfig{}; }},
       {"liquid.surface_tension", B::every_key,
        [](SceneConfig& s) { s.liquid.surface_tension = 0.05; }},
@@ -373,6 +396,16 @@ std::vector<FieldSetter> field_setters(const fs::path& other_csv) {
          s.liquid.film_share = 0.75;
        }},
       {"liquid.max_bridge_volume", B::every_key, [](SceneConfig& s) { migrate(s, 0.05, 4e-9); }},
+      {"liquid.film_radius", B::every_key,
+       [](SceneConfig& s) {
+         migrate(s, 0.05, 1e-9);
+         s.liquid.film_radius = 0.1 / 3.0;
+       }},
+      {"liquid.proportional_draw", B::every_key,
+       [](SceneConfig& s) {
+         migrate(s, 0.05, 1e-9);
+         s.liquid.proportional_draw = true;
+       }},
       {"liquid.viscosity", B::every_key,
        [](SceneConfig& s) {
          s.liquid.viscosity = 1e-3;

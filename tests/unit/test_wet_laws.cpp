@@ -271,6 +271,40 @@ TEST(WetLaws, NoFilmNoBridgeAndTheInitialSplit) {
   EXPECT_NEAR(s.liquid().films, total_liquid(split), 1e-12 * total_liquid(split));
 }
 
+// MercuryDPM's drum (LiquidMigrationWilletInteraction::form, RotatingDrumWet.cpp): a bridge of
+// V_max draws from the films in proportion to them; every particle gets the film of a sphere of
+// film_radius. The draw against its closed form, then a run: equal films, liquid conserved.
+TEST(WetLaws, ProportionalDrawAndFilmRadius) {
+  LiquidBridge b;
+  b.migration = true;
+  b.max_volume = 1e-9;
+  b.proportional_draw = true;
+  double fi = 3e-9, fj = 1e-9;
+  EXPECT_EQ(b.take_from_films(fi, fj), 1e-9);
+  EXPECT_NEAR(fi, 3e-9 - 0.75e-9, 1e-24);
+  EXPECT_NEAR(fj, 1e-9 - 0.25e-9, 1e-24);
+  fi = 0.25e-9, fj = 0.5e-9;  // below V_max: all of both films, as the halves
+  EXPECT_DOUBLE_EQ(b.take_from_films(fi, fj), 0.75e-9);
+  EXPECT_EQ(fi + fj, 0.0);
+  b.proportional_draw = false;  // the halves: 0.5e-9 from each
+  fi = 3e-9, fj = 1e-9;
+  b.take_from_films(fi, fj);
+  EXPECT_NEAR(fi, 2.5e-9, 1e-24);
+  EXPECT_NEAR(fj, 0.5e-9, 1e-24);
+
+  const SceneConfig scene =
+      scene_with(kMigration + "film_radius = 0.005\nbridge_draw = \"proportional\"\n");
+  const Particles start = random_fill(scene);
+  Simulation sim(scene, start);
+  const double r = 0.005;
+  const double film = scene.liquid.liquid_content * (4.0 / 3.0) * kPi * r * r * r;
+  for (double f : *sim.particles().find_array(kLiquidFilmArray)) EXPECT_EQ(f, film);
+  const double total = film * static_cast<double>(start.size());
+  sim.advance(300);
+  EXPECT_GT(sim.liquid().bridge_count, 5u);
+  EXPECT_NEAR(sim.liquid().total(), total, 1e-12 * total);
+}
+
 // ---------------------------------------------------------------- sjkr adhesion
 
 // Two spheres of radius r at rest, slightly overlapped, no gravity, no drum motion.
@@ -358,6 +392,14 @@ TEST(WetLaws, BadWetParametersAreRefusedWithOneLine) {
        "liquid.film_share"},
       {"both volumes", liquid + "liquid_content = 0.01\nbridge_volume = 1e-9\n",
        "liquid.bridge_volume"},
+      {"film radius without migration", liquid + "bridge_volume = 1e-9\nfilm_radius = 0.002\n",
+       "liquid.film_radius"},
+      {"negative film radius",
+       liquid + "liquid_content = 0.01\nmax_bridge_volume = 1e-9\nfilm_radius = -0.002\n",
+       "liquid.film_radius"},
+      {"unknown draw",
+       liquid + "liquid_content = 0.01\nmax_bridge_volume = 1e-9\nbridge_draw = \"all\"\n",
+       "liquid.bridge_draw"},
       {"viscosity without gap", liquid + "bridge_volume = 1e-9\nviscosity = 0.01\n",
        "liquid.min_gap"},
       {"wall angle", liquid + "bridge_volume = 1e-9\nwall_contact_angle_deg = 95\n",

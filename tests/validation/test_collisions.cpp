@@ -6,6 +6,7 @@
 
 #include "engine/contact/hertz_mindlin.hpp"
 #include "engine/contact/linear_spring_dashpot.hpp"
+#include "engine/contact/linear_viscoelastic.hpp"
 #include "physics_test_helpers.hpp"
 
 namespace drumlab {
@@ -39,6 +40,35 @@ TEST_P(LinearCollision, RestitutionAndDurationMatchTheExactFormulas) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Restitution, LinearCollision, ::testing::Values(0.5, 0.9));
+
+// The linear law set by a collision time and a restitution (MercuryDPM's): the reference pair (two
+// spheres of reference_radius) collides for t_c with restitution e; a pair of half the radius
+// keeps k and gamma, so it has the closed-form t_c(m*) and e(m*) of LinearViscoelastic instead.
+TEST(LinearViscoelasticCollision, ReferencePairHasTheSetTimeAndRestitution) {
+  SceneConfig s = test::make_scene(kRadius);
+  s.contact.normal = NormalLaw::linear_viscoelastic;
+  s.contact.collision_time = 2e-3;
+  s.contact.reference_radius = kRadius;
+  s.material.restitution = 0.5;
+  const test::Collision c = test::collide(s, kRadius, 1.0, 2e-3 / 1000.0);
+  std::printf("linear_viscoelastic: restitution %.6f, duration %.6e s\n", c.restitution,
+              c.duration);
+  EXPECT_NEAR(c.restitution, 0.5, 0.005);
+  EXPECT_NEAR(c.duration, 2e-3, 0.005 * 2e-3);
+
+  s.contact.reference_radius = 2.0 * kRadius;  // kRadius spheres now have 1/8 of its mass
+  const double m = 2.0 * pair_mass(s);
+  const double m_ref = 8.0 * m;
+  const auto law = LinearViscoelastic::from_collision(2e-3, 0.5, m_ref, 2.0 / 7.0, 2.0 / 7.0);
+  const test::Collision small = test::collide(s, kRadius, 1.0, 2e-3 / 1000.0);
+  std::printf(
+      "linear_viscoelastic, 1/8 of the reference mass: restitution %.6f (closed form "
+      "%.6f), duration %.6e s (%.6e s)\n",
+      small.restitution, law.restitution(0.5 * m), small.duration, law.contact_duration(0.5 * m));
+  EXPECT_NEAR(small.restitution, law.restitution(0.5 * m), 0.01 * law.restitution(0.5 * m));
+  EXPECT_NEAR(small.duration, law.contact_duration(0.5 * m), 0.005 * law.contact_duration(0.5 * m));
+  EXPECT_LT(small.restitution, 0.4);  // lighter pair, same damping: more dissipation
+}
 
 // Hertz, elastic (e = 1): t_c = 2.868 (m*^2 / (R* E*^2 v))^{1/5}; tolerance 2 % (dt = t_c/2000,
 // so the discretisation error is ~0.1 %), and the rebound speed equals the impact speed to 0.1 %.
