@@ -8,6 +8,7 @@
 #include "engine/contact/linear_spring_dashpot.hpp"
 #include "engine/contact/linear_viscoelastic.hpp"
 #include "engine/contact/rolling_resistance.hpp"
+#include "engine/contact/rolling_spring.hpp"
 
 namespace drumlab {
 namespace {
@@ -132,6 +133,47 @@ TEST(LinearViscoelastic, MatchesTheMercuryDrumsLoggedStiffnessAndDissipation) {
       LinearViscoelastic::from_collision(0.1 * std::sqrt(r / 9.8), 0.5, mass, 2.0 / 7.0, 2.0 / 7.0);
   EXPECT_NEAR(law.stiffness, 127.461, 0.0005);
   EXPECT_NEAR(law.damping_coefficient, 0.024389, 0.0000005);
+}
+
+// The peer's rolling spring (FrictionInteraction.cc): v_r = -2 R* n x w_rel, xi += v_r dt, F_r =
+// -k xi - gamma v_r, torque on i 2 R* n x F_r; at the Coulomb limit |F_r| = mu_r |F_n| and xi
+// follows so that spring and dashpot give the limit.
+TEST(RollingSpring, StickingSpringAndDashpotThenTheCoulombLimit) {
+  const RollingSpring law{200.0, 0.01, 0.5};
+  const Vec3 n(0.0, 1.0, 0.0), w(0.0, 0.0, 2.0), none = Vec3::Zero();
+  const double r = 2e-3, dt = 1e-5, fn = 1.0;
+  const Vec3 v_r = -2.0 * r * n.cross(w);  // (-8e-3, 0, 0)
+  EXPECT_NEAR(v_r.x(), -8e-3, 1e-18);
+  Vec3 xi = Vec3::Zero();
+  const Vec3 m1 = law.torque(xi, n, w, none, 0.0, r, fn, dt);
+  EXPECT_NEAR((xi - v_r * dt).norm(), 0.0, 1e-20);
+  const Vec3 f1 = -200.0 * xi - 0.01 * v_r;
+  EXPECT_NEAR((m1 - 2.0 * r * n.cross(f1)).norm(), 0.0, 1e-18);
+  EXPECT_LT(m1.dot(w), 0.0);  // resists the rotation
+  // Sticking: the spring grows by v_r dt a step.
+  const Vec3 m2 = law.torque(xi, n, w, none, 0.0, r, fn, dt);
+  EXPECT_NEAR((xi - 2.0 * dt * v_r).norm(), 0.0, 1e-20);
+  EXPECT_NEAR((m2 - 2.0 * r * n.cross(Vec3(-200.0 * xi - 0.01 * v_r))).norm(), 0.0, 1e-18);
+  // Past the limit (a large spring): |F_r| = mu_r |F_n|, so |M| = 2 R* mu_r |F_n|, and the spring
+  // is what gives that force with the dashpot.
+  xi = Vec3(1e-2, 0.0, 0.0);
+  const Vec3 m3 = law.torque(xi, n, w, none, 0.0, r, fn, dt);
+  EXPECT_NEAR(m3.norm(), 2.0 * r * 0.5 * fn, 1e-15);
+  const Vec3 f3 = -200.0 * xi - 0.01 * v_r;
+  EXPECT_NEAR(f3.norm(), 0.5 * fn, 1e-12);
+  EXPECT_NEAR((m3 - 2.0 * r * n.cross(f3)).norm(), 0.0, 1e-15);
+  // Swapping i and j (n and w_rel negated) leaves v_r, the spring and the force as they were: the
+  // torque on the other body is the opposite one.
+  Vec3 xi_i = Vec3(1e-6, 0.0, 2e-6), xi_j = xi_i;
+  const Vec3 mi = law.torque(xi_i, n, w, none, 0.0, r, fn, dt);
+  const Vec3 mj = law.torque(xi_j, -n, -w, none, 0.0, r, fn, dt);
+  EXPECT_EQ(xi_i, xi_j);
+  EXPECT_NEAR((mi + mj).norm(), 0.0, 1e-18);
+  // The pair's objective correction: - (xi . v_ij) n / |d| dt.
+  Vec3 xc = Vec3(1e-6, 0.0, 0.0);
+  const Vec3 v_ij(0.5, 0.0, 0.0);
+  law.torque(xc, n, Vec3::Zero(), v_ij, 1.0 / (2.0 * r), r, fn, dt);
+  EXPECT_NEAR((xc - Vec3(1e-6, -1e-6 * 0.5 / (2.0 * r) * dt, 0.0)).norm(), 0.0, 1e-20);
 }
 
 TEST(MindlinTangential, StickingSpringAccumulatesDisplacement) {
