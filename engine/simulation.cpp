@@ -19,6 +19,7 @@
 #include "engine/periodic.hpp"
 #include "engine/search/verlet_list.hpp"
 #include "engine/spatial_order.hpp"
+#include "engine/stability.hpp"
 
 namespace drumlab {
 
@@ -28,20 +29,9 @@ namespace {
 
 /// "Centre outside the drum" tolerance, relative to the drum radius (round-off only).
 constexpr double kOutsideTolerance = 1e-9;
-/// Largest overlap / radius a healthy run may show.
-constexpr double kMaxOverlapRatio = 0.5;
 
 double seconds_between(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
-}
-
-// The one-line error of a run that went unstable, with what to do about it.
-UnstableError unstable_error(std::uint64_t step, double t, std::string_view why, double dt,
-                             double rayleigh_time) {
-  return UnstableError(fmt::format(
-      "unstable at step {} (t = {:.6g} s): {}; try a smaller time.dt (now {:.4g} s = {:.3g} "
-      "Rayleigh times)",
-      step, t, why, dt, dt / rayleigh_time));
 }
 
 std::string scene_label(const SceneConfig& s) {
@@ -57,6 +47,37 @@ double smallest_radius(const SceneConfig& scene, const Particles& p) {
 }
 
 /// Sums and maxima of the ranks' diagnostics (a decomposed run: every rank calls this together).
+/// The overlap site of particle i on a wall part (contact c) of a drum turning at omega.
+OverlapSite wall_site(const Particles& p, std::size_t i, WallPart part, const WallContact& c,
+                      double omega) {
+  OverlapSite s;
+  s.id_a = p.id[i];
+  s.wall = part;
+  s.radius_a = p.radius[i];
+  s.point = p.position[i] - (p.radius[i] - 0.5 * c.overlap) * c.normal;
+  const Vec3 dv = p.velocity[i] - Drum::wall_velocity(s.point, omega);
+  s.relative_speed = dv.norm();
+  s.closing_speed = -dv.dot(c.normal);  // the normal points into the particle
+  return s;
+}
+
+/// The overlap site of particles i and j, dx = x_i - x_j (nearest image).
+OverlapSite pair_site(const Particles& p, std::size_t i, std::size_t j, const Vec3& dx) {
+  OverlapSite s;
+  s.id_a = p.id[i];
+  s.id_b = p.id[j];
+  s.radius_a = p.radius[i];
+  s.radius_b = p.radius[j];
+  const double dist = dx.norm();
+  const Vec3 n = dx / dist;  // from j to i
+  const double delta = p.radius[i] + p.radius[j] - dist;
+  s.point = p.position[i] - (p.radius[i] - 0.5 * delta) * n;
+  const Vec3 dv = p.velocity[i] - p.velocity[j];
+  s.relative_speed = dv.norm();
+  s.closing_speed = -dv.dot(n);
+  return s;
+}
+
 void reduce_diagnostics(DomainHooks& domain, Diagnostics& d) {
   for (double* v : {&d.kinetic_energy, &d.rotational_energy, &d.potential_energy, &d.elastic_energy,
                     &d.liquid_volume}) {
@@ -66,7 +87,9 @@ void reduce_diagnostics(DomainHooks& domain, Diagnostics& d) {
                          &d.wall_bridges}) {
     *v = static_cast<std::size_t>(domain.sum(static_cast<std::uint64_t>(*v)));
   }
+  const double local = d.max_overlap_ratio;
   d.max_overlap_ratio = domain.max(d.max_overlap_ratio);
+  reduce_overlap_site(domain, local, d.max_overlap_ratio, d.max_overlap_site);
 }
 
 }  // namespace
@@ -375,7 +398,8 @@ void Simulation::compute_forces(double history_dt, bool count) {
   } catch (const InputError& e) {
     if (!count) throw;  // initial state: the input is at fault
     throw unstable_error(steps_ + 1, time_ + dt_,
-                         fmt::format("contact search failed: {}", e.what()), dt_, rayleigh_time_);
+                         fmt::format("contact search failed: {}; try a smaller {}", e.what(),
+                                     time_step_key(dt_, rayleigh_time_)));
   }
   const auto t1 = Clock::now();
   if (!impl_->forces_cleared) particles_.clear_forces();
@@ -617,7 +641,10 @@ Diagnostics Simulation::diagnostics() const {
       if (c.overlap <= 0.0) continue;
       ++d.wall_contacts;
       d.elastic_energy += model.wall_elastic_energy(c.overlap, p.radius[i]);
-      d.max_overlap_ratio = std::max(d.max_overlap_ratio, c.overlap / p.radius[i]);
+      if (c.overlap / p.radius[i] > d.max_overlap_ratio) {
+        d.max_overlap_ratio = c.overlap / p.radius[i];
+        d.max_overlap_site = wall_site(p, i, static_cast<WallPart>(part), c, omega_);
+      }
     }
   }
   const ContactList& contacts = impl_->contacts;
@@ -634,8 +661,10 @@ Diagnostics Simulation::diagnostics() const {
       ++d.contacts;
       const double r_eff = p.radius[i] * p.radius[j] / (p.radius[i] + p.radius[j]);
       d.elastic_energy += model.pair_elastic_energy(delta, r_eff);
-      d.max_overlap_ratio =
-          std::max(d.max_overlap_ratio, delta / std::min(p.radius[i], p.radius[j]));
+      if (delta / std::min(p.radius[i], p.radius[j]) > d.max_overlap_ratio) {
+        d.max_overlap_ratio = delta / std::min(p.radius[i], p.radius[j]);
+        d.max_overlap_site = pair_site(p, i, j, dx);
+      }
     }
   }
   const LiquidTotals liquid = this->liquid();
@@ -648,17 +677,18 @@ Diagnostics Simulation::diagnostics() const {
 
 void Simulation::check_stability() const {
   const Diagnostics d = diagnostics();
-  const auto fail = [&](const std::string& why) {
-    throw unstable_error(steps_, time_, why, dt_, rayleigh_time_);
-  };
+  const auto fail = [&](const std::string& why) { throw unstable_error(steps_, time_, why); };
   if (d.non_finite > 0) {
-    fail(fmt::format("{} particle(s) with non-finite position or velocity", d.non_finite));
+    fail(fmt::format("{} particle(s) with non-finite position or velocity; try a smaller {}",
+                     d.non_finite, time_step_key(dt_, rayleigh_time_)));
   }
   if (d.outside_drum > 0) {
-    fail(fmt::format("{} particle centre(s) outside the drum", d.outside_drum));
+    fail(fmt::format("{} particle centre(s) outside the drum; try a smaller {}", d.outside_drum,
+                     time_step_key(dt_, rayleigh_time_)));
   }
-  if (d.max_overlap_ratio > kMaxOverlapRatio) {
-    fail(fmt::format("overlap of {:.3g} radii (limit {})", d.max_overlap_ratio, kMaxOverlapRatio));
+  if (d.max_overlap_ratio > scene_.time.max_overlap) {
+    fail(overlap_reason(d.max_overlap_site, d.max_overlap_ratio, scene_.time.max_overlap, dt_,
+                        rayleigh_time_));
   }
 }
 

@@ -13,6 +13,7 @@
 #include "engine/scene/scene_config.hpp"
 #include "engine/search/contact_search.hpp"
 #include "engine/simulation_state.hpp"
+#include "engine/stability.hpp"
 
 namespace drumlab {
 
@@ -44,6 +45,7 @@ struct Diagnostics {
   double potential_energy = 0.0;   ///< gravitational, relative to the drum axis, J
   double elastic_energy = 0.0;     ///< stored in normal contacts, J
   double max_overlap_ratio = 0.0;  ///< max overlap / smaller radius over all contacts
+  OverlapSite max_overlap_site;    ///< the contact with that overlap (if any)
   std::size_t outside_drum = 0;    ///< particle centres outside the drum volume
   std::size_t non_finite = 0;      ///< particles with a non-finite position or velocity
   std::size_t contacts = 0;        ///< particle-particle contacts

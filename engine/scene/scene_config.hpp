@@ -27,6 +27,11 @@ struct Material {
 /// linear_viscoelastic: linear_viscoelastic.hpp (k and damping from a collision time and e).
 enum class NormalLaw { hertz, linear, linear_viscoelastic };
 
+/// [time] max_overlap: its default and the largest value accepted (radii of the smaller body).
+/// Beyond one radius the overlap lens of a small sphere on a large one is no longer a lens.
+inline constexpr double kDefaultMaxOverlap = 0.5;
+inline constexpr double kMaxOverlapBound = 1.0;
+
 struct ContactConfig {
   NormalLaw normal = NormalLaw::hertz;
   /// Normal stiffness of the linear spring-dashpot law (N/m); only used with NormalLaw::linear.
@@ -89,6 +94,9 @@ struct TimeConfig {
   double dt_factor = 0.2;          ///< fraction of the Rayleigh time of the smallest particle
   std::optional<double> duration;  ///< simulated seconds after settling
   std::optional<double> revolutions;
+  /// Largest overlap a healthy run may show, in radii of the smaller body of a contact: a larger
+  /// one stops the run (UnstableError).
+  double max_overlap = kDefaultMaxOverlap;
 
   friend bool operator==(const TimeConfig&, const TimeConfig&) = default;
 };

@@ -338,7 +338,7 @@ void read_time(const Scope& root, SceneConfig& scene) {
     if (dynamic) root.missing("time", "[time] with duration or revolutions");
     return;
   }
-  s->allow_only({"dt", "dt_factor", "duration", "revolutions"});
+  s->allow_only({"dt", "dt_factor", "duration", "revolutions", "max_overlap"});
   TimeConfig& t = scene.time;
   if (s->has("dt") && s->has("dt_factor")) s->fail("dt_factor", "give either dt or dt_factor");
   t.dt = s->number("dt");
@@ -348,6 +348,7 @@ void read_time(const Scope& root, SceneConfig& scene) {
   }
   t.duration = s->number("duration");
   t.revolutions = s->number("revolutions");
+  t.max_overlap = s->number_or("max_overlap", t.max_overlap);
   if (dynamic && !t.duration && !t.revolutions) {
     s->missing("duration", "run length: duration in s or revolutions");
   }

@@ -239,6 +239,11 @@ Problem check_time(const SceneConfig& s) {
   if (t.duration && t.revolutions) {
     return fail("time.revolutions", "give either duration or revolutions, not both");
   }
+  if (!(t.max_overlap > 0.0 && t.max_overlap <= kMaxOverlapBound)) {
+    return fail("time.max_overlap",
+                fmt::format("must be in (0, {}] (radii of the smaller body), got {}",
+                            kMaxOverlapBound, t.max_overlap));
+  }
   if (s.dynamic() && !t.duration && !t.revolutions) {
     return fail("time.duration", "missing (run length: duration in s or revolutions)");
   }

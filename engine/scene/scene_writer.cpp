@@ -179,6 +179,7 @@ toml::table time_table(const TimeConfig& t) {
   }
   if (t.duration) out.insert("duration", *t.duration);
   if (t.revolutions) out.insert("revolutions", *t.revolutions);
+  out.insert("max_overlap", t.max_overlap);
   return out;
 }
 

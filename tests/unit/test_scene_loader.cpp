@@ -262,6 +262,8 @@ TEST(SceneLoader, BadInputGivesOneLineNamingFileAndKey) {
       {"duration and revolutions", edited("revolutions = 0.5", "revolutions = 0.5\nduration = 1"),
        "time.revolutions"},
       {"no run length", edited("revolutions = 0.5", ""), "time.duration"},
+      {"max_overlap 0", edited("revolutions = 0.5", "revolutions = 0.5\nmax_overlap = 0"),
+       "time.max_overlap"},
       {"gravity of two numbers", edited("[0.5, -9.0, 0.25]", "[0.5, -9.0]"), "gravity"},
       {"missing material", edited("[material]", "[materials]"), "materials"},
       {"diagnostics_every 0", edited("diagnostics_every = 50", "diagnostics_every = 0"),

@@ -64,6 +64,7 @@ TEST(SceneValidation, ValuesSetInCodeNameTheirKey) {
       {"fill.count", [](SceneConfig& s) { s.fill.count = 0; }},
       {"fill.volume_fraction", [](SceneConfig& s) { s.fill.volume_fraction = 0.9; }},
       {"time.dt", [](SceneConfig& s) { s.time.dt = -1e-5; }},
+      {"time.max_overlap", [](SceneConfig& s) { s.time.max_overlap = 1.5; }},
       {"performance.verlet_skin", [](SceneConfig& s) { s.performance.verlet_skin = 0.0; }},
       {"search", [](SceneConfig& s) { s.search_method = "m9"; }},
       {"output.diagnostics_every", [](SceneConfig& s) { s.output.diagnostics_every = 0; }},

@@ -277,7 +277,7 @@ TEST(SceneWriter, SeedBeyondTomlIntegersIsRefusedNamingTheKey) {
 /// engine/scene/scene_writer.cpp and raise its count here.
 constexpr int kSceneFields = 16, kDrumFields = 5, kClassFields = 3, kMaterialFields = 6,
               kContactFields = 6, kLiquidFields = 15, kCohesionFields = 2, kFillFields = 7,
-              kTimeFields = 4, kPerformanceFields = 2, kOutputFields = 2;
+              kTimeFields = 5, kPerformanceFields = 2, kOutputFields = 2;
 
 [[maybe_unused]] void field_counts(const SceneConfig& s) {
   [[maybe_unused]] const auto& [name, source, description, gravity, drum, classes, material, wall,
@@ -294,7 +294,7 @@ constexpr int kSceneFields = 16, kDrumFields = 5, kClassFields = 3, kMaterialFie
                                 wall_bridges, wall_tension, wall_angle] = s.liquid;
   [[maybe_unused]] const auto& [cohesive, energy_density] = s.cohesion;
   [[maybe_unused]] const auto& [kind, count, fraction, seed, settle, box, file] = s.fill;
-  [[maybe_unused]] const auto& [dt, dt_factor, duration, revolutions] = s.time;
+  [[maybe_unused]] const auto& [dt, dt_factor, duration, revolutions, max_overlap] = s.time;
   [[maybe_unused]] const auto& [skin, sort_every] = s.performance;
   [[maybe_unused]] const auto& [directory, diagnostics] = s.output;
 }
@@ -443,6 +443,7 @@ std::vector<FieldSetter> field_setters(const fs::path& other_csv) {
       {"time.dt_factor", B::every_key, [](SceneConfig& s) { s.time.dt_factor = 0.5; }},
       {"time.duration", B::every_key, [](SceneConfig& s) { s.time.duration = 2.0 / 3.0; }},
       {"time.revolutions", B::paper_packing, [](SceneConfig& s) { s.time.revolutions = 1e-3; }},
+      {"time.max_overlap", B::every_key, [](SceneConfig& s) { s.time.max_overlap = 0.75; }},
       {"performance.verlet_skin", B::every_key,
        [](SceneConfig& s) { s.performance.verlet_skin = 0.3; }},
       {"performance.sort_every", B::every_key,
