@@ -43,6 +43,8 @@ namespace {
 constexpr int kSpokes = 6;
 /// Frames at least this high get the full overlay column; smaller ones two short lines.
 constexpr int kFullOverlayHeight = 480;
+/// Height / width above which a view counts as portrait (the legend goes below the disk).
+constexpr double kPortrait = 1.15;
 
 /// The continuous map: 256 colours of viridis, no categories.
 void use_viridis(vtkLookupTable* lut) {
@@ -203,7 +205,10 @@ struct DrumView::Impl {
   Impl(const ViewOptions& o, RenderTarget& t) : options(o), target(t) {}
   void build_scene();
   void build_annotations();  // legend and text overlay, in the top layer
-  void place_text();         // the overlay text's corner and font for the frame's height
+  /// A landscape or square view: the legend upright at the right edge; a portrait one (the
+  /// workbench's view between its panel columns): across the bottom, below the drum's disk.
+  void place_legend();
+  void place_text();  // the overlay text's corner and font for the frame's height
   void build_drum(const FrameSnapshot& s);
   void update_particles(const FrameSnapshot& s);
   void update_overlay(const FrameSnapshot& s);
@@ -266,12 +271,26 @@ void DrumView::Impl::build_scene() {
   if (options.grid || options.focus_id) grid = std::make_unique<GridOverlay>(renderer, top);
 }
 
+void DrumView::Impl::place_legend() {
+  if (options.height > kPortrait * options.width) {
+    legend->SetOrientationToHorizontal();
+    legend->UnconstrainedFontSizeOn();  // the title at its font size, not stretched to the bar
+    legend->SetPosition(0.1, 0.04);
+    legend->SetWidth(0.8);
+    legend->SetHeight(0.09);
+  } else {
+    legend->SetOrientationToVertical();
+    legend->UnconstrainedFontSizeOff();
+    legend->SetPosition(0.9, 0.1);
+    legend->SetWidth(0.07);
+    legend->SetHeight(0.8);
+  }
+}
+
 void DrumView::Impl::build_annotations() {
   legend->SetLookupTable(lut);
   legend->SetNumberOfLabels(5);
-  legend->SetPosition(0.9, 0.1);
-  legend->SetWidth(0.07);
-  legend->SetHeight(0.8);
+  place_legend();
   legend->GetTitleTextProperty()->SetFontSize(14);
   legend->GetLabelTextProperty()->SetFontSize(12);
   text->GetTextProperty()->SetFontFamilyToCourier();
@@ -417,7 +436,9 @@ void DrumView::Impl::place_camera() {
   if (options.camera == CameraMode::axis) {
     cam->ParallelProjectionOn();
     cam->SetPosition(0.0, 0.0, 0.5 * depth + far);
-    cam->SetParallelScale(1.08 * radius);
+    // The disk fits the narrower side: a portrait view is framed by its width.
+    const double portrait = static_cast<double>(options.height) / options.width;
+    cam->SetParallelScale(1.08 * radius * std::max(1.0, portrait));
   } else {
     cam->ParallelProjectionOff();
     cam->SetPosition(0.9 * far, 0.5 * far, 0.5 * depth + 1.4 * far);
@@ -563,6 +584,7 @@ void DrumView::set_size(int width, int height) {
   m.options.height = height;
   m.window->SetSize(width, height);
   m.place_text();
+  m.place_legend();
 }
 
 const ViewOptions& DrumView::options() const {

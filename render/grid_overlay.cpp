@@ -147,6 +147,9 @@ void GridOverlay::update(const FrameSnapshot& s, bool occupancy) {
   } else if (v && !v->grids.empty()) {
     drawn = v->grids.front().geometry;
   }
+  // A Verlet list's structure is its listed partners: its builder's grid only when its
+  // occupancy is asked for.
+  if (s.lists_pairs && !occupancy) drawn.reset();
   if (drawn) {
     std::int64_t layer = drawn->nz / 2;
     if (focus) {
@@ -295,9 +298,8 @@ std::string describe_focus(const FrameSnapshot& p, const SearchVisit& v, Index f
                          own != nullptr ? own->label : "", v.cells_visited, v.pairs_tested,
                          v.contacts.size(), v.grids.size() > 1 ? "\n  violet: smaller levels" : "");
     case SearchVisit::Kind::list:
-      return fmt::format("{}\n  Verlet list\n  listed partners {}\n  contacts {}{}", head,
-                         v.candidates.size(), v.contacts.size(),
-                         own != nullptr ? fmt::format("\n  cells: {}", own->label) : "");
+      return fmt::format("{}\n  Verlet list\n  listed partners {}\n  contacts {}", head,
+                         v.candidates.size(), v.contacts.size());
     case SearchVisit::Kind::all:
       break;
   }
@@ -311,8 +313,11 @@ std::string describe_focus(const FrameSnapshot& p, const SearchVisit& v, Index f
 void GridOverlay::draw_focus(const FrameSnapshot& p, const SearchVisit& v, Index focus) {
   const double z = front_z(p) + 1e-4;
   FocusCells cells;
-  cells.add_smaller_levels(v, p.position[focus], z);
-  const VisitedCells* own = cells.add_own_grid(v, z);
+  const VisitedCells* own = nullptr;
+  if (v.kind != SearchVisit::Kind::list) {  // a list's partners are drawn, not its builder's cells
+    cells.add_smaller_levels(v, p.position[focus], z);
+    own = cells.add_own_grid(v, z);
+  }
   cells_ = direct_color_actor(cells.quads.poly());
   renderer_->AddActor(cells_);
   if (own != nullptr) {

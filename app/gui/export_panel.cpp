@@ -14,7 +14,7 @@
 namespace drumlab::gui {
 
 void ExportPanel::panel(const GuiWindow& window, SimThread& sim, const FrameSnapshot* s) {
-  window.place(-370.0f, -230.0f, 360);
+  window.place(GuiWindow::kRightX, GuiWindow::kExportY, GuiWindow::kRightPanels);
   ImGui::Begin("Export");
   ImGui::InputText("PNG", &png_path_);
   ImGui::SameLine();

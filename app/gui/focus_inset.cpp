@@ -44,8 +44,7 @@ void FocusInset::render(const FrameSnapshot& s, std::uint64_t generation,
 
 void FocusInset::panel(std::optional<Index> focus_id) {
   if (!view_ || !on_ || !focus_id) return;
-  const auto edge = -static_cast<float>(size_) - 20.0f;
-  window_.place(edge - 370.0f, edge - 40.0f, 0);  // bottom right, beside the Export panel
+  window_.place(GuiWindow::kRightX, GuiWindow::kInsetY, 0);  // right column, above Export
   ImGui::Begin("Focus inset", &on_, ImGuiWindowFlags_AlwaysAutoResize);
   const auto size = static_cast<float>(size_);
   // The texture's rows run bottom to top: flip it.

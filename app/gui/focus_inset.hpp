@@ -5,13 +5,12 @@
 #include <functional>
 #include <memory>
 
+#include "app/gui/gui_window.hpp"
 #include "app/gui/view_image.hpp"
 #include "render/current_gl_context.hpp"
 #include "render/drum_view.hpp"
 
 namespace drumlab::gui {
-
-class GuiWindow;
 
 class FocusInset {
  public:
@@ -34,7 +33,7 @@ class FocusInset {
  private:
   const GuiWindow& window_;
   bool on_ = true;
-  int size_ = 360;
+  int size_ = GuiWindow::kInsetSize;
   ViewImage image_;
   std::unique_ptr<render::CurrentGlContext> target_;
   std::unique_ptr<render::DrumView> view_;

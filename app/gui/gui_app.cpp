@@ -49,7 +49,7 @@ GuiApp::GuiApp(const GuiOptions& options) : options_(checked_flags(options)), te
 
   window_ = std::make_unique<GuiWindow>(options.width, options.height,
                                         !(options.frames > 0 || options.bench));
-  view.width = window_->width();
+  view.width = window_->view_area().width;
   view.height = window_->height();
   view_ = std::make_unique<MainView>(*window_, view);
   inset_ = std::make_unique<FocusInset>(*window_, options.inset);

@@ -59,6 +59,9 @@ class GuiApp {
   std::optional<Index> pick(double x, double y);
   /// Headless: --orbit, --zoom and --pick, then one line about the view and the pick.
   void apply_view_flags();
+  /// Headless --screenshot: where the view, the drum's disk and every panel lie in the window
+  /// ("layout" lines, window units from the top left), for the layout test.
+  void report_layout(const FrameSnapshot& s);
   /// Headless --pick: the pick and an independent check that it is the front-most particle.
   void report_pick(const FrameSnapshot& s, double x, double y);
   /// New view options: the view draws them and the snapshots carry what they need.

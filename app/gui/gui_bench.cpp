@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <stdexcept>
 #include <thread>
@@ -29,6 +30,32 @@ void GuiApp::apply_view_flags() {
   fmt::print("view: front axis at ({:.1f}, {:.1f}), back axis at ({:.1f}, {:.1f}), rim {:.1f} px\n",
              axis[0], axis[1], back[0], back[1], std::hypot(rim[0] - axis[0], rim[1] - axis[1]));
   if (options_.pick) report_pick(*s, (*options_.pick)[0], (*options_.pick)[1]);
+}
+
+void GuiApp::report_layout(const FrameSnapshot& s) {
+  const auto units = window_->window_size();
+  const double scale = static_cast<double>(units[0]) / std::max(1, window_->width());  // per px
+  const GuiWindow::ViewArea a = view_->area();
+  fmt::print("layout            view {:.0f} 0 {:.0f} {}\n", a.x * scale, a.width * scale, units[1]);
+  // The disk: the mantle's front and back rims as drawn (the image is the area's, at full size).
+  render::DrumView& view = view_->drum_view();
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (int k = 0; k < 128; ++k) {
+    const double phi = 2.0 * std::numbers::pi * k / 128.0;
+    for (const double z : {0.0, s.drum_depth}) {
+      const auto p =
+          view.project(s.drum_radius * Vec3(std::cos(phi), std::sin(phi), 0.0) + Vec3(0.0, 0.0, z));
+      x0 = std::min(x0, (p[0] + a.x) * scale);
+      x1 = std::max(x1, (p[0] + a.x) * scale);
+      y0 = std::min(y0, p[1] * scale);
+      y1 = std::max(y1, p[1] * scale);
+    }
+  }
+  fmt::print("layout            drum {:.0f} {:.0f} {:.0f} {:.0f}\n", x0, y0, x1 - x0, y1 - y0);
+  for (const GuiWindow::PanelRect& p : GuiWindow::panels_shown()) {
+    fmt::print("layout            panel {:.0f} {:.0f} {:.0f} {:.0f} {}\n", p.x, p.y, p.width,
+               p.height, p.name);
+  }
 }
 
 void GuiApp::report_pick(const FrameSnapshot& s, double x, double y) {
@@ -87,7 +114,8 @@ void GuiApp::run() {
   take_snapshot();
   apply_view_flags();
   frame(options_.screenshot);  // the last snapshot, panels included
-  if (shown_) {                // the search's work since the start pins when a --switch-at happened
+  if (shown_ && !options_.screenshot.empty()) report_layout(*shown_);
+  if (shown_) {  // the search's work since the start pins when a --switch-at happened
     const SearchCounters& t = shown_->totals;
     fmt::print(
         "search            {}; since the start: {} cells visited, {} pairs tested, {} found\n",

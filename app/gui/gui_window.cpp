@@ -1,8 +1,10 @@
 #include "app/gui/gui_window.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include <imgui.h>
+#include <imgui_internal.h>  // the frame's windows, for panels_shown()
 // clang-format off
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
@@ -77,11 +79,31 @@ bool GuiWindow::track_size() {
   return relayout_;
 }
 
-void GuiWindow::place(float x, float y, float w) const {
+void GuiWindow::place(float x, float y, float w, float h) const {
   const ImVec2 size = ImGui::GetIO().DisplaySize;
   const ImGuiCond when = relayout_ ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
   ImGui::SetNextWindowPos(ImVec2(x < 0.0f ? size.x + x : x, y < 0.0f ? size.y + y : y), when);
-  ImGui::SetNextWindowSize(ImVec2(w, 0.0f), when);
+  ImGui::SetNextWindowSize(ImVec2(w, h), when);
+}
+
+std::vector<GuiWindow::PanelRect> GuiWindow::panels_shown() {
+  std::vector<PanelRect> out;
+  for (const ImGuiWindow* w : ImGui::GetCurrentContext()->Windows) {
+    if (!w->Active || w->Hidden || (w->Flags & ImGuiWindowFlags_ChildWindow) != 0) continue;
+    if ((w->Flags & (ImGuiWindowFlags_Tooltip | ImGuiWindowFlags_Popup)) != 0) continue;
+    const std::string name(w->Name);
+    if (name.starts_with("Debug##")) continue;  // ImGui's implicit window
+    out.push_back({name.substr(0, name.find("##")), w->Pos.x, w->Pos.y, w->Size.x, w->Size.y});
+  }
+  return out;
+}
+
+GuiWindow::ViewArea GuiWindow::view_area() const {
+  const std::array<int, 2> units = window_size();
+  const double scale = static_cast<double>(fb_w_) / std::max(1, units[0]);  // pixels per unit
+  const double free = units[0] - kLeftColumn - kRightColumn;
+  if (free < kMinViewWidth) return {0, fb_w_};
+  return {static_cast<int>(kLeftColumn * scale), static_cast<int>(free * scale)};
 }
 
 }  // namespace drumlab::gui

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <GL/gl.h>
+
 #include "app/gui/gui_session.hpp"
 #include "app/gui/gui_window.hpp"
 
@@ -16,7 +18,12 @@ constexpr double kStillSeconds = 0.25;
 }  // namespace
 
 MainView::MainView(const GuiWindow& window, render::ViewOptions options)
-    : window_(window), options_(std::move(options)), fb_w_(window.width()), fb_h_(window.height()) {
+    : window_(window),
+      options_(std::move(options)),
+      fb_w_(window.view_area().width),
+      fb_h_(window.height()),
+      area_x_(window.view_area().x),
+      window_w_(window.width()) {
   image_.resize(fb_w_, fb_h_);
   target_ = std::make_unique<render::CurrentGlContext>(fb_w_, fb_h_, [this] {
     window_.make_current();
@@ -74,8 +81,11 @@ bool MainView::still() const {
 }
 
 void MainView::set_window_size(int width, int height) {
-  fb_w_ = width;
+  const GuiWindow::ViewArea a = window_.view_area();
+  fb_w_ = a.width;
+  area_x_ = a.x;
   fb_h_ = height;
+  window_w_ = width;
 }
 
 MainView::Rendered MainView::render(
@@ -104,7 +114,9 @@ MainView::Rendered MainView::render(
 }
 
 void MainView::show() const {
-  image_.show(fb_w_, fb_h_);  // covers the window: no clear
+  glClearColor(0.11f, 0.12f, 0.15f, 1.0f);  // the columns beside the view
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  image_.show(area_x_, 0, fb_w_, fb_h_);
 }
 
 void MainView::adapt_reduction(double seconds) {
@@ -118,8 +130,9 @@ render::Image MainView::read_image() {
 
 std::array<double, 2> MainView::image_pixel(double x, double y,
                                             std::array<int, 2> window_size) const {
-  // Cursor positions are in window units, the image in pixels.
-  return {x * image_.width() / std::max(1, window_size[0]),
+  // Cursor positions are in window units, the framebuffer and the image in pixels.
+  const double fb_x = x * window_w_ / std::max(1, window_size[0]) - area_x_;
+  return {fb_x * image_.width() / std::max(1, fb_w_),
           y * image_.height() / std::max(1, window_size[1])};
 }
 
@@ -127,6 +140,7 @@ std::optional<Index> MainView::pick(const FrameSnapshot& s, double x, double y,
                                     std::array<int, 2> window_size) {
   if (image_.width() == 0) return std::nullopt;
   const auto [px, py] = image_pixel(x, y, window_size);
+  if (px < 0.0 || px >= image_.width()) return std::nullopt;  // beside the view
   const auto [near, far] = view_->sight_line(px, py);
   const auto hit = render::first_sphere_hit(near, far, s.position, s.radius);
   if (!hit) return std::nullopt;

@@ -10,6 +10,7 @@
 #include <optional>
 #include <utility>
 
+#include "app/gui/gui_window.hpp"
 #include "app/gui/image_reduction.hpp"
 #include "app/gui/view_image.hpp"
 #include "render/current_gl_context.hpp"
@@ -17,11 +18,9 @@
 
 namespace drumlab::gui {
 
-class GuiWindow;
-
 class MainView {
  public:
-  /// The view of `window` (its GL context current), sized to its framebuffer.
+  /// The view of `window` (its GL context current), sized to its view area (GuiWindow::view_area).
   MainView(const GuiWindow& window, render::ViewOptions options);
   ~MainView();
   MainView(const MainView&) = delete;
@@ -48,8 +47,10 @@ class MainView {
   /// Nothing to render: the camera still, the image at full size (the scene aside).
   bool still() const;
 
-  /// The window's framebuffer changed size.
+  /// The window's framebuffer changed size: the view takes its new view area.
   void set_window_size(int width, int height);
+  /// Where the view lies in the window's framebuffer: x, width (pixels; every row).
+  GuiWindow::ViewArea area() const { return {area_x_, fb_w_}; }
 
   /// What render() did: the reduction factor it rendered at (0: nothing rendered) and whether it
   /// drew the scene anew (not only the camera).
@@ -65,7 +66,7 @@ class MainView {
                   const std::function<FrameSnapshot(const FrameSnapshot&)>& drawn);
   /// The snapshot generation drawn last.
   std::uint64_t drawn_generation() const { return drawn_generation_; }
-  /// Draws the image over the window's framebuffer.
+  /// Clears the window's framebuffer and draws the image into the view area.
   void show() const;
   /// Adapts the automatic reduction to the time the last frame took.
   void adapt_reduction(double seconds);
@@ -75,7 +76,7 @@ class MainView {
   /// `window_w` x `window_h` units): its id.
   std::optional<Index> pick(const FrameSnapshot& s, double x, double y,
                             std::array<int, 2> window_size);
-  /// Window point (x, y) in the image's pixels.
+  /// Window point (x, y) in the image's pixels (outside [0, width) left or right of the view).
   std::array<double, 2> image_pixel(double x, double y, std::array<int, 2> window_size) const;
   /// The VTK view itself (projections and sight lines for the headless checks).
   render::DrumView& drum_view() { return *view_; }
@@ -87,7 +88,9 @@ class MainView {
   std::unique_ptr<render::CurrentGlContext> target_;  ///< binds image_
   std::unique_ptr<render::DrumView> view_;
   ImageReduction reduction_;
-  int fb_w_ = 0, fb_h_ = 0;
+  int fb_w_ = 0, fb_h_ = 0;  ///< the view area's size, pixels
+  int area_x_ = 0;           ///< its left edge in the framebuffer, pixels
+  int window_w_ = 0;         ///< the framebuffer's width, pixels
   double camera_moved_at_ = -1e9;
   bool camera_dirty_ = true;
   bool options_dirty_ = true;                ///< options changed since the last draw

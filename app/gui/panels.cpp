@@ -13,7 +13,7 @@
 namespace drumlab::gui {
 
 void GuiApp::panel_run() {
-  window_->place(10, 10, 330);
+  window_->place(GuiWindow::kMargin, GuiWindow::kMargin, GuiWindow::kLeftPanels);
   ImGui::Begin("Run");
   const FrameSnapshot* s = shown_.get();
   ImGui::TextUnformatted(sim_->state_text().c_str());
@@ -51,7 +51,7 @@ void GuiApp::panel_run() {
 }
 
 void GuiApp::panel_view(const FrameSnapshot* s) {
-  window_->place(10, -300.0f, 330);
+  window_->place(GuiWindow::kMargin, -300.0f, GuiWindow::kLeftPanels);
   ImGui::Begin("View");
   render::ViewOptions o = view_->options();
   bool changed = view_switches(o, s);
@@ -155,8 +155,14 @@ bool GuiApp::focus_fields(render::ViewOptions& o, const FrameSnapshot* s) {
   }
   if (o.focus_id && s != nullptr && s->focus_visit) {
     const SearchVisit& v = *s->focus_visit;
-    ImGui::Text("focus %u: cells %zu, tested %zu, contacts %zu", static_cast<unsigned>(*o.focus_id),
-                v.cells_visited, v.pairs_tested, v.contacts.size());
+    const auto id = static_cast<unsigned>(*o.focus_id);
+    if (v.kind == SearchVisit::Kind::list) {
+      ImGui::Text("focus %u: listed partners %zu, contacts %zu", id, v.candidates.size(),
+                  v.contacts.size());
+    } else {
+      ImGui::Text("focus %u: cells %zu, tested %zu, contacts %zu", id, v.cells_visited,
+                  v.pairs_tested, v.contacts.size());
+    }
   }
   return changed;
 }

@@ -37,7 +37,7 @@ void SceneEditor::save(const std::string& file) const {
 }
 
 void SceneEditor::panel(const GuiWindow& window, SimThread& sim) {
-  window.place(10, 190, 330);
+  window.place(GuiWindow::kMargin, 190, GuiWindow::kLeftPanels);
   ImGui::Begin("Scene", nullptr, ImGuiWindowFlags_None);
   ImGui::TextWrapped("%s", edited_.name.c_str());
   double rpm = edited_.drum.omega * 60.0 / (2.0 * std::numbers::pi);

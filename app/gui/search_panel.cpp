@@ -39,7 +39,9 @@ SearchPanel::SearchPanel(const std::string& active) : methods_(all_methods()) {
 }
 
 void SearchPanel::panel(const GuiWindow& window, SimThread& sim, const FrameSnapshot* s) {
-  window.place(-370.0f, 10, 360);
+  const float height =
+      ImGui::GetIO().DisplaySize.y + GuiWindow::kInsetY - 2.0f * GuiWindow::kMargin;
+  window.place(GuiWindow::kRightX, GuiWindow::kMargin, GuiWindow::kRightPanels, height);
   ImGui::Begin("Search");
   std::vector<const char*> names;
   for (const std::string& m : methods_) names.push_back(m.c_str());
@@ -56,15 +58,21 @@ void SearchPanel::panel(const GuiWindow& window, SimThread& sim, const FrameSnap
 void SearchPanel::counters(const FrameSnapshot& s) const {
   ImGui::TextWrapped("active: %s", s.search_name.c_str());
   const double n = std::max<double>(1.0, static_cast<double>(s.size()));
-  ImGui::Text("last step: cells %llu (%.1f / particle)",
-              static_cast<unsigned long long>(s.counters.cells_visited),
-              static_cast<double>(s.counters.cells_visited) / n);
+  const double cells = static_cast<double>(s.counters.cells_visited);
+  if (!s.lists_pairs) {
+    ImGui::Text("last step: cells %.0f (%.1f / particle)", cells, cells / n);
+  } else if (cells == 0.0) {  // a Verlet step without a rebuild opens no cell
+    ImGui::TextUnformatted("last step: list reused (no rebuild)");
+  } else {
+    ImGui::Text("last step: list rebuilt, %.0f builder cells (%.1f / particle)", cells, cells / n);
+  }
   ImGui::Text("pairs tested %llu (%.1f / particle)",
               static_cast<unsigned long long>(s.counters.pairs_tested),
               static_cast<double>(s.counters.pairs_tested) / n);
   ImGui::Text("pairs found %llu", static_cast<unsigned long long>(s.counters.pairs_found));
   if (ImGui::BeginTable("classes", 5, ImGuiTableFlags_Borders | ImGuiTableFlags_SizingFixedFit)) {
-    for (const char* h : {"class", "N", "cells/p", "tests/p", "contacts/p"}) {
+    for (const char* h :
+         {"class", "N", s.lists_pairs ? "rebuild cells/p" : "cells/p", "tests/p", "contacts/p"}) {
       ImGui::TableSetupColumn(h);
     }
     ImGui::TableHeadersRow();
@@ -76,7 +84,11 @@ void SearchPanel::counters(const FrameSnapshot& s) const {
       ImGui::TableNextColumn();
       ImGui::Text("%zu", c.particles);
       ImGui::TableNextColumn();
-      ImGui::Text("%.1f", static_cast<double>(c.cells_visited) / k);
+      if (s.lists_pairs && c.cells_visited == 0) {
+        ImGui::TextUnformatted("reused");
+      } else {
+        ImGui::Text("%.1f", static_cast<double>(c.cells_visited) / k);
+      }
       ImGui::TableNextColumn();
       ImGui::Text("%.1f", static_cast<double>(c.pairs_tested) / k);
       ImGui::TableNextColumn();
@@ -93,7 +105,7 @@ void SearchPanel::plots(const FrameSnapshot& s) const {
               100.0 * split.forces / total);
   ImGui::Text("           walls %.0f%%  integration %.0f%%", 100.0 * split.walls / total,
               100.0 * (split.integration + split.reorder) / total);
-  plot("cells/p", history_.cells_per_particle, "");
+  plot(s.lists_pairs ? "rebuild cells/p" : "cells/p", history_.cells_per_particle, "");
   plot("tests/p", history_.tests_per_particle, "");
   plot("found/p", history_.contacts_per_particle, "");
   plot("ms/step", history_.step_ms, "ms");

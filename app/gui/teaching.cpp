@@ -57,7 +57,7 @@ std::string Teaching::report(const FrameSnapshot& s, std::uint64_t generation) {
 
 bool Teaching::panel(const GuiWindow& window, const FrameSnapshot* s, std::uint64_t generation,
                      std::optional<Index> focus_id, double now) {
-  window.place(350, 10, 420);
+  window.place(GuiWindow::kMargin, GuiWindow::kTeachingY, GuiWindow::kLeftPanels);
   ImGui::SetNextWindowCollapsed(!on_, ImGuiCond_FirstUseEver);
   const bool open = ImGui::Begin("Teaching: one particle's search, cell by cell");
   const bool changed = open != on_;

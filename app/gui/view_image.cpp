@@ -56,11 +56,11 @@ void ViewImage::bind_window() {
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-void ViewImage::show(int window_width, int window_height) const {
+void ViewImage::show(int x, int y, int width, int height) const {
   glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_);
   glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-  const GLenum filter = window_width == width_ && window_height == height_ ? GL_NEAREST : GL_LINEAR;
-  glBlitFramebuffer(0, 0, width_, height_, 0, 0, window_width, window_height, GL_COLOR_BUFFER_BIT,
+  const GLenum filter = width == width_ && height == height_ ? GL_NEAREST : GL_LINEAR;
+  glBlitFramebuffer(0, 0, width_, height_, x, y, x + width, y + height, GL_COLOR_BUFFER_BIT,
                     filter);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }

@@ -25,8 +25,9 @@ class ViewImage {
   void bind() const;
   /// Binds the window's own (default) framebuffer.
   static void bind_window();
-  /// Draws it over the window's default framebuffer (w x h pixels), scaled with linear filtering.
-  void show(int window_width, int window_height) const;
+  /// Draws it into the rectangle of the window's default framebuffer from pixel (x, y) (from the
+  /// bottom left), w x h pixels, scaled with linear filtering.
+  void show(int x, int y, int width, int height) const;
   /// The colour texture (for ImGui::Image).
   std::uint32_t texture() const { return texture_; }
 

@@ -87,6 +87,7 @@ FrameSnapshot take_snapshot(const Simulation& sim, const SnapshotRequest& reques
   s.timers = sim.timers();
   s.per_class = class_counters(sim, s.coordination);
   if (const CellGridSearch* grid = drawn_cell_grid(search)) s.grid = grid->geometry();
+  s.lists_pairs = dynamic_cast<const VerletListSearch*>(&search) != nullptr;
   if (request.diagnostics) s.diagnostics = sim.diagnostics();
 
   if (request.focus_id) {

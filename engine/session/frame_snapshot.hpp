@@ -79,6 +79,9 @@ struct FrameSnapshot {
   /// The cell grid the search laid (a cell grid's own, a Verlet list's builder's if that is a
   /// cell grid; drawn_cell_grid); none for brute force and the multi-level grid.
   std::optional<GridGeometry> grid;
+  /// The search is a Verlet list: its structure is the listed pairs (`grid` is its builder's, and
+  /// the last step visited cells only if it rebuilt the list).
+  bool lists_pairs = false;
 
   std::optional<Diagnostics> diagnostics;
 

@@ -97,7 +97,7 @@ int main(int argc, char** argv) {
   try {
     const SceneConfig scene = load_scene(std::string(DRUMLAB_SCENES_DIR) + "/teach_stencil.toml");
     SessionOptions options;
-    options.method = "verlet:m2";
+    options.method = "m2";  // a cell grid: the focus has an own cell (a Verlet list draws none)
     RunSession session(scene, options);
     session.settle();
     const auto sim = session.release_simulation();

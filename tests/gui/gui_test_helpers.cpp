@@ -29,7 +29,7 @@ void expect_one_line_error(const GuiRun& r, const std::string& names) {
 
 GuiRun run_gui(const std::string& args, bool window) {
   std::string cmd;
-  if (window) cmd = std::string(DRUMLAB_XVFB_RUN) + " -a -s \"-screen 0 1280x800x24\" ";
+  if (window) cmd = std::string(DRUMLAB_XVFB_RUN) + " -a -s \"-screen 0 1600x1000x24\" ";
   cmd += std::string(DRUMLAB_GUI) + " " + args + " 2>&1";
   GuiRun r;
   FILE* pipe = popen(cmd.c_str(), "r");
