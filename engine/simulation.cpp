@@ -47,37 +47,6 @@ double smallest_radius(const SceneConfig& scene, const Particles& p) {
 }
 
 /// Sums and maxima of the ranks' diagnostics (a decomposed run: every rank calls this together).
-/// The overlap site of particle i on a wall part (contact c) of a drum turning at omega.
-OverlapSite wall_site(const Particles& p, std::size_t i, WallPart part, const WallContact& c,
-                      double omega) {
-  OverlapSite s;
-  s.id_a = p.id[i];
-  s.wall = part;
-  s.radius_a = p.radius[i];
-  s.point = p.position[i] - (p.radius[i] - 0.5 * c.overlap) * c.normal;
-  const Vec3 dv = p.velocity[i] - Drum::wall_velocity(s.point, omega);
-  s.relative_speed = dv.norm();
-  s.closing_speed = -dv.dot(c.normal);  // the normal points into the particle
-  return s;
-}
-
-/// The overlap site of particles i and j, dx = x_i - x_j (nearest image).
-OverlapSite pair_site(const Particles& p, std::size_t i, std::size_t j, const Vec3& dx) {
-  OverlapSite s;
-  s.id_a = p.id[i];
-  s.id_b = p.id[j];
-  s.radius_a = p.radius[i];
-  s.radius_b = p.radius[j];
-  const double dist = dx.norm();
-  const Vec3 n = dx / dist;  // from j to i
-  const double delta = p.radius[i] + p.radius[j] - dist;
-  s.point = p.position[i] - (p.radius[i] - 0.5 * delta) * n;
-  const Vec3 dv = p.velocity[i] - p.velocity[j];
-  s.relative_speed = dv.norm();
-  s.closing_speed = -dv.dot(n);
-  return s;
-}
-
 void reduce_diagnostics(DomainHooks& domain, Diagnostics& d) {
   for (double* v : {&d.kinetic_energy, &d.rotational_energy, &d.potential_energy, &d.elastic_energy,
                     &d.liquid_volume}) {

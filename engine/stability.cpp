@@ -67,6 +67,35 @@ std::string bodies(const OverlapSite& s) {
 
 }  // namespace
 
+OverlapSite wall_site(const Particles& p, std::size_t i, WallPart part, const WallContact& c,
+                      double omega) {
+  OverlapSite s;
+  s.id_a = p.id[i];
+  s.wall = part;
+  s.radius_a = p.radius[i];
+  s.point = p.position[i] - (p.radius[i] - 0.5 * c.overlap) * c.normal;
+  const Vec3 dv = p.velocity[i] - Drum::wall_velocity(s.point, omega);
+  s.relative_speed = dv.norm();
+  s.closing_speed = -dv.dot(c.normal);  // the normal points into the particle
+  return s;
+}
+
+OverlapSite pair_site(const Particles& p, std::size_t i, std::size_t j, const Vec3& dx) {
+  OverlapSite s;
+  s.id_a = p.id[i];
+  s.id_b = p.id[j];
+  s.radius_a = p.radius[i];
+  s.radius_b = p.radius[j];
+  const double dist = dx.norm();
+  const Vec3 n = dx / dist;  // from j to i
+  const double delta = p.radius[i] + p.radius[j] - dist;
+  s.point = p.position[i] - (p.radius[i] - 0.5 * delta) * n;
+  const Vec3 dv = p.velocity[i] - p.velocity[j];
+  s.relative_speed = dv.norm();
+  s.closing_speed = -dv.dot(n);
+  return s;
+}
+
 void reduce_overlap_site(DomainHooks& domain, double local_ratio, double global_ratio,
                          OverlapSite& site) {
   // Element-wise maxima: the rank that holds the largest ratio gives its values, the others

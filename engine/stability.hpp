@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "engine/drum.hpp"
+#include "engine/particles.hpp"
 #include "engine/types.hpp"
 
 namespace drumlab {
@@ -26,6 +27,13 @@ struct OverlapSite {
 
   bool is_wall() const { return id_b < 0; }
 };
+
+/// The overlap site of particle i on wall part `part` (its contact c) of a drum turning at omega
+/// (rad/s).
+OverlapSite wall_site(const Particles& p, std::size_t i, WallPart part, const WallContact& c,
+                      double omega);
+/// The overlap site of particles i and j, dx = x_i - x_j (nearest image).
+OverlapSite pair_site(const Particles& p, std::size_t i, std::size_t j, const Vec3& dx);
 
 /// A decomposed run: every rank calls this with its own largest ratio and site and the maximum
 /// over all ranks; afterwards every rank holds the site of the rank with that maximum.
