@@ -1,12 +1,16 @@
 #include "engine/simulation.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <string_view>
+#include <type_traits>
 #include <utility>
+#include <variant>
 
 #include <fmt/format.h>
 
@@ -59,6 +63,21 @@ void reduce_diagnostics(DomainHooks& domain, Diagnostics& d) {
   const double local = d.max_overlap_ratio;
   d.max_overlap_ratio = domain.max(d.max_overlap_ratio);
   reduce_overlap_site(domain, local, d.max_overlap_ratio, d.max_overlap_site);
+}
+
+/// Undamped half-period pi sqrt(m*/k) (s) of a linear normal law for a contact of effective mass
+/// m_eff; nullopt for Hertz, whose stiffness grows with the overlap (the Rayleigh time bounds it).
+std::optional<double> linear_half_period(const NormalVariant& law, double m_eff) {
+  return std::visit(
+      [m_eff](const auto& l) -> std::optional<double> {
+        using Law = std::decay_t<decltype(l)>;
+        if constexpr (std::is_same_v<Law, HertzNormal>) {
+          return std::nullopt;
+        } else {
+          return std::numbers::pi * std::sqrt(m_eff / l.stiffness);
+        }
+      },
+      law);
 }
 
 }  // namespace
@@ -311,6 +330,25 @@ void Simulation::choose_time_step(const SimulationOptions& options) {
         fmt::format("{}: time step must be positive, got {} s (time.dt or "
                     "time.dt_factor)",
                     scene_label(scene_), dt_));
+  }
+  // A linear law's stiffness does not follow the Young's modulus: its own period bounds dt.
+  const double lightest =
+      scene_.material.density * 4.0 / 3.0 * std::numbers::pi * r_min * r_min * r_min;
+  const std::optional<double> pair_period =
+      linear_half_period(impl_->model.pair_normal(), 0.5 * lightest);
+  const std::optional<double> wall_period =
+      linear_half_period(impl_->model.wall_normal(), lightest);
+  if (pair_period || wall_period) {
+    const double period = std::min(pair_period.value_or(HUGE_VAL), wall_period.value_or(HUGE_VAL));
+    if (dt_ > kMaxSafeLinearDtFactor * period && !options.allow_unsafe_dt) {
+      throw InputError(fmt::format(
+          "{}: time.dt = {:.6g} s is above the stability limit of {} contact half-periods of the "
+          "linear contact law ({:.6g} s; pi sqrt(m*/k) = {:.6g} s for the lightest particles); use "
+          "a smaller dt or --unsafe-dt",
+          scene_label(scene_), dt_, kMaxSafeLinearDtFactor, kMaxSafeLinearDtFactor * period,
+          period));
+    }
+    return;
   }
   if (dt_ > kMaxSafeDtFactor * rayleigh_time_ && !options.allow_unsafe_dt) {
     throw InputError(fmt::format(

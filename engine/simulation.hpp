@@ -216,6 +216,13 @@ class Simulation {
 /// lasts about 2 steps) and `drumlab bench accuracy` at 0.8 t_R, while 0.4-0.5 t_R run stable.
 inline constexpr double kMaxSafeDtFactor = 0.5;
 
+/// Largest time step accepted without allow_unsafe_dt for the linear normal laws (linear,
+/// linear_viscoelastic), in undamped contact half-periods pi sqrt(m*/k) of the lightest pair (or
+/// the lightest particle on the wall, m* = m): velocity Verlet on a lone spring diverges above
+/// 2/pi = 0.64 of it; 0.2 keeps a margin of 3 for contact networks and damping (MercuryDPM's
+/// drum runs 0.05 collision times of its mean pair, 0.087 of its lightest).
+inline constexpr double kMaxSafeLinearDtFactor = 0.2;
+
 /// Rayleigh time of a sphere (s): pi r sqrt(rho / G) / (0.1631 nu + 0.8766), G = E / (2 (1 + nu)).
 double rayleigh_time(double radius, const Material& m);
 

@@ -54,6 +54,42 @@ TEST(SimulationSetup, DtAboveTheRayleighTimeNeedsTheUnsafeOption) {
   EXPECT_NO_THROW(Simulation(s, one_particle(Vec3(0, 0, 0.5))));
 }
 
+// A linear law's own stiffness bounds dt, not the Young's modulus: 0.2 undamped half-periods
+// pi sqrt(m*/k) of two of the lightest particles (m* = m/2).
+TEST(SimulationSetup, LinearLawsAreBoundedByTheirContactPeriod) {
+  SceneConfig s = test::make_scene(0.01);
+  s.source = "scenes/x.toml";
+  s.contact.normal = NormalLaw::linear;
+  s.contact.linear_stiffness = 1e4;
+  const double m = 2500.0 * 4.0 / 3.0 * M_PI * 1e-6;
+  const double period = M_PI * std::sqrt(0.5 * m / 1e4);  // 2.27e-3 s
+  // Far above 0.5 Rayleigh times (1.2e-4 s for E = 5 MPa) and yet stable for this soft spring.
+  s.time.dt = 0.19 * period;
+  EXPECT_NO_THROW(Simulation(s, one_particle(Vec3(0, 0, 0.5))));
+  s.time.dt = 0.21 * period;
+  try {
+    Simulation sim(s, one_particle(Vec3(0, 0, 0.5)));
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("scenes/x.toml: time.dt = "), std::string::npos) << msg;
+    EXPECT_NE(msg.find("0.2 contact half-periods of the linear contact law"), std::string::npos)
+        << msg;
+    EXPECT_NE(msg.find("--unsafe-dt"), std::string::npos) << msg;
+  }
+  // The collision-time law: MercuryDPM's drum (t_c = 1.43e-3 s for two 2 mm spheres) at its
+  // dt = 0.05 t_c with particles down to 0.7 of the mean radius.
+  s.contact.normal = NormalLaw::linear_viscoelastic;
+  s.contact.collision_time = 1.42857e-3;
+  s.contact.reference_radius = 2e-3;
+  s.material.density = 1500.0;
+  s.material.restitution = 0.5;
+  s.time.dt = 0.05 * 1.42857e-3;
+  EXPECT_NO_THROW(Simulation(s, one_particle(Vec3(0, 0, 0.5), 1.4e-3)));
+  s.time.dt = 0.2 * 1.42857e-3;  // 0.35 half-periods of the lightest pair
+  EXPECT_THROW(Simulation(s, one_particle(Vec3(0, 0, 0.5), 1.4e-3)), InputError);
+}
+
 TEST(SimulationSetup, ParticlesOutsideTheDrumAreRejected) {
   const SceneConfig s = test::make_scene(0.01);  // D = 1, H = 1, caps
   EXPECT_THROW(Simulation(s, one_particle(Vec3(0.6, 0, 0.5))), InputError);
