@@ -285,11 +285,16 @@ void Simulation::validate_particles() {
     }
   }
   const Drum& drum = impl_->drum;
-  if (drum.periodic() && n > 0 && !(drum.depth() > 4.0 * p.max_radius())) {
+  // The nearest image is the only image a pair sees: no particle may reach two images of another,
+  // by contact or by a bridge (MercuryDPM's ghost particles would see both).
+  const double reach = 2.0 * p.max_radius() + impl_->model.max_pair_range();
+  if (drum.periodic() && n > 0 && !(drum.depth() > 2.0 * reach)) {
     throw InputError(fmt::format(
-        "{}: drum.depth = {} m is too short for periodic ends (must exceed 4 x the largest radius "
-        "{} m)",
-        scene_label(scene_), drum.depth(), p.max_radius()));
+        "{}: drum.depth = {} m is too short for periodic ends (a particle would reach two images "
+        "of another: must exceed 2 x (2 x the largest radius {} m + the bridges' reach {} m) = {} "
+        "m)",
+        scene_label(scene_), drum.depth(), p.max_radius(), impl_->model.max_pair_range(),
+        2.0 * reach));
   }
   for (std::size_t i = 0; i < n; ++i) {
     Vec3& x = p.position[i];

@@ -100,11 +100,39 @@ fi
 flags="-march=$MARCH -fno-math-errno -fno-trapping-math"
 echo "build_mercury: $cxx, Release -O3 $flags"
 
+# RotatingDrumWetSeeded: the same driver with two command-line options more, so that runs can
+# differ by seed and be shortened (the driver itself has neither: it draws every run from the
+# same random state and always runs 5 revolutions). Written beside the driver in SRC_DIR, never
+# in drumlab's tree; the physics is untouched:
+#   -seed S         (>= 0) seeds the random state that places the particles (RNG::setRandomSeed);
+#                   without it the run is the driver's own
+#   -revolutions R  turns the drum R times instead of 5 (t_max = 2 pi R / omega)
+demos="$src/Drivers/Demos/IndustrialMixers"
+python3 - "$demos/RotatingDrumWet.cpp" "$demos/RotatingDrumWetSeeded.cpp" <<'PY'
+import sys
+src = open(sys.argv[1]).read()
+edits = [
+    ("        // dimensional parameters\n",
+     '        const double seed = helpers::readFromCommandLine(argc,argv,"-seed",-1.0);\n'
+     "        if (seed >= 0) random.setRandomSeed(static_cast<unsigned long>(seed));\n"
+     "        // dimensional parameters\n"),
+    ("double timeMax = 10.0*constants::pi/angularVelocity;",
+     'double timeMax = 2.0*helpers::readFromCommandLine(argc,argv,"-revolutions",5.0)'
+     "*constants::pi/angularVelocity;"),
+    ('setName("RotatingDrumWet")', 'setName("RotatingDrumWetSeeded")'),
+]
+for old, new in edits:
+    if src.count(old) != 1:
+        sys.exit(f"build_mercury: the driver changed, cannot find: {old.strip()}")
+    src = src.replace(old, new, 1)
+open(sys.argv[2], "w").write(src)
+PY
+
 mkdir -p "$build"
 cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER="$cxx" \
   -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_C_FLAGS="$flags" \
   -DCMAKE_CXX_FLAGS_RELEASE="-O3 -DNDEBUG" -DCMAKE_C_FLAGS_RELEASE="-O3 -DNDEBUG" \
   -DMercuryDPM_BUILD_USER_DIR=OFF > "$build/build_mercury.cmake.log" 2>&1 ||
   { echo "build_mercury: cmake failed, see $build/build_mercury.cmake.log" >&2; exit 1; }
-nice -n 10 make -C "$build" -j"${JOBS:-2}" RotatingDrumWet
-echo "build_mercury: $build/Drivers/Demos/IndustrialMixers/RotatingDrumWet"
+nice -n 10 make -C "$build" -j"${JOBS:-2}" RotatingDrumWet RotatingDrumWetSeeded
+echo "build_mercury: $build/Drivers/Demos/IndustrialMixers/RotatingDrumWet (and ...Seeded)"

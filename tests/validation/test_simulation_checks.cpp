@@ -171,6 +171,21 @@ TEST(PeriodicDrum, ParticleCrossingTheEndIsWrapped) {
   // Periodic ends need a depth of more than 4 largest radii.
   s.drum.depth = 0.03;
   EXPECT_THROW(Simulation(s, one_particle(Vec3(0, 0, 0.01))), InputError);
+  // A bridge reaches past contact: s_rup = V^(1/3) = 5 mm (theta = 0), so the depth must exceed
+  // 2 (2 r + s_rup) = 0.05 m, not 4 r = 0.04 m.
+  s.liquid.enabled = true;
+  s.liquid.surface_tension = 0.072;
+  s.liquid.wall_surface_tension = 0.072;
+  s.liquid.bridge_volume = 1.25e-7;
+  s.drum.depth = 0.049;
+  try {
+    Simulation sim(s, one_particle(Vec3(0, 0, 0.01)));
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("would reach two images"), std::string::npos) << e.what();
+  }
+  s.drum.depth = 0.051;
+  EXPECT_NO_THROW(Simulation(s, one_particle(Vec3(0, 0, 0.01))));
 }
 
 TEST(SimulationBookkeeping, SearchSwitchTimersAndCounters) {
