@@ -168,9 +168,9 @@ Problem check_liquid_volumes(const SceneConfig& s) {
 Problem check_liquid(const SceneConfig& s) {
   const LiquidConfig& l = s.liquid;
   if (!l.enabled) return std::nullopt;
-  if (auto p = positive("liquid.surface_tension", l.surface_tension, " (N/m)")) return p;
+  if (auto p = non_negative("liquid.surface_tension", l.surface_tension)) return p;
   if (auto p = angle_deg("liquid.contact_angle_deg", l.contact_angle_deg)) return p;
-  if (auto p = positive("liquid.wall_surface_tension", l.wall_surface_tension, " (N/m)")) return p;
+  if (auto p = non_negative("liquid.wall_surface_tension", l.wall_surface_tension)) return p;
   if (auto p = angle_deg("liquid.wall_contact_angle_deg", l.wall_contact_angle_deg)) return p;
   if (auto p = check_liquid_volumes(s)) return p;
   if (auto p = non_negative("liquid.viscosity", l.viscosity)) return p;

@@ -316,7 +316,7 @@ TEST(SceneLoader, LiquidBridgeKeys) {
     return edited("[output]", text);
   };
   const std::vector<BadCase> cases = {
-      {"zero surface tension", with("0.072", "0"), "liquid.surface_tension"},
+      {"negative surface tension", with("0.072", "-0.01"), "liquid.surface_tension"},
       {"missing surface tension", with("surface_tension = 0.072\n", ""), "liquid.surface_tension"},
       {"angle 90", with("= 20", "= 90"), "liquid.contact_angle_deg"},
       {"negative angle", with("= 20", "= -1"), "liquid.contact_angle_deg"},

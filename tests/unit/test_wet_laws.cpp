@@ -271,6 +271,21 @@ TEST(WetLaws, NoFilmNoBridgeAndTheInitialSplit) {
   EXPECT_NEAR(s.liquid().films, total_liquid(split), 1e-12 * total_liquid(split));
 }
 
+// surface_tension = 0 (MercuryDPM's Bo = 0): bridges form, draw from the films and rupture, but
+// pull with no force, so the particles move bit for bit as in the same drum without liquid.
+TEST(WetLaws, ZeroSurfaceTensionMigratesLiquidWithoutForce) {
+  std::string tables = kMigration;
+  tables.replace(tables.find("0.072"), 5, "0");
+  const SceneConfig wet = scene_with(tables);
+  const SceneConfig dry = scene_with("");
+  auto a = settled_simulation(wet, 400);
+  auto b = settled_simulation(dry, 400);
+  EXPECT_GT(a->liquid().bridge_count, 10u);
+  EXPECT_NEAR(a->liquid().total(), total_liquid(wet), 1e-12 * total_liquid(wet));
+  EXPECT_TRUE(same_bits(a->particles().position, b->particles().position));
+  EXPECT_TRUE(same_bits(a->particles().omega, b->particles().omega));
+}
+
 // MercuryDPM's drum (LiquidMigrationWilletInteraction::form, RotatingDrumWet.cpp): a bridge of
 // V_max draws from the films in proportion to them; every particle gets the film of a sphere of
 // film_radius. The draw against its closed form, then a run: equal films, liquid conserved.
