@@ -107,6 +107,8 @@ echo "build_mercury: $cxx, Release -O3 $flags"
 #   -seed S         (>= 0) seeds the random state that places the particles (RNG::setRandomSeed);
 #                   without it the run is the driver's own
 #   -revolutions R  turns the drum R times instead of 5 (t_max = 2 pi R / omega)
+#   -outputsPerRevolution K  writes its files and log line K times a revolution instead of 100
+#                   (a throughput run without the output's cost)
 demos="$src/Drivers/Demos/IndustrialMixers"
 python3 - "$demos/RotatingDrumWet.cpp" "$demos/RotatingDrumWetSeeded.cpp" <<'PY'
 import sys
@@ -120,6 +122,9 @@ edits = [
      'double timeMax = 2.0*helpers::readFromCommandLine(argc,argv,"-revolutions",5.0)'
      "*constants::pi/angularVelocity;"),
     ('setName("RotatingDrumWet")', 'setName("RotatingDrumWetSeeded")'),
+    ("setSaveCount(2.0*constants::pi/angularVelocity/getTimeStep()/100);",
+     "setSaveCount(2.0*constants::pi/angularVelocity/getTimeStep()/"
+     'helpers::readFromCommandLine(argc,argv,"-outputsPerRevolution",100.0));'),
 ]
 for old, new in edits:
     if src.count(old) != 1:
