@@ -65,6 +65,15 @@ void reduce_diagnostics(DomainHooks& domain, Diagnostics& d) {
   reduce_overlap_site(domain, local, d.max_overlap_ratio, d.max_overlap_site);
 }
 
+}  // namespace
+
+double rayleigh_time(double radius, const Material& m) {
+  const double g = m.youngs_modulus / (2.0 * (1.0 + m.poisson_ratio));
+  return std::numbers::pi * radius * std::sqrt(m.density / g) / (0.1631 * m.poisson_ratio + 0.8766);
+}
+
+namespace {
+
 /// Undamped half-period pi sqrt(m*/k) (s) of a linear normal law for a contact of effective mass
 /// m_eff; nullopt for Hertz, whose stiffness grows with the overlap (the Rayleigh time bounds it).
 std::optional<double> linear_half_period(const NormalVariant& law, double m_eff) {
@@ -82,9 +91,18 @@ std::optional<double> linear_half_period(const NormalVariant& law, double m_eff)
 
 }  // namespace
 
-double rayleigh_time(double radius, const Material& m) {
-  const double g = m.youngs_modulus / (2.0 * (1.0 + m.poisson_ratio));
-  return std::numbers::pi * radius * std::sqrt(m.density / g) / (0.1631 * m.poisson_ratio + 0.8766);
+TimeStepLimit time_step_limit(const SceneConfig& scene, const ContactModel& model, double r_min) {
+  const double lightest =
+      scene.material.density * 4.0 / 3.0 * std::numbers::pi * r_min * r_min * r_min;
+  const std::optional<double> pair_period = linear_half_period(model.pair_normal(), 0.5 * lightest);
+  const std::optional<double> wall_period = linear_half_period(model.wall_normal(), lightest);
+  if (pair_period || wall_period) {
+    const double period = std::min(pair_period.value_or(HUGE_VAL), wall_period.value_or(HUGE_VAL));
+    return {kMaxSafeLinearDtFactor, period,
+            "contact half-periods of the linear contact law (pi sqrt(m*/k) of the lightest "
+            "particles)"};
+  }
+  return {kMaxSafeDtFactor, rayleigh_time(r_min, scene.material), "Rayleigh times"};
 }
 
 struct Simulation::Impl {
@@ -336,31 +354,12 @@ void Simulation::choose_time_step(const SimulationOptions& options) {
                     "time.dt_factor)",
                     scene_label(scene_), dt_));
   }
-  // A linear law's stiffness does not follow the Young's modulus: its own period bounds dt.
-  const double lightest =
-      scene_.material.density * 4.0 / 3.0 * std::numbers::pi * r_min * r_min * r_min;
-  const std::optional<double> pair_period =
-      linear_half_period(impl_->model.pair_normal(), 0.5 * lightest);
-  const std::optional<double> wall_period =
-      linear_half_period(impl_->model.wall_normal(), lightest);
-  if (pair_period || wall_period) {
-    const double period = std::min(pair_period.value_or(HUGE_VAL), wall_period.value_or(HUGE_VAL));
-    if (dt_ > kMaxSafeLinearDtFactor * period && !options.allow_unsafe_dt) {
-      throw InputError(fmt::format(
-          "{}: time.dt = {:.6g} s is above the stability limit of {} contact half-periods of the "
-          "linear contact law ({:.6g} s; pi sqrt(m*/k) = {:.6g} s for the lightest particles); use "
-          "a smaller dt or --unsafe-dt",
-          scene_label(scene_), dt_, kMaxSafeLinearDtFactor, kMaxSafeLinearDtFactor * period,
-          period));
-    }
-    return;
-  }
-  if (dt_ > kMaxSafeDtFactor * rayleigh_time_ && !options.allow_unsafe_dt) {
+  const TimeStepLimit limit = time_step_limit(scene_, impl_->model, r_min);
+  if (dt_ > limit.seconds() && !options.allow_unsafe_dt) {
     throw InputError(fmt::format(
-        "{}: time.dt = {:.6g} s is above the stability limit of {} Rayleigh times ({:.6g} s; "
-        "the Rayleigh time is {:.6g} s); use a smaller dt or --unsafe-dt",
-        scene_label(scene_), dt_, kMaxSafeDtFactor, kMaxSafeDtFactor * rayleigh_time_,
-        rayleigh_time_));
+        "{}: time.dt = {:.6g} s is above the stability limit of {} {} ({:.6g} s; one is {:.6g} "
+        "s); use a smaller dt or --unsafe-dt",
+        scene_label(scene_), dt_, limit.factor, limit.unit, limit.seconds(), limit.reference));
   }
 }
 

@@ -223,6 +223,18 @@ inline constexpr double kMaxSafeDtFactor = 0.5;
 /// drum runs 0.05 collision times of its mean pair, 0.087 of its lightest).
 inline constexpr double kMaxSafeLinearDtFactor = 0.2;
 
+/// The largest time step a scene takes without allow_unsafe_dt: `factor` times `reference` (s),
+/// the Rayleigh time of the smallest particle (Hertz) or the undamped contact half-period of the
+/// lightest pair or particle on the wall (the linear laws, whose stiffness E does not set).
+struct TimeStepLimit {
+  double factor = 0.0;
+  double reference = 0.0;  ///< s
+  const char* unit = "";   ///< what `reference` is, plural ("Rayleigh times")
+  double seconds() const { return factor * reference; }
+};
+class ContactModel;
+TimeStepLimit time_step_limit(const SceneConfig& scene, const ContactModel& model, double r_min);
+
 /// Rayleigh time of a sphere (s): pi r sqrt(rho / G) / (0.1631 nu + 0.8766), G = E / (2 (1 + nu)).
 double rayleigh_time(double radius, const Material& m);
 

@@ -6,6 +6,7 @@
 
 #include "app/cli/commands.hpp"
 #include "app/cli/scene_setup.hpp"
+#include "engine/contact/contact_model.hpp"
 #include "engine/contact/hertz_mindlin.hpp"
 #include "engine/contact/sjkr_cohesion.hpp"
 #include "engine/fill/file_fill.hpp"
@@ -108,11 +109,12 @@ double print_time_scales(const SceneConfig& scene, std::size_t total) {
   const double t_r = rayleigh_time(scene.min_radius(), scene.material);
   const double dt = scene.time.dt ? *scene.time.dt : scene.time.dt_factor * t_r;
   fmt::print("Rayleigh time     {:.4g} s (smallest radius {} m)\n", t_r, scene.min_radius());
+  const TimeStepLimit limit = time_step_limit(scene, ContactModel(scene), scene.min_radius());
   fmt::print(
-      "time step         {:.4g} s = {:.3g} Rayleigh times{}\n", dt, dt / t_r,
-      dt > kMaxSafeDtFactor * t_r
-          ? "  (ABOVE the stability limit of 0.5 Rayleigh times: refused without --unsafe-dt)"
-          : "");
+      "time step         {:.4g} s = {:.3g} Rayleigh times = {:.3g} of the stability limit of "
+      "{} {}{}\n",
+      dt, dt / t_r, dt / limit.seconds(), limit.factor, limit.unit,
+      dt > limit.seconds() ? "  (ABOVE it: refused without --unsafe-dt)" : "");
   const double fr = froude_number(scene);
   fmt::print("Froude number     {:.4g} -> {} regime expected\n", fr, regime_for_froude(fr));
   if (scene.drum.omega != 0.0) {
