@@ -95,11 +95,13 @@ for mu in $rolling; do
     { echo "mercury_side_by_side: drumlab sweep failed, see $out/drumlab_mur$mu.log" >&2; exit 1; }
 done
 
-python3 - "$out" "$window_from" "$revolutions" "$bonds" "$rolling" <<'PY'
+python3 - "$out" "$window_from" "$revolutions" "$bonds" "$rolling" "$here" <<'PY'
 import csv, math, os, re, statistics, sys
 out, window_from, revolutions = sys.argv[1], float(sys.argv[2]), float(sys.argv[3])
 bonds, rolling = sys.argv[4].split(), sys.argv[5].split()
-line = re.compile(r"^t (\S+)\s+N \S+\s+Nc \S+\s+Nl \S+\s+o \S+\s+AoR (\S+)")
+line = re.compile(r"^t (\S+)\s+N (\S+)\s+Nc \S+\s+Nl (\S+)\s+o \S+\s+AoR (\S+)")
+scene = open(os.path.join(sys.argv[6], "scenes", "mercury_wet_drum.toml")).read()
+n_drumlab = int(re.search(r"^count = (\d+)", scene, re.M).group(1))
 
 def peer_runs(bo, mu):
     runs = []
@@ -108,13 +110,14 @@ def peer_runs(bo, mu):
         m = re.fullmatch(rf"bo{re.escape(bo)}_mur{re.escape(mu)}_seed(\d+)", d)
         if not m or open(os.path.join(folder, d, "rc")).read().strip() != "0":
             continue
-        angles = []
+        angles, bridges = [], []
         for text in open(os.path.join(folder, d, "log.txt"), errors="replace"):
             hit = line.match(text)
             if hit and float(hit.group(1)) * revolutions >= window_from - 1e-9:
-                angles.append(float(hit.group(2)))
+                angles.append(float(hit.group(4)))
+                bridges.append(float(hit.group(3)) / float(hit.group(2)))
         if angles:
-            runs.append(angles)
+            runs.append((angles, statistics.fmean(bridges)))
     return runs
 
 def drumlab_runs(bo, mu):
@@ -124,7 +127,7 @@ def drumlab_runs(bo, mu):
     for row in csv.DictReader(open(path)):
         if abs(float(row["liquid.surface_tension"]) - gamma) <= 1e-6 * max(gamma, 1e-12):
             runs.append((float(row["angle_com_deg"]), float(row["angle_com_deg_sd"]),
-                         int(row["frames"])))
+                         int(row["frames"]), float(row["bridges"]) / n_drumlab))
             drift = max(drift, float(row["liquid_drift"]))
     return runs, drift
 
@@ -136,7 +139,8 @@ def summary(means, pooled_sd):
 print(f"angle of repose (centre of mass, deg), revolutions {window_from:g}-{revolutions:g}, "
       "mean over seeds; 'seeds' = sd of the seeds' means, 'all' = sd of every frame of every seed")
 print(f"{'mu_r':>5} {'Bo':>4} | {'peer':>6} {'seeds':>6} {'all':>6} {'n':>2} | "
-      f"{'drumlab':>7} {'seeds':>6} {'all':>6} {'n':>2} | {'diff':>6} {'verdict':>18}")
+      f"{'drumlab':>7} {'seeds':>6} {'all':>6} {'n':>2} | {'diff':>6} {'verdict':>18} | "
+      f"bridges/particle peer, drumlab")
 worst_drift = 0.0
 for mu in rolling:
     for bo in bonds:
@@ -146,18 +150,21 @@ for mu in rolling:
         if not p or not d:
             print(f"{mu:>5} {bo:>4} | runs missing (peer {len(p)}, drumlab {len(d)})")
             continue
-        pm, ps, pall = summary([statistics.fmean(a) for a in p],
-                               statistics.pstdev([x for a in p for x in a]))
+        pm, ps, pall = summary([statistics.fmean(a) for a, _ in p],
+                               statistics.pstdev([x for a, _ in p for x in a]))
+        pb = statistics.fmean([b for _, b in p])
+        db = statistics.fmean([b for _, _, _, b in d])
         # drumlab's pooled sd from each run's mean and sd over its frames (law of total variance)
-        dmeans = [m for m, _, _ in d]
+        dmeans = [m for m, _, _, _ in d]
         dm = statistics.fmean(dmeans)
-        n_all = sum(f for _, _, f in d)
-        dall = math.sqrt(sum(f * (s * s + (m - dm) ** 2) for m, s, f in d) / n_all)
+        n_all = sum(f for _, _, f, _ in d)
+        dall = math.sqrt(sum(f * (s * s + (m - dm) ** 2) for m, s, f, _ in d) / n_all)
         ds = statistics.stdev(dmeans) if len(dmeans) > 1 else float("nan")
         diff = dm - pm
         verdict = "inside peer +-2 sd" if abs(diff) <= 2.0 * pall else "OUTSIDE"
         print(f"{mu:>5} {bo:>4} | {pm:6.2f} {ps:6.2f} {pall:6.2f} {len(p):2d} | "
-              f"{dm:7.2f} {ds:6.2f} {dall:6.2f} {len(d):2d} | {diff:+6.2f} {verdict:>18}")
+              f"{dm:7.2f} {ds:6.2f} {dall:6.2f} {len(d):2d} | {diff:+6.2f} {verdict:>18} | "
+              f"{pb:.3f}, {db:.3f}")
 print(f"drumlab liquid accounting: films + bridges (+ wall bridges) drift at most "
       f"{worst_drift:.3g} of the scene's liquid over every frame of every run")
 PY
