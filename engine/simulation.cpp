@@ -46,7 +46,7 @@ std::string scene_label(const SceneConfig& s) {
 double smallest_radius(const SceneConfig& scene, const Particles& p) {
   if (!p.empty()) return p.min_radius();
   double r = std::numeric_limits<double>::infinity();
-  for (const ParticleClass& c : scene.classes) r = std::min(r, c.radius);
+  for (const ParticleClass& c : scene.classes) r = std::min(r, c.min_radius());
   return r;
 }
 

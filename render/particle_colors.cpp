@@ -16,7 +16,8 @@ namespace drumlab::render {
 namespace {
 
 /// Size classes: the distinct radii (mm), named after the scene's classes where one has that
-/// radius; none if there are more radii than colours (a continuous map then).
+/// radius (or a table class lists it); none if there are more radii than colours (a continuous map
+/// then).
 std::vector<std::pair<double, std::string>> size_categories(const FrameSnapshot& s,
                                                             const std::vector<double>& mm) {
   std::vector<double> distinct;
@@ -30,7 +31,7 @@ std::vector<std::pair<double, std::string>> size_categories(const FrameSnapshot&
   for (const double v : distinct) {
     std::string name = fmt::format("r = {:.3g} mm", v);
     for (const ParticleClass& c : s.classes) {
-      if (1000.0 * c.radius == v) name = fmt::format("{} ({:.3g} mm)", c.name, v);
+      if (c.size().holds(v / 1000.0, 1e-9)) name = fmt::format("{} ({:.3g} mm)", c.name, v);
     }
     out.emplace_back(v, std::move(name));
   }

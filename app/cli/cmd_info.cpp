@@ -1,4 +1,5 @@
 // drumlab info SCENE: derived quantities of a scene, without simulating it.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -15,6 +16,7 @@
 #include "engine/memory_estimate.hpp"
 #include "engine/scene/scene_features.hpp"
 #include "engine/search/auto_select.hpp"
+#include "engine/search/search_binning.hpp"
 #include "engine/search/search_methods.hpp"
 #include "engine/simulation.hpp"
 
@@ -34,11 +36,12 @@ void print_features(const SceneConfig& scene) {
   }
 }
 
-/// Bond numbers of the liquid, and the sjkr pull-off force, per class.
+/// Bond numbers of the liquid, and the sjkr pull-off force, per class (at a distribution's mean
+/// radius).
 void print_cohesion(const SceneConfig& scene) {
   const double g = scene.gravity.norm();
   for (std::size_t c = 0; c < scene.classes.size() && scene.liquid.enabled; ++c) {
-    const double r = scene.classes[c].radius;
+    const double r = scene.classes[c].mean_radius();
     const double weight = scene.material.density * 4.0 / 3.0 * std::numbers::pi * r * r * r * g;
     fmt::print(
         "Bond number       {}: Bo = F0 / (m g) = {:.3g} (F0 = 2 pi r gamma cos(theta) = "
@@ -50,7 +53,7 @@ void print_cohesion(const SceneConfig& scene) {
   const Material& m = scene.material;
   const double e_star = effective_youngs_modulus(m, m);
   for (std::size_t c = 0; c < scene.classes.size(); ++c) {
-    const double r = scene.classes[c].radius;
+    const double r = scene.classes[c].mean_radius();
     const double weight = m.density * 4.0 / 3.0 * std::numbers::pi * r * r * r * g;
     const double pull = sjkr.pull_off_force(e_star, 0.5 * r);
     fmt::print(
@@ -81,17 +84,21 @@ std::size_t print_particles_and_drum(const SceneConfig& scene, const std::string
   const std::vector<std::size_t> counts = particle_counts(scene);
   std::size_t total = 0;
   double solid = 0.0;
+  const bool polydisperse = std::any_of(scene.classes.begin(), scene.classes.end(),
+                                        [](auto& c) { return c.polydisperse(); });
   fmt::print("scene             {} ({})\n", scene.name, file);
   if (!scene.description.empty()) fmt::print("description       {}\n", scene.description);
   for (std::size_t c = 0; c < scene.classes.size(); ++c) {
-    const double r = scene.classes[c].radius;
-    fmt::print("class {:<11} r = {} m, {} particles\n", scene.classes[c].name, r, counts[c]);
+    const SizeDistribution size = scene.classes[c].size();
+    fmt::print("class {:<11} {}, {} particles\n", scene.classes[c].name, size.describe(),
+               counts[c]);
     total += counts[c];
-    solid += static_cast<double>(counts[c]) * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+    solid += static_cast<double>(counts[c]) * 4.0 / 3.0 * std::numbers::pi * size.mean_cube();
   }
   const double r_drum = 0.5 * scene.drum.diameter;
   const double drum_volume = std::numbers::pi * r_drum * r_drum * scene.drum.depth;
-  fmt::print("particles         {} (solid volume {:.4g} m^3)\n", total, solid);
+  fmt::print("particles         {} (solid volume {:.4g} m^3{})\n", total, solid,
+             polydisperse ? ", a distribution's at its mean volume" : "");
   fmt::print("drum              D = {} m, H = {} m, omega = {} rad/s, tilt = {:.3g} deg, ends {}\n",
              scene.drum.diameter, scene.drum.depth, scene.drum.omega,
              scene.drum.tilt * 180.0 / std::numbers::pi,
@@ -154,6 +161,20 @@ void print_memory(const SceneConfig& scene, std::size_t total) {
              scene.search_method == "auto" ? "; auto: for m5" : "");
 }
 
+/// How `method` bins the scene's radii (engine/search/search_binning.hpp).
+void print_binning(const SceneConfig& scene, std::string_view method) {
+  RadiusRange radii{scene.min_radius(), scene.max_radius(), 0};
+  for (const ParticleClass& c : scene.classes) {
+    const std::size_t n = c.distribution == SizeKind::table ? c.radii.size() : 1;
+    radii.distinct = c.distribution == SizeKind::normal || c.distribution == SizeKind::lognormal
+                         ? RadiusRange::kContinuous
+                         : std::min(RadiusRange::kContinuous - n, radii.distinct) + n;
+  }
+  for (const std::string& line : search_binning(method, radii)) {
+    fmt::print("search bins       {}\n", line);
+  }
+}
+
 /// The search method: auto's choice on the filled scene and why, or the scene's own.
 void print_search_method(const SceneConfig& scene, double dt) {
   if (scene.search_method == "auto" && scene.dynamic()) {
@@ -162,6 +183,7 @@ void print_search_method(const SceneConfig& scene, double dt) {
     fmt::print("search method     auto -> {} (paper's rule: {})\n", choice.method,
                choice.paper_rule);
     fmt::print("why               {}\n", choice.reason);
+    print_binning(scene, choice.method);
     return;
   }
   fmt::print("search method     {} (set by the scene; `--method` overrides it in `run`)\n",
@@ -172,6 +194,7 @@ void print_search_method(const SceneConfig& scene, double dt) {
                               : std::string(),
                parsed->method->description);
   }
+  print_binning(scene, scene.search_method);
 }
 
 void print_info(const std::string& file) {

@@ -77,9 +77,21 @@ void SceneEditor::class_fields() {
   for (std::size_t k = 0; k < edited_.classes.size(); ++k) {
     ParticleClass& c = edited_.classes[k];
     ImGui::PushID(static_cast<int>(k));
-    double mm = 1000.0 * c.radius;
-    ImGui::Text("%s", c.name.c_str());
-    if (input_double("radius (mm)", mm, 0.5, "%.3f")) c.radius = mm / 1000.0;
+    ImGui::Text("%s (%s)", c.name.c_str(), size_kind_name(c.distribution).data());
+    if (c.distribution == SizeKind::table) {
+      ImGui::Text("%zu radii, %.3f to %.3f mm", c.radii.size(), 1000.0 * c.min_radius(),
+                  1000.0 * c.max_radius());
+    } else {
+      double mm = 1000.0 * c.radius;
+      const bool spread = c.polydisperse();
+      if (input_double(spread ? "mean radius (mm)" : "radius (mm)", mm, 0.5, "%.3f")) {
+        c.radius = mm / 1000.0;
+      }
+      double sigma_mm = 1000.0 * c.radius_sigma;
+      if (spread && input_double("radius sigma (mm)", sigma_mm, 0.05, "%.4f")) {
+        c.radius_sigma = sigma_mm / 1000.0;
+      }
+    }
     input_double("volume share", c.volume_fraction, 0.05, "%.4f");
     ImGui::PopID();
   }

@@ -80,7 +80,7 @@ void SearchPanel::counters(const FrameSnapshot& s) const {
       const double k = std::max<double>(1.0, static_cast<double>(c.particles));
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
-      ImGui::Text("%s %.3g mm", c.name.c_str(), 1000.0 * c.radius);
+      ImGui::Text("%s %.3g mm", c.name.c_str(), 1000.0 * c.radius);  // a distribution: mean
       ImGui::TableNextColumn();
       ImGui::Text("%zu", c.particles);
       ImGui::TableNextColumn();

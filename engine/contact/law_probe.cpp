@@ -41,7 +41,10 @@ LawCurve probe_law(const SceneConfig& scene, const LawProbeOptions& o) {
   const Drum drum(scene.drum);
   const ParticleClass& a = scene.classes.at(checked_class(scene, o.class_a));
   const ParticleClass& b = scene.classes.at(checked_class(scene, o.class_b));
-  const double r_min = o.wall ? a.radius : std::min(a.radius, b.radius);
+  // A size distribution is probed at its mean radius.
+  const double ra = a.mean_radius();
+  const double rb = b.mean_radius();
+  const double r_min = o.wall ? ra : std::min(ra, rb);
   const double overlap = o.overlap < 0.0 ? 0.02 * r_min : o.overlap;
   if (!(overlap > 0.0) || !(overlap < r_min)) {
     throw InputError(fmt::format("law: overlap must be in (0, {}) m, got {}", r_min, overlap));
@@ -53,8 +56,8 @@ LawCurve probe_law(const SceneConfig& scene, const LawProbeOptions& o) {
 
   Bodies bodies;
   Particles& p = bodies.p;
-  p.add(Vec3::Zero(), a.radius, scene.material.density, o.class_a);
-  if (!o.wall) p.add(Vec3::Zero(), b.radius, scene.material.density, o.class_b);
+  p.add(Vec3::Zero(), ra, scene.material.density, o.class_a);
+  if (!o.wall) p.add(Vec3::Zero(), rb, scene.material.density, o.class_b);
   for (const std::string_view name : model.cohesive_parts().particle_arrays(kWallParts)) {
     p.add_array(name, 0.0);
   }
@@ -73,13 +76,13 @@ LawCurve probe_law(const SceneConfig& scene, const LawProbeOptions& o) {
     LawSample s{gap, 0.0, 0.0, retreat};
     p.clear_forces();
     if (o.wall) {
-      p.position[0] = wall_centre + Vec3(0.0, -(drum.radius() - a.radius - gap), 0.0);
+      p.position[0] = wall_centre + Vec3(0.0, -(drum.radius() - ra - gap), 0.0);
       model.add_wall_forces(p, candidate, drum, 0.0, bodies.wall_history, kProbeDt, kProbeDt);
       s.normal_force = p.force[0].y();
       if (const auto* v = p.find_array(kWallBridgeVolumeArrays[0])) s.bridge_volume = (*v)[0];
     } else {
       // Particle 0 on the +x side of particle 1: the normal towards 0 is +x.
-      p.position[0] = Vec3(a.radius + b.radius + gap, 0.0, 0.0);
+      p.position[0] = Vec3(ra + rb + gap, 0.0, 0.0);
       p.position[1] = Vec3::Zero();
       bodies.contacts.update(pair, 2);
       model.add_pair_forces(p, bodies.contacts, bodies.buffers, 0.0, kProbeDt, kProbeDt);

@@ -13,19 +13,28 @@ namespace drumlab {
 
 namespace {
 
-/// Index of the class whose radius matches r (relative 1e-6), or throws.
+/// Index of the class that r belongs to, or throws: a class of one radius (relative 1e-6) first,
+/// then a distribution whose radii hold r (SizeDistribution::holds, same tolerance).
 std::uint8_t class_of(const SceneConfig& scene, double r, std::string_view source,
                       std::size_t line) {
-  for (std::size_t c = 0; c < scene.classes.size(); ++c) {
-    const double rc = scene.classes[c].radius;
-    if (std::abs(r - rc) <= 1e-6 * rc) return static_cast<std::uint8_t>(c);
+  for (const bool spread : {false, true}) {
+    for (std::size_t c = 0; c < scene.classes.size(); ++c) {
+      const ParticleClass& k = scene.classes[c];
+      if (k.polydisperse() == spread && k.size().holds(r, 1e-6)) {
+        return static_cast<std::uint8_t>(c);
+      }
+    }
   }
   std::string radii;
-  for (const ParticleClass& c : scene.classes)
-    radii += fmt::format("{}{}", radii.empty() ? "" : ", ", c.radius);
-  throw InputError(
-      fmt::format("{}:{}: radius {} m is not one of the scene's [[particles]] radii ({} m)", source,
-                  line, r, radii));
+  for (const ParticleClass& c : scene.classes) {
+    const std::string one = c.polydisperse()
+                                ? fmt::format("[{}, {}]", c.min_radius(), c.max_radius())
+                                : fmt::format("{}", c.radius);
+    radii += fmt::format("{}{}", radii.empty() ? "" : ", ", one);
+  }
+  throw InputError(fmt::format(
+      "{}:{}: radius {} m is not one of the scene's [[particles]] radii or ranges ({} m)", source,
+      line, r, radii));
 }
 
 void check_inside(const Drum& drum, Vec3& x, double r, std::string_view source, std::size_t line) {
@@ -86,8 +95,11 @@ Particles particles_from_table(const SceneConfig& scene, const ParticleTable& ta
     const std::uint8_t cls = class_of(scene, r, source, line);
     Vec3 x = table.position[i];
     if (!x.allFinite()) throw InputError(fmt::format("{}:{}: position not finite", source, line));
-    check_inside(drum, x, scene.classes[cls].radius, source, line);
-    p.add(x, scene.classes[cls].radius, scene.material.density, cls);
+    // A class of one radius gives its particles exactly that radius; a distribution keeps r.
+    const ParticleClass& k = scene.classes[cls];
+    const double radius = k.polydisperse() ? r : k.radius;
+    check_inside(drum, x, radius, source, line);
+    p.add(x, radius, scene.material.density, cls);
     if (!table.velocity.empty()) {
       if (!table.velocity[i].allFinite())
         throw InputError(fmt::format("{}:{}: velocity not finite", source, line));

@@ -1,8 +1,10 @@
 #pragma once
 // The user's own initial packing ([fill] kind = "file"), as LIGGGHTS' read_data: particles from a
 // CSV x,y,z,r[,vx,vy,vz] (engine/io/particle_csv.hpp), validated against the scene. Policy:
-// * every radius must be one of the scene's [[particles]] radii (relative tolerance 1e-6); the
-//   particle gets that class (so dt, the search grids and the colours stay those of the classes);
+// * every radius must be one of the scene's [[particles]] radii (relative tolerance 1e-6), or lie
+//   in a distribution class's [min, max] (or be one of a table's radii), same tolerance; the
+//   particle gets that class (so dt, the search grids and the colours stay those of the classes)
+//   and, in a class of one radius, exactly its radius;
 // * every centre must lie inside the drum (periodic ends: z is wrapped), and no particle may
 //   overlap the mantle or an end cap by more than kMaxFileOverlap of its radius;
 // * two particles may overlap by at most kMaxFileOverlap of the smaller radius: a larger overlap is

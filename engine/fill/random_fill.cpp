@@ -98,11 +98,44 @@ Eigen::Vector2d up_direction(const Vec3& gravity) {
   return -g.normalized();
 }
 
-double solid_volume(const SceneConfig& scene, const std::vector<std::size_t>& counts) {
+/// The radii to place with their classes, largest first: small spheres fit the gaps between big
+/// ones, not the other way round. A class of one radius gives `counts[c]` copies of it; a
+/// distribution draws each radius from its own stream (seeded from the fill's seed), so the
+/// positions' stream and every scene without a distribution stay as they were.
+std::vector<std::pair<double, std::uint8_t>> planned_radii(const SceneConfig& scene,
+                                                           const std::vector<std::size_t>& counts) {
+  std::vector<std::size_t> order(scene.classes.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return scene.classes[a].max_radius() > scene.classes[b].max_radius();
+  });
+  std::mt19937_64 size_rng(scene.fill.seed ^ 0x9e3779b97f4a7c15ULL);
+  std::vector<std::pair<double, std::uint8_t>> plan;
+  for (const std::size_t c : order) {
+    const SizeDistribution size = scene.classes[c].size();
+    for (std::size_t n = 0; n < counts[c]; ++n) {
+      plan.emplace_back(size.draw(size_rng), static_cast<std::uint8_t>(c));
+    }
+  }
+  std::stable_sort(plan.begin(), plan.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  return plan;
+}
+
+/// The plan's solid volume (a class of one radius: its count times one sphere, summed exactly as
+/// before distributions existed, so those fills stay bit-identical).
+double solid_volume(const SceneConfig& scene, const std::vector<std::size_t>& counts,
+                    const std::vector<std::pair<double, std::uint8_t>>& plan) {
   double v = 0.0;
   for (std::size_t c = 0; c < counts.size(); ++c) {
-    const double r = scene.classes[c].radius;
-    v += static_cast<double>(counts[c]) * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+    if (scene.classes[c].polydisperse()) {
+      for (const auto& [r, k] : plan) {
+        if (static_cast<std::size_t>(k) == c) v += 4.0 / 3.0 * std::numbers::pi * r * r * r;
+      }
+    } else {
+      const double r = scene.classes[c].radius;
+      v += static_cast<double>(counts[c]) * 4.0 / 3.0 * std::numbers::pi * r * r * r;
+    }
   }
   return v;
 }
@@ -136,17 +169,6 @@ struct CrossSection {
   double R, H;
 };
 
-/// Class indices, largest radius first: small spheres fit the gaps between big ones, not the
-/// other way round.
-std::vector<std::size_t> largest_first(const SceneConfig& scene) {
-  std::vector<std::size_t> order(scene.classes.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return scene.classes[a].radius > scene.classes[b].radius;
-  });
-  return order;
-}
-
 }  // namespace
 
 std::vector<std::size_t> class_counts(const SceneConfig& scene) {
@@ -156,8 +178,12 @@ std::vector<std::size_t> class_counts(const SceneConfig& scene) {
   const double rmax = scene.max_radius();
   std::vector<double> weight(classes.size());
   for (std::size_t c = 0; c < classes.size(); ++c) {
-    const double s = classes[c].radius / rmax;  // scaled, so weights are O(1)
-    weight[c] = classes[c].volume_fraction / (s * s * s);
+    // Scaled, so weights are O(1); a distribution's particles have the mean volume E[r^3].
+    const double s = classes[c].radius / rmax;
+    const double cube = classes[c].polydisperse()
+                            ? classes[c].size().mean_cube() / (rmax * rmax * rmax)
+                            : s * s * s;
+    weight[c] = classes[c].volume_fraction / cube;
   }
   const double total = std::accumulate(weight.begin(), weight.end(), 0.0);
   const auto n = static_cast<double>(scene.fill.count);
@@ -194,35 +220,33 @@ Particles random_fill(const SceneConfig& scene) {
   const std::size_t total = scene.fill.count;
   const CrossSection drum(scene);
   // Level of the fill region: a circular segment of the cross-section times the depth.
-  const double region_volume = solid_volume(scene, counts) / scene.fill.volume_fraction;
+  const auto plan = planned_radii(scene, counts);
+  const double region_volume = solid_volume(scene, counts, plan) / scene.fill.volume_fraction;
   double level = -drum.R + segment_height(drum.R, region_volume / drum.H);
 
   Particles p;
   p.reserve(total);
   OverlapGrid grid(drum.R, drum.H, 2.0 * scene.max_radius(), total);
   std::mt19937_64 rng(scene.fill.seed);
-  for (const std::size_t c : largest_first(scene)) {
-    const double r = scene.classes[c].radius;
-    for (std::size_t n = 0; n < counts[c]; ++n) {
-      for (;;) {
-        std::optional<Vec3> x;
-        for (int attempt = 0; attempt < kAttemptsPerLevel && !x; ++attempt) {
-          x = drum.sample_centre(r, level, rng);
-          if (grid.overlaps(*x, r, p)) x.reset();
-        }
-        if (x) {
-          grid.insert(p.size(), *x);
-          p.add(*x, r, scene.material.density, static_cast<std::uint8_t>(c));
-          break;
-        }
-        if (level >= drum.R - r) {
-          throw InputError(fmt::format(
-              "{}: fill: cannot place {} of {} particles (radius {} m) anywhere in the drum; "
-              "lower fill.count or fill.volume_fraction",
-              scene.source, total - p.size(), total, r));
-        }
-        level += 0.02 * scene.drum.diameter;  // no room left below the level: raise it
+  for (const auto& [r, c] : plan) {
+    for (;;) {
+      std::optional<Vec3> x;
+      for (int attempt = 0; attempt < kAttemptsPerLevel && !x; ++attempt) {
+        x = drum.sample_centre(r, level, rng);
+        if (grid.overlaps(*x, r, p)) x.reset();
       }
+      if (x) {
+        grid.insert(p.size(), *x);
+        p.add(*x, r, scene.material.density, c);
+        break;
+      }
+      if (level >= drum.R - r) {
+        throw InputError(fmt::format(
+            "{}: fill: cannot place {} of {} particles (radius {} m) anywhere in the drum; "
+            "lower fill.count or fill.volume_fraction",
+            scene.source, total - p.size(), total, r));
+      }
+      level += 0.02 * scene.drum.diameter;  // no room left below the level: raise it
     }
   }
   return p;

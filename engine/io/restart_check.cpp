@@ -31,11 +31,17 @@ Problem check_body(const SceneConfig& scene, const Particles& p, std::size_t i) 
   }
   const ParticleClass& k = scene.classes[c];
   const double r = p.radius[i];
-  if (!close(r, k.radius)) {
+  if (!k.polydisperse() && !close(r, k.radius)) {
     return at_row("radius", i,
                   fmt::format("{} m, the scene's class '{}' has {} m (a checkpoint of another "
                               "scene?)",
                               r, k.name, k.radius));
+  }
+  if (k.polydisperse() && !k.size().holds(r, 1e-12)) {
+    return at_row("radius", i,
+                  fmt::format("{} m, outside the radii of the scene's class '{}' ({}; a checkpoint "
+                              "of another scene?)",
+                              r, k.name, k.size().describe()));
   }
   const double m = scene.material.density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
   if (!close(p.mass[i], m)) {

@@ -9,18 +9,31 @@
 
 namespace drumlab {
 
+SizeDistribution ParticleClass::size() const {
+  switch (distribution) {
+    case SizeKind::normal:
+      return SizeDistribution::normal(radius, radius_sigma, truncate);
+    case SizeKind::lognormal:
+      return SizeDistribution::lognormal(radius, radius_sigma, truncate);
+    case SizeKind::table:
+      return SizeDistribution::table(radii, shares);
+    case SizeKind::single:
+      break;
+  }
+  return SizeDistribution::single(radius);
+}
+
 double SceneConfig::min_radius() const {
   if (classes.empty()) return 0.0;
-  return std::min_element(classes.begin(), classes.end(),
-                          [](const auto& a, const auto& b) { return a.radius < b.radius; })
-      ->radius;
+  double r = std::numeric_limits<double>::infinity();
+  for (const ParticleClass& c : classes) r = std::min(r, c.min_radius());
+  return r;
 }
 
 double SceneConfig::max_radius() const {
-  if (classes.empty()) return 0.0;
-  return std::max_element(classes.begin(), classes.end(),
-                          [](const auto& a, const auto& b) { return a.radius < b.radius; })
-      ->radius;
+  double r = 0.0;
+  for (const ParticleClass& c : classes) r = std::max(r, c.max_radius());
+  return r;
 }
 
 std::string default_output_directory(std::string_view scene_name) {

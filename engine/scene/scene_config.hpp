@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/scene/size_distribution.hpp"
 #include "engine/search/verlet_skin.hpp"
 #include "engine/types.hpp"
 
@@ -63,10 +64,25 @@ struct DrumConfig {
   friend bool operator==(const DrumConfig&, const DrumConfig&) = default;
 };
 
+/// One [[particles]] table: a size class of one radius or of a size distribution
+/// (engine/scene/size_distribution.hpp). The fields are the scene's keys; size() is the value type
+/// that every reader of a class's radii goes through.
 struct ParticleClass {
   std::string name;
-  double radius = 0.0;           ///< m
+  /// m: the one radius, or the mean radius of a normal or lognormal class; 0 for a table
+  double radius = 0.0;
   double volume_fraction = 1.0;  ///< share of the total solid volume, sums to 1 over classes
+  SizeKind distribution = SizeKind::single;
+  double radius_sigma = 0.0;           ///< m, standard deviation of the radius (normal, lognormal)
+  double truncate = kDefaultTruncate;  ///< standard deviations kept either side (normal, lognormal)
+  std::vector<double> radii = {};      ///< m (table)
+  std::vector<double> shares = {};     ///< number shares of `radii`, any positive scale (table)
+
+  SizeDistribution size() const;
+  double min_radius() const { return size().min_radius(); }
+  double max_radius() const { return size().max_radius(); }
+  double mean_radius() const { return size().mean_radius(); }
+  bool polydisperse() const { return distribution != SizeKind::single; }
 
   friend bool operator==(const ParticleClass&, const ParticleClass&) = default;
 };
@@ -180,6 +196,7 @@ struct SceneConfig {
   PerformanceConfig performance;
   OutputConfig output;
 
+  /// The smallest and largest radius any class can have (a distribution's truncation bounds).
   double min_radius() const;
   double max_radius() const;
   /// True for the fills that start a dynamic run (random, file); false for the static packing.

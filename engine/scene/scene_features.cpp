@@ -104,7 +104,7 @@ void add_cohesion_terms(const SceneConfig& scene, SceneFeatures& f) {
 
 double bond_number(const SceneConfig& scene, std::size_t cls) {
   const double g = scene.gravity.norm();
-  const double r = scene.classes.at(cls).radius;
+  const double r = scene.classes.at(cls).mean_radius();  // a distribution: its mean
   const double m = scene.material.density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
   if (!(g > 0.0) || !(m > 0.0)) return std::numeric_limits<double>::quiet_NaN();
   double f0 = 0.0;

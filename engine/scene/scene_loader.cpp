@@ -145,6 +145,25 @@ class Scope {
     return v;
   }
 
+  /// A required array of numbers (may be empty: validation says what it needs).
+  std::vector<double> numbers(std::string_view key, std::string_view what) const {
+    const toml::node* node = table_->get(key);
+    if (!node) missing(key, what);
+    const toml::array* array = node->as_array();
+    if (!array) fail(key, fmt::format("expected an array of numbers, got {}", type_name(*node)));
+    std::vector<double> out;
+    for (const toml::node& item : *array) {
+      if (auto i = item.as_integer()) {
+        out.push_back(static_cast<double>(i->get()));
+      } else if (auto f = item.as_floating_point()) {
+        out.push_back(f->get());
+      } else {
+        fail(key, fmt::format("element {} must be a number, got {}", out.size(), type_name(item)));
+      }
+    }
+    return out;
+  }
+
   /// A sub-table, or nullopt when absent; any other type is an error.
   std::optional<Scope> table(std::string_view key) const {
     const toml::node* node = table_->get(key);
@@ -187,6 +206,40 @@ Material read_material(const Scope& s, const Material& base, bool all_optional) 
   return m;
 }
 
+/// The keys of a class's size: `radius` alone, or a distribution (scene_validation checks the
+/// values; here only which keys go with which kind).
+void read_size(const Scope& s, ParticleClass& c) {
+  if (const auto name = s.string("distribution")) {
+    const auto kind = parse_size_kind(*name);
+    if (!kind) {
+      s.fail("distribution",
+             fmt::format("unknown distribution \"{}\" (valid: normal, lognormal, table)", *name));
+    }
+    c.distribution = *kind;
+  }
+  const bool spread = c.distribution == SizeKind::normal || c.distribution == SizeKind::lognormal;
+  const bool table = c.distribution == SizeKind::table;
+  for (const std::string_view key : {"radius_sigma", "truncate"}) {
+    if (s.has(key) && !spread) {
+      s.fail(key, "only with distribution = \"normal\" or \"lognormal\"");
+    }
+  }
+  for (const std::string_view key : {"radii", "shares"}) {
+    if (s.has(key) && !table) s.fail(key, "only with distribution = \"table\"");
+  }
+  if (table) {
+    if (s.has("radius")) s.fail("radius", "not with distribution = \"table\" (radii gives them)");
+    c.radii = s.numbers("radii", "the table's radii, m");
+    c.shares = s.numbers("shares", "number share of each radius");
+    return;
+  }
+  c.radius = s.required_number("radius", spread ? "mean particle radius, m" : "particle radius, m");
+  if (spread) {
+    c.radius_sigma = s.required_number("radius_sigma", "standard deviation of the radius, m");
+    c.truncate = s.number_or("truncate", kDefaultTruncate);
+  }
+}
+
 void read_particles(const Scope& root, SceneConfig& scene) {
   const toml::node* node = root.raw().get("particles");
   if (!node) root.missing("particles", "one [[particles]] table per size class");
@@ -197,10 +250,11 @@ void read_particles(const Scope& root, SceneConfig& scene) {
   }
   for (std::size_t i = 0; i < array->size(); ++i) {
     const Scope s(*(*array)[i].as_table(), fmt::format("particles[{}]", i), root.source());
-    s.allow_only({"name", "radius", "volume_fraction"});
+    s.allow_only({"name", "radius", "volume_fraction", "distribution", "radius_sigma", "truncate",
+                  "radii", "shares"});
     ParticleClass c;
     c.name = s.string("name").value_or(fmt::format("class{}", i));
-    c.radius = s.required_number("radius", "particle radius, m");
+    read_size(s, c);
     if (array->size() == 1) {
       c.volume_fraction = s.number_or("volume_fraction", 1.0);
     } else {

@@ -1,5 +1,6 @@
 #include "engine/scene/scene_validation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <set>
@@ -51,6 +52,44 @@ Problem check_top_level(const SceneConfig& s) {
   return std::nullopt;
 }
 
+/// A table's radii and shares: as many of each, every one > 0.
+Problem check_size_table(const ParticleClass& c, const std::string& key) {
+  if (c.radius != 0.0) return fail(key + ".radius", "not with distribution = \"table\"");
+  if (c.radii.empty()) return fail(key + ".radii", "needs at least one radius");
+  if (c.shares.size() != c.radii.size()) {
+    return fail(key + ".shares",
+                fmt::format("has {} values for {} radii", c.shares.size(), c.radii.size()));
+  }
+  for (std::size_t k = 0; k < c.radii.size(); ++k) {
+    if (auto p = positive(fmt::format("{}.radii[{}]", key, k), c.radii[k])) return p;
+    if (auto p = positive(fmt::format("{}.shares[{}]", key, k), c.shares[k])) return p;
+  }
+  return std::nullopt;
+}
+
+/// The radius or the size distribution of class `key` (engine/scene/size_distribution.hpp).
+Problem check_size(const ParticleClass& c, const std::string& key) {
+  if (c.distribution == SizeKind::table) return check_size_table(c, key);
+  if (!c.radii.empty() || !c.shares.empty()) {
+    return fail(key + ".radii", "only with distribution = \"table\"");
+  }
+  if (auto p = positive(key + ".radius", c.radius)) return p;
+  if (c.distribution == SizeKind::single) {
+    if (c.radius_sigma == 0.0) return std::nullopt;
+    return fail(key + ".radius_sigma", "only with distribution = \"normal\" or \"lognormal\"");
+  }
+  if (auto p = positive(key + ".radius_sigma", c.radius_sigma, " m")) return p;
+  if (auto p = positive(key + ".truncate", c.truncate, " standard deviations")) return p;
+  const double low = c.radius - c.truncate * c.radius_sigma;
+  if (c.distribution == SizeKind::normal && !(low > 0.0)) {
+    return fail(key + ".radius_sigma",
+                fmt::format("radius - truncate * radius_sigma = {} m: the normal's smallest radius "
+                            "must be > 0 (lower radius_sigma or truncate)",
+                            low));
+  }
+  return std::nullopt;
+}
+
 Problem check_classes(const SceneConfig& s) {
   if (s.classes.empty()) return fail("particles", "needs at least one [[particles]] class");
   if (s.classes.size() > 256) return fail("particles", "at most 256 size classes are supported");
@@ -63,7 +102,7 @@ Problem check_classes(const SceneConfig& s) {
     if (!names.insert(c.name).second) {
       return fail(key + ".name", fmt::format("duplicate class '{}'", c.name));
     }
-    if (auto p = positive(key + ".radius", c.radius)) return p;
+    if (auto p = check_size(c, key)) return p;
     if (!(c.volume_fraction > 0.0 && c.volume_fraction <= 1.0)) {
       return fail(key + ".volume_fraction",
                   fmt::format("must be in (0, 1], got {}", c.volume_fraction));
@@ -205,10 +244,12 @@ Problem check_fill(const SceneConfig& s) {
         return fail("fill.box", "all three sizes must be > 0");
       }
       const auto& c = s.classes;
-      if (c.size() != 3 || !(c[0].radius < c[1].radius && c[1].radius < c[2].radius)) {
+      const bool single =
+          std::none_of(c.begin(), c.end(), [](auto& k) { return k.polydisperse(); });
+      if (c.size() != 3 || !single || !(c[0].radius < c[1].radius && c[1].radius < c[2].radius)) {
         return fail("fill.kind",
-                    "\"paper_packing\" needs exactly three [[particles]] classes, small to large "
-                    "radius");
+                    "\"paper_packing\" needs exactly three [[particles]] classes of one radius "
+                    "each, small to large");
       }
       return std::nullopt;
     }

@@ -87,8 +87,23 @@ toml::table drum_table(const DrumConfig& d) {
 toml::array particles_array(const std::vector<ParticleClass>& classes) {
   toml::array out;
   for (const ParticleClass& c : classes) {
-    out.push_back(toml::table{
-        {"name", c.name}, {"radius", c.radius}, {"volume_fraction", c.volume_fraction}});
+    toml::table t{{"name", c.name}, {"volume_fraction", c.volume_fraction}};
+    if (c.distribution != SizeKind::single)
+      t.insert("distribution", size_kind_name(c.distribution));
+    if (c.distribution == SizeKind::table) {
+      toml::array radii, shares;
+      for (const double r : c.radii) radii.push_back(r);
+      for (const double w : c.shares) shares.push_back(w);
+      t.insert("radii", std::move(radii));
+      t.insert("shares", std::move(shares));
+    } else {
+      t.insert("radius", c.radius);
+    }
+    if (c.distribution == SizeKind::normal || c.distribution == SizeKind::lognormal) {
+      t.insert("radius_sigma", c.radius_sigma);
+      t.insert("truncate", c.truncate);
+    }
+    out.push_back(std::move(t));
   }
   return out;
 }

@@ -16,8 +16,6 @@ namespace drumlab {
 
 namespace {
 
-/// Up to this many distinct radii get a level each; beyond, radii are binned by factors of 2.
-constexpr std::size_t kMaxExactLevels = 8;
 constexpr double kDenseCellsPerParticle = 64.0;
 constexpr double kDenseCellFloor = 1048576.0;  // 2^20
 

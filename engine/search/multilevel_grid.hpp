@@ -20,6 +20,10 @@ namespace drumlab {
 
 class GridAxes;
 
+/// Up to this many distinct radii get a level each; beyond (a size distribution), level
+/// floor(log2(r / r_min)) holds the radii in [2^l r_min, 2^(l+1) r_min).
+inline constexpr std::size_t kMaxExactLevels = 8;
+
 class MultiLevelGridSearch final : public ContactSearch {
  public:
   std::string_view name() const override { return "mlgrid"; }

@@ -37,7 +37,7 @@ std::vector<ClassCounters> class_counters(const Simulation& sim,
   std::vector<ClassCounters> out(classes.size());
   for (std::size_t k = 0; k < classes.size(); ++k) {
     out[k].name = classes[k].name;
-    out[k].radius = classes[k].radius;
+    out[k].radius = classes[k].mean_radius();
   }
   const auto cells = sim.search().cells_visited_per_particle();
   const auto tests = sim.search().pairs_tested_per_particle();

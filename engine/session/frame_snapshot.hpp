@@ -31,7 +31,7 @@ struct SnapshotRequest {
 /// Counters of the last step summed over the particles of one size class.
 struct ClassCounters {
   std::string name;                 ///< the scene's class name
-  double radius = 0.0;              ///< m
+  double radius = 0.0;              ///< m (a size distribution: its mean radius)
   std::size_t particles = 0;        ///< of this class
   std::uint64_t cells_visited = 0;  ///< by these particles' searches
   std::uint64_t pairs_tested = 0;   ///< by these particles' searches

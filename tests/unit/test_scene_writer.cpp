@@ -275,7 +275,7 @@ TEST(SceneWriter, SeedBeyondTomlIntegersIsRefusedNamingTheKey) {
 /// The number of fields of each config struct, checked by a structured binding: adding a field
 /// makes this fail to compile. Then give the field a setter in `field_setters()`, write it in
 /// engine/scene/scene_writer.cpp and raise its count here.
-constexpr int kSceneFields = 16, kDrumFields = 5, kClassFields = 3, kMaterialFields = 6,
+constexpr int kSceneFields = 16, kDrumFields = 5, kClassFields = 8, kMaterialFields = 6,
               kContactFields = 6, kLiquidFields = 15, kCohesionFields = 2, kFillFields = 7,
               kTimeFields = 5, kPerformanceFields = 2, kOutputFields = 2;
 
@@ -284,7 +284,8 @@ constexpr int kSceneFields = 16, kDrumFields = 5, kClassFields = 3, kMaterialFie
                                 contact, liquid, cohesion, fill, time, search, performance,
                                 output] = s;
   [[maybe_unused]] const auto& [diameter, depth, omega, tilt, ends] = s.drum;
-  [[maybe_unused]] const auto& [class_name, radius, class_fraction] = s.classes.front();
+  [[maybe_unused]] const auto& [class_name, radius, class_fraction, distribution, radius_sigma,
+                                truncate, radii, shares] = s.classes.front();
   [[maybe_unused]] const auto& [density, youngs, poisson, restitution, friction, rolling] =
       s.material;
   [[maybe_unused]] const auto& [normal, stiffness, collision_time, reference_radius,
@@ -338,6 +339,36 @@ std::vector<FieldSetter> field_setters(const fs::path& other_csv) {
       {"drum.ends", B::every_key, [](SceneConfig& s) { s.drum.ends = DrumEnds::caps; }},
       {"classes.name", B::every_key, [](SceneConfig& s) { s.classes[0].name = "tiny"; }},
       {"classes.radius", B::every_key, [](SceneConfig& s) { s.classes[0].radius = 0.004; }},
+      {"classes.distribution", B::every_key,
+       [](SceneConfig& s) {
+         s.classes[0].distribution = SizeKind::lognormal;
+         s.classes[0].radius_sigma = 0.0015;
+       }},
+      {"classes.radius_sigma", B::every_key,
+       [](SceneConfig& s) {
+         s.classes[0].distribution = SizeKind::normal;
+         s.classes[0].radius_sigma = 0.1 * 0.005;
+       }},
+      {"classes.truncate", B::every_key,
+       [](SceneConfig& s) {
+         s.classes[1].distribution = SizeKind::normal;
+         s.classes[1].radius_sigma = 0.001;
+         s.classes[1].truncate = 2.5;
+       }},
+      {"classes.radii", B::every_key,
+       [](SceneConfig& s) {
+         s.classes[0].distribution = SizeKind::table;
+         s.classes[0].radius = 0.0;
+         s.classes[0].radii = {0.003, 0.0041, 0.005};
+         s.classes[0].shares = {1.0, 2.0, 1.0};
+       }},
+      {"classes.shares", B::every_key,
+       [](SceneConfig& s) {
+         s.classes[1].distribution = SizeKind::table;
+         s.classes[1].radius = 0.0;
+         s.classes[1].radii = {0.01};
+         s.classes[1].shares = {0.3};
+       }},
       {"classes.volume_fraction", B::every_key,
        [](SceneConfig& s) {
          s.classes[0].volume_fraction = 0.25;

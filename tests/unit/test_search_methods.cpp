@@ -1,12 +1,13 @@
 // One suite over every contact-search method, each checked against the brute-force oracle: the
 // same pair set, every pair once, on inputs chosen to break grids (size ratios 1, 3, 10, centres on
 // cell faces, negative and far-from-origin coordinates, deep columns, dense clusters, periodic z,
-// a Verlet margin, sparse inputs that force the hashed cell index).
+// a Verlet margin, sparse inputs that force the hashed cell index, size distributions).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <random>
 
+#include "engine/scene/size_distribution.hpp"
 #include "engine/search/cell_grid.hpp"
 #include "engine/search/contact_search.hpp"
 #include "engine/search/half_stencil.hpp"
@@ -133,6 +134,32 @@ TEST_P(SearchMethod, PeriodicZ) {
 
 TEST_P(SearchMethod, VerletMargin) {
   expect_same_as_brute(random_box(2000, 3.0, Vec3::Zero(), Vec3(0.3, 0.3, 0.15), 13), 0.004);
+}
+
+/// Random spheres in a box with radii drawn from a size distribution (a scene class's radii).
+Cloud distribution_box(std::size_t n, const SizeDistribution& d, const Vec3& size, unsigned seed) {
+  Cloud c = random_box(n, 1.0, Vec3::Zero(), size, seed);
+  std::mt19937_64 rng(seed);
+  for (double& r : c.r) r = d.draw(rng);
+  return c;
+}
+
+TEST_P(SearchMethod, SizeDistributions) {
+  // Continuous radii (no two alike: a per-size stencil per particle, factor-of-2 levels) and a
+  // table; then a margin as a liquid bridge's rupture distance or a Verlet skin makes it, and
+  // periodic ends (the MercuryDPM drum's).
+  const SizeDistribution normal = SizeDistribution::normal(0.005, 0.0005, 3.0);
+  // r_max / r_min = 6.1: three factor-of-2 levels (a wider one makes m3's per-size stencils slow)
+  const SizeDistribution wide = SizeDistribution::lognormal(0.004, 0.0015, 2.5);
+  const SizeDistribution table = SizeDistribution::table({0.003, 0.004, 0.009}, {5.0, 3.0, 1.0});
+  expect_same_as_brute(distribution_box(3000, normal, Vec3(0.3, 0.3, 0.15), 21));
+  expect_same_as_brute(distribution_box(2000, wide, Vec3(0.2, 0.15, 0.1), 22));
+  expect_same_as_brute(distribution_box(2000, table, Vec3(0.3, 0.3, 0.15), 23));
+  expect_same_as_brute(distribution_box(2000, normal, Vec3(0.3, 0.3, 0.15), 24), 0.0015);
+  expect_same_as_brute(distribution_box(2000, wide, Vec3(0.2, 0.15, 0.1), 25), 0.002, 0.1);
+  auto brute = make_search("brute");
+  EXPECT_GT(sorted_pairs(*brute, distribution_box(2000, wide, Vec3(0.2, 0.15, 0.1), 22)).size(),
+            1000u);  // dense enough that many pairs touch
 }
 
 TEST_P(SearchMethod, TinyInputs) {
