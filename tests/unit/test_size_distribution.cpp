@@ -12,7 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "engine/fill/file_fill.hpp"
 #include "engine/fill/random_fill.hpp"
+#include "engine/io/restart_check.hpp"
 #include "engine/scene/scene_config.hpp"
 #include "engine/scene/size_distribution.hpp"
 #include "tests/unit/cli_runner.hpp"
@@ -199,6 +201,30 @@ TEST(SizeDistributionScene, ClassCountsUseTheMeanVolume) {
   const auto counts = class_counts(s);
   EXPECT_EQ(counts[0], 2800u);
   EXPECT_EQ(counts[1], 1600u);
+}
+
+TEST(SizeDistributionScene, FileFillAndRestartAcceptRadiiInsideTheClassOnly) {
+  const SceneConfig s = parse_scene(normal_drum(kNormal), "normal.toml");
+  ParticleTable table;
+  table.position = {Vec3(0.0, -0.02, 0.01), Vec3(0.01, -0.02, 0.01)};
+  table.radius = {1.5e-3, 2.5e-3};
+  table.line = {2, 3};
+  const Particles p = particles_from_table(s, table, "pack.csv");
+  EXPECT_EQ(p.radius, table.radius);  // a distribution keeps the file's radii
+  EXPECT_FALSE(restart_particles_problem(s, p).has_value());
+
+  table.radius[1] = 2.7e-3;  // above 2 mm + 3 sigma
+  try {
+    particles_from_table(s, table, "pack.csv");
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("pack.csv:3: radius 0.0027 m", 0), 0u) << e.what();
+  }
+  Particles far = p;
+  far.radius[0] = 1.3e-3;
+  const auto problem = restart_particles_problem(s, far);
+  ASSERT_TRUE(problem.has_value());
+  EXPECT_EQ(problem->key, "particles/radius: row 0");
 }
 
 TEST(SizeDistributionScene, BadKeysAreOneLineNamingFileAndKey) {
