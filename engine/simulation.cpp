@@ -256,11 +256,11 @@ void Simulation::register_liquid_arrays(bool fresh) {
   Particles& p = particles_;
   bool new_films = false;
   const std::size_t parts = impl_->drum.periodic() ? 1 : kWallParts;
-  for (const std::string_view name : impl_->model.cohesive_parts().particle_arrays(parts)) {
+  for (const std::string_view name : impl_->model.particle_arrays(parts)) {
     if (p.find_array(name) != nullptr) continue;
     if (!fresh) {
       throw InputError(
-          fmt::format("restart state: the scene's liquid needs the particle array "
+          fmt::format("restart state: the scene's contact law needs the particle array "
                       "'{}', which the checkpoint lacks",
                       name));
     }

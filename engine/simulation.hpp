@@ -165,9 +165,9 @@ class Simulation {
   void state_into(SimulationState& out) const;
   struct Impl;
   void validate_particles();
-  /// Registers the liquid's per-particle arrays (films, wall bridges) if the scene has them and
-  /// the particles do not; `fresh`: fill the films from the liquid content (else: a restart,
-  /// which must bring them).
+  /// Registers the contact law's per-particle arrays (films, wall bridges, wall rolling springs:
+  /// ContactModel::particle_arrays) if the scene has them and the particles do not; `fresh`: fill
+  /// the films from the liquid content (else: a restart, which must bring them).
   void register_liquid_arrays(bool fresh);
   void choose_time_step(const SimulationOptions& options);
   /// The found pairs the force loop computes: all of them serially; on a rank of a decomposed

@@ -20,7 +20,8 @@
 namespace drumlab {
 
 /// One contact at one instant. n: unit normal towards i; delta: overlap; a_i, a_j: branch lengths
-/// from the centres to the contact point (0 on a wall's side); stop_rate: see RollingResistance.
+/// from the centres to the contact point (0 on a wall's side); stop_rate: see RollingResistance;
+/// inv_dist: 1 / |x_i - x_j| (0 at a wall; RollingSpring's objective correction).
 struct ContactGeometry {
   LaneVec n;
   double delta;
@@ -29,6 +30,7 @@ struct ContactGeometry {
   double a_i;
   double a_j;
   double stop_rate;
+  double inv_dist;
 };
 
 /// Force on i and torques on i and j of one contact.
@@ -40,12 +42,14 @@ struct ContactOutput {
 
 /// Force of one contact, shared by the pair and the wall loop. v: velocity of i relative to the
 /// other body's surface, without the spins w_i, w_j; xi: the contact's tangential history,
-/// incremented over history_dt.
-template <class Normal, bool Tangential, bool Rolling>
+/// incremented over history_dt; xi_r: its rolling spring (RollingKind::spring only), likewise.
+template <class Normal, bool Tangential, RollingKind Rolling>
 [[gnu::always_inline]] inline ContactOutput contact_response(const ContactLaw<Normal>& law,
                                                              const ContactGeometry& g, LaneVec v,
                                                              const LaneVec& w_i, const LaneVec& w_j,
-                                                             LaneVec& xi, double history_dt) {
+                                                             LaneVec& xi, LaneVec& xi_r,
+                                                             double history_dt) {
+  const LaneVec v_centres = v;
   if constexpr (Tangential) v -= (g.a_i * w_i + g.a_j * w_j).cross(g.n);
   const double vn = v.dot(g.n);
   ContactOutput out;
@@ -63,8 +67,13 @@ template <class Normal, bool Tangential, bool Rolling>
     fn = law.normal.force(g.delta, vn, g.r_eff, g.m_eff);
     out.force = fn * g.n;
   }
-  if constexpr (Rolling) {
+  if constexpr (Rolling == RollingKind::torque) {
     const LaneVec m = law.rolling.torque(w_i - w_j, std::abs(fn), g.r_eff, g.stop_rate);
+    out.torque_i += m;
+    out.torque_j -= m;
+  } else if constexpr (Rolling == RollingKind::spring) {
+    const LaneVec m = law.rolling_spring.torque(xi_r, g.n, w_i - w_j, v_centres, g.inv_dist,
+                                                g.r_eff, std::abs(fn), history_dt);
     out.torque_i += m;
     out.torque_j -= m;
   }
@@ -122,12 +131,18 @@ struct PairBatch {
   Lanes3<kSize> v;  ///< v_i - v_j
   Lanes3<kSize> w_i;
   Lanes3<kSize> w_j;
-  Lanes3<kSize> xi;  ///< history: in, then advanced
+  Lanes3<kSize> xi;    ///< history: in, then advanced
+  Lanes3<kSize> xi_r;  ///< rolling spring (RollingKind::spring): in (set_rolling), then advanced
   Lanes3<kSize> force;
   Lanes3<kSize> torque_i;
   Lanes3<kSize> torque_j;
 
   bool full() const { return count == kSize; }
+
+  /// The rolling spring of the pair add() gathered last (RollingKind::spring).
+  [[gnu::always_inline]] void set_rolling(const double* xr) {
+    xi_r.set(count - 1, LaneVec{xr[0], xr[1], xr[2]});
+  }
 
   /// Adds the overlapping pair (i, j) at separation d (0 < |d| < r_i + r_j), history xi, as
   /// contact k.
@@ -148,8 +163,8 @@ struct PairBatch {
     xi.set(l, history);
   }
 
-  /// Computes force, torques and the advanced history xi of every lane.
-  template <class Normal, bool Tangential, bool Rolling>
+  /// Computes force, torques and the advanced history xi (and xi_r) of every lane.
+  template <class Normal, bool Tangential, RollingKind Rolling>
   void evaluate(const ContactLaw<Normal>& law, double dt, double history_dt) {
     const std::size_t n = pad_lanes(*this);
     for (std::size_t l = 0; l < n; ++l) {
@@ -160,17 +175,22 @@ struct PairBatch {
       // One division for R* = r_i r_j / (r_i + r_j) and m* = 1 / (1/m_i + 1/m_j) together:
       // divisions and square roots bound this loop (see the roofline in app/bench/README.md).
       const double inv = 1.0 / (sum_r * inv_mass_sum[l]);
-      const ContactGeometry g{dl * (1.0 / dist),
+      const double inv_dist = 1.0 / dist;
+      const ContactGeometry g{dl * inv_dist,
                               delta,
                               r_i[l] * r_j[l] * inv_mass_sum[l] * inv,
                               sum_r * inv,
                               r_i[l] - 0.5 * delta,
                               r_j[l] - 0.5 * delta,
-                              dt * inv_inertia_sum[l]};
+                              dt * inv_inertia_sum[l],
+                              inv_dist};
       LaneVec x = xi.get(l);
+      LaneVec x_r;
+      if constexpr (Rolling == RollingKind::spring) x_r = xi_r.get(l);
       const ContactOutput o = contact_response<Normal, Tangential, Rolling>(
-          law, g, v.get(l), w_i.get(l), w_j.get(l), x, history_dt);
+          law, g, v.get(l), w_i.get(l), w_j.get(l), x, x_r, history_dt);
       xi.set(l, x);
+      if constexpr (Rolling == RollingKind::spring) xi_r.set(l, x_r);
       force.set(l, o.force);
       torque_i.set(l, o.torque_i);
       torque_j.set(l, o.torque_j);
@@ -189,6 +209,7 @@ struct PairBatch {
     w_i.set(to, w_i.get(from));
     w_j.set(to, w_j.get(from));
     xi.set(to, xi.get(from));
+    xi_r.set(to, xi_r.get(from));
   }
 };
 
@@ -206,10 +227,14 @@ struct WallBatch {
   Lanes3<kSize> v;  ///< v_i - wall surface velocity at the contact point
   Lanes3<kSize> w_i;
   Lanes3<kSize> xi;
+  Lanes3<kSize> xi_r;  ///< rolling spring (RollingKind::spring): in (set_rolling), then advanced
   Lanes3<kSize> force;
   Lanes3<kSize> torque_i;
 
   bool full() const { return count == kSize; }
+
+  /// The rolling spring of the contact add() gathered last (RollingKind::spring).
+  void set_rolling(const Vec3& xr) { xi_r.set(count - 1, xr); }
 
   void add(Index pi, std::size_t wall_part, const Vec3& normal, double overlap, double r, double m,
            double stop, const Vec3& v_rel, const Vec3& w, const Vec3& history) {
@@ -227,17 +252,21 @@ struct WallBatch {
   }
 
   /// As PairBatch::evaluate; wall_spin: the wall's angular velocity.
-  template <class Normal, bool Tangential, bool Rolling>
+  template <class Normal, bool Tangential, RollingKind Rolling>
   void evaluate(const ContactLaw<Normal>& law, const Vec3& wall_spin, double history_dt) {
     const std::size_t cnt = pad_lanes(*this);
     const LaneVec spin{wall_spin.x(), wall_spin.y(), wall_spin.z()};
     for (std::size_t l = 0; l < cnt; ++l) {
-      const ContactGeometry g{n.get(l), delta[l],    radius[l], mass[l], radius[l] - 0.5 * delta[l],
-                              0.0,      stop_rate[l]};
+      const ContactGeometry g{
+          n.get(l), delta[l],     radius[l], mass[l], radius[l] - 0.5 * delta[l],
+          0.0,      stop_rate[l], 0.0};
       LaneVec x = xi.get(l);
+      LaneVec x_r;
+      if constexpr (Rolling == RollingKind::spring) x_r = xi_r.get(l);
       const ContactOutput o = contact_response<Normal, Tangential, Rolling>(
-          law, g, v.get(l), w_i.get(l), spin, x, history_dt);
+          law, g, v.get(l), w_i.get(l), spin, x, x_r, history_dt);
       xi.set(l, x);
+      if constexpr (Rolling == RollingKind::spring) xi_r.set(l, x_r);
       force.set(l, o.force);
       torque_i.set(l, o.torque_i);
     }
@@ -254,6 +283,7 @@ struct WallBatch {
     v.set(to, v.get(from));
     w_i.set(to, w_i.get(from));
     xi.set(to, xi.get(from));
+    xi_r.set(to, xi_r.get(from));
   }
 };
 

@@ -66,7 +66,7 @@ template <bool kMark, class Overlap, class Apart>
 // stores its advanced history and calls sink(batch, l) with its force and torques in lane l.
 // Resets the history of the entries that do not overlap. Returns the entries within the touching
 // tolerance.
-template <class Normal, bool Tangential, bool Rolling, bool kMark, class Sink>
+template <class Normal, bool Tangential, RollingKind Rolling, bool kMark, class Sink>
 [[gnu::always_inline]] inline std::size_t batched_rows(const ContactLaw<Normal>& law,
                                                        const Particles& p, ContactList& contacts,
                                                        std::size_t begin, std::size_t end,
@@ -76,10 +76,20 @@ template <class Normal, bool Tangential, bool Rolling, bool kMark, class Sink>
   const auto row = contacts.row_start();
   const auto col = contacts.col();
   const auto hist = contacts.history();
+  // RollingKind::spring: xi_r is the last kRollingStateSize scalars of each contact's state.
+  constexpr bool kSpring = Rolling == RollingKind::spring;
+  const std::size_t stride = contacts.state_size();
+  double* const roll = kSpring ? contacts.state().data() + (stride - kRollingStateSize) : nullptr;
   const auto flush = [&] {
     batch.evaluate<Normal, Tangential, Rolling>(law, dt, history_dt);
     for (std::size_t l = 0; l < batch.count; ++l) {
       hist[batch.k[l]] = batch.xi.vec3(l);
+      if constexpr (kSpring) {
+        double* xr = roll + batch.k[l] * stride;
+        xr[0] = batch.xi_r.x[l];
+        xr[1] = batch.xi_r.y[l];
+        xr[2] = batch.xi_r.z[l];
+      }
       sink(batch, l);
     }
     batch.count = 0;
@@ -90,9 +100,13 @@ template <class Normal, bool Tangential, bool Rolling, bool kMark, class Sink>
         p, col, i, row[i], row[i + 1], period, touching, mark,
         [&](std::size_t k) {
           batch.add(p, i, col[k], separation(p, i, col[k], period), hist[k], k);
+          if constexpr (kSpring) batch.set_rolling(roll + k * stride);
           if (batch.full()) flush();
         },
-        [&](std::size_t k) { hist[k].setZero(); });  // not (or no longer) overlapping
+        [&](std::size_t k) {  // not (or no longer) overlapping
+          hist[k].setZero();
+          if constexpr (kSpring) std::fill_n(roll + k * stride, kRollingStateSize, 0.0);
+        });
   }
   if (batch.count > 0) flush();
   return touching;
@@ -136,10 +150,10 @@ constexpr std::size_t kBlockRows = kPairBlockRows;
 
 // One thread: the rows in order; the cross-block shares summed per partner in cross_force /
 // cross_torque (by k, as the rows come in order) and added at the end.
-template <class Normal, bool Tangential, bool Rolling, bool kMark>
+template <class Normal, bool Tangential, RollingKind Rolling, bool kMark>
 std::size_t pair_loop_serial(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts,
                              PairForceBuffers& buf, double period, double dt, double history_dt) {
-  constexpr bool kTorque = Tangential || Rolling;
+  constexpr bool kTorque = Tangential || rolls(Rolling);
   contacts.index_cross_block(kBlockRows);
   const auto receivers = contacts.cross_receivers();
   const auto block_end = contacts.row_block_end();
@@ -179,12 +193,12 @@ std::size_t pair_loop_serial(const ContactLaw<Normal>& law, Particles& p, Contac
 // of slots [row[begin], row[end]), with each listed pair's slot in buf.slot (`zero` for the
 // others). Not inlined into the OpenMP region, where the shared variables would be read through
 // pointers.
-template <class Normal, bool Tangential, bool Rolling, bool kMark>
+template <class Normal, bool Tangential, RollingKind Rolling, bool kMark>
 [[gnu::noinline]] std::size_t block_rows(const ContactLaw<Normal>& law, Particles& p,
                                          ContactList& contacts, PairForceBuffers& buf,
                                          std::size_t block, double period, double dt,
                                          double history_dt) {
-  constexpr bool kTorque = Tangential || Rolling;
+  constexpr bool kTorque = Tangential || rolls(Rolling);
   const std::size_t begin = contacts.block_start()[block];
   const std::size_t end = contacts.block_start()[block + 1];
   const auto row = contacts.row_start();
@@ -216,7 +230,7 @@ template <class Normal, bool Tangential, bool Rolling, bool kMark>
 // Several threads: (1) whole blocks, each by one thread (contacts are independent; each owns its
 // history); (2) each particle adds its cross-block shares, by k. kMark: see split_row (the
 // buffer buf.cohesion.mark is sized here).
-template <class Normal, bool Tangential, bool Rolling, bool kMark>
+template <class Normal, bool Tangential, RollingKind Rolling, bool kMark>
 std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts,
                       PairForceBuffers& buf, double period, double dt, double history_dt) {
   if constexpr (kMark) buf.cohesion.mark.resize(contacts.size());
@@ -227,7 +241,7 @@ std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& 
     return pair_loop_serial<Normal, Tangential, Rolling, kMark>(law, p, contacts, buf, period, dt,
                                                                 history_dt);
   }
-  constexpr bool kTorque = Tangential || Rolling;
+  constexpr bool kTorque = Tangential || rolls(Rolling);
   const std::size_t zero = contacts.size();  // the slot of the pairs that do not overlap
   buf.slot.resize(contacts.size());
   buf.force.resize(contacts.size() + 1);
@@ -263,7 +277,7 @@ std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& 
 }
 
 // The pair loop's force, read-only: history copied (and not advanced), torques discarded.
-template <class Normal, bool Tangential, bool Rolling>
+template <class Normal, bool Tangential, RollingKind Rolling>
 void pair_force_loop(const ContactLaw<Normal>& law, const Particles& p, const ContactList& contacts,
                      double period, double dt, std::vector<ContactForce>& out) {
   const auto row = contacts.row_start();
@@ -292,22 +306,50 @@ void pair_force_loop(const ContactLaw<Normal>& law, const Particles& p, const Co
   if (batch.count > 0) flush();
 }
 
+// The wall rolling springs of every particle (kWallRollingArrays), per wall part.
+class WallRollingView {
+ public:
+  WallRollingView() = default;
+  WallRollingView(Particles& p, std::size_t parts) {
+    for (std::size_t w = 0; w < parts; ++w) {
+      for (std::size_t c = 0; c < 3; ++c) {
+        std::vector<double>* a = p.find_array(kWallRollingArrays[w][c]);
+        if (a == nullptr) throw std::logic_error("wall rolling spring without its arrays");
+        v_[w][c] = a->data();
+      }
+    }
+  }
+  Vec3 get(std::size_t part, Index i) const {
+    return {v_[part][0][i], v_[part][1][i], v_[part][2][i]};
+  }
+  void set(std::size_t part, Index i, const Vec3& x) const {
+    for (std::size_t c = 0; c < 3; ++c) v_[part][c][i] = x[static_cast<Eigen::Index>(c)];
+  }
+
+ private:
+  std::array<std::array<double*, 3>, kWallParts> v_{};
+};
+
 // The wall contacts of the particles candidates[begin, end), by particle, then wall part.
 // Returns how many there were (the contacts the kernel evaluated).
-template <class Normal, bool Tangential, bool Rolling>
+template <class Normal, bool Tangential, RollingKind Rolling>
 std::size_t wall_rows(const ContactLaw<Normal>& law, Particles& p,
                       std::span<const Index> candidates, std::size_t begin, std::size_t end,
                       const Drum& drum, double omega, WallHistory& history, double dt,
                       double history_dt, WallBatch& batch) {
   const Vec3 wall_spin(0.0, 0.0, omega);
   const std::size_t parts = drum.periodic() ? 1 : kWallParts;
+  constexpr bool kSpring = Rolling == RollingKind::spring;
+  WallRollingView roll;
+  if constexpr (kSpring) roll = WallRollingView(p, parts);
   const auto flush = [&] {
     batch.evaluate<Normal, Tangential, Rolling>(law, wall_spin, history_dt);
     for (std::size_t l = 0; l < batch.count; ++l) {
       const Index i = batch.i[l];
       history[i][batch.part[l]] = batch.xi.vec3(l);
+      if constexpr (kSpring) roll.set(batch.part[l], i, batch.xi_r.vec3(l));
       p.force[i] += batch.force.vec3(l);
-      if constexpr (Tangential || Rolling) p.torque[i] += batch.torque_i.vec3(l);
+      if constexpr (Tangential || rolls(Rolling)) p.torque[i] += batch.torque_i.vec3(l);
     }
     batch.count = 0;
   };
@@ -320,6 +362,7 @@ std::size_t wall_rows(const ContactLaw<Normal>& law, Particles& p,
       const WallContact c = drum.contact(static_cast<WallPart>(part), x, r);
       if (c.overlap <= 0.0) {
         history[i][part].setZero();
+        if constexpr (kSpring) roll.set(part, i, Vec3::Zero());
         continue;
       }
       // The wall's spin enters through its surface velocity (branch length 0 on its side) and
@@ -327,6 +370,7 @@ std::size_t wall_rows(const ContactLaw<Normal>& law, Particles& p,
       const Vec3 point = x - (r - 0.5 * c.overlap) * c.normal;
       batch.add(i, part, c.normal, c.overlap, r, p.mass[i], dt * p.inv_inertia[i],
                 p.velocity[i] - Drum::wall_velocity(point, omega), p.omega[i], history[i][part]);
+      if constexpr (kSpring) batch.set_rolling(roll.get(part, i));
       ++contacts;
       if (batch.full()) flush();
     }
@@ -335,7 +379,7 @@ std::size_t wall_rows(const ContactLaw<Normal>& law, Particles& p,
   return contacts;
 }
 
-template <class Normal, bool Tangential, bool Rolling>
+template <class Normal, bool Tangential, RollingKind Rolling>
 std::size_t wall_loop(const ContactLaw<Normal>& law, Particles& p,
                       std::span<const Index> candidates, const Drum& drum, double omega,
                       WallHistory& history, double dt, double history_dt) {
@@ -357,9 +401,19 @@ std::size_t wall_loop(const ContactLaw<Normal>& law, Particles& p,
 }
 
 template <class Normal>
-ContactLaw<Normal> make_law(const Normal& n, const MindlinTangential& t,
-                            const RollingResistance& r) {
-  return {n, t, r};
+ContactLaw<Normal> make_law(const Normal& n, const MindlinTangential& t, const RollingResistance& r,
+                            const RollingSpring& spring) {
+  return {n, t, r, spring};
+}
+
+// The rolling spring of a linear viscoelastic normal law (RollingLaw::spring): k_r, gamma_r the
+// scene's ratios of the law's k, gamma (the validation requires that normal law).
+RollingSpring make_rolling_spring(const SceneConfig& s, const NormalVariant& normal,
+                                  double rolling_friction) {
+  const auto* law = std::get_if<LinearViscoelastic>(&normal);
+  if (s.contact.rolling != RollingLaw::spring || law == nullptr) return {};
+  return {s.contact.rolling_stiffness_ratio * law->stiffness,
+          s.contact.rolling_damping_ratio * law->damping_coefficient, rolling_friction};
 }
 
 NormalVariant make_normal(const SceneConfig& s, const Material& other, double restitution) {
@@ -380,23 +434,37 @@ NormalVariant make_normal(const SceneConfig& s, const Material& other, double re
 
 // Calls loop.template operator()<Normal, Tangential, Rolling>(law) with the scene's runtime
 // choices turned into template arguments, so the chosen law inlines into the loop.
+// The spring is compiled for the linear viscoelastic law only (the one it needs).
 template <class Loop>
-void with_law(const ContactLaw<NormalVariant>& parts, bool tangential, bool rolling, Loop&& loop) {
+void with_law(const ContactLaw<NormalVariant>& parts, bool tangential, RollingKind rolling,
+              Loop&& loop) {
   std::visit(
       [&](const auto& normal) {
-        const auto law = make_law(normal, parts.tangential, parts.rolling);
+        const auto law = make_law(normal, parts.tangential, parts.rolling, parts.rolling_spring);
         using N = std::decay_t<decltype(normal)>;
-        if (tangential && rolling) {
-          loop.template operator()<N, true, true>(law);
-        } else if (tangential) {
-          loop.template operator()<N, true, false>(law);
-        } else if (rolling) {
-          loop.template operator()<N, false, true>(law);
+        const auto with_rolling = [&]<RollingKind R>() {
+          if (tangential) {
+            loop.template operator()<N, true, R>(law);
+          } else {
+            loop.template operator()<N, false, R>(law);
+          }
+        };
+        if (rolling == RollingKind::torque) {
+          with_rolling.template operator()<RollingKind::torque>();
+        } else if (rolling == RollingKind::none) {
+          with_rolling.template operator()<RollingKind::none>();
+        } else if constexpr (std::is_same_v<N, LinearViscoelastic>) {
+          with_rolling.template operator()<RollingKind::spring>();
         } else {
-          loop.template operator()<N, false, false>(law);
+          throw std::logic_error("rolling spring without the linear viscoelastic law");
         }
       },
       parts.normal);
+}
+
+RollingKind rolling_kind(bool rolling, bool spring) {
+  if (!rolling) return RollingKind::none;
+  return spring ? RollingKind::spring : RollingKind::torque;
 }
 
 }  // namespace
@@ -405,15 +473,31 @@ ContactModel::ContactModel(const SceneConfig& scene) {
   validate_laws(scene);
   pair_ = {make_normal(scene, scene.material, scene.material.restitution),
            MindlinTangential{scene.material.friction},
-           RollingResistance{scene.material.rolling_friction}};
+           RollingResistance{scene.material.rolling_friction},
+           {}};
+  pair_.rolling_spring = make_rolling_spring(scene, pair_.normal, scene.material.rolling_friction);
   wall_ = {make_normal(scene, scene.wall, scene.wall.restitution),
-           MindlinTangential{scene.wall.friction}, RollingResistance{scene.wall.rolling_friction}};
+           MindlinTangential{scene.wall.friction},
+           RollingResistance{scene.wall.rolling_friction},
+           {}};
+  wall_.rolling_spring = make_rolling_spring(scene, wall_.normal, scene.wall.rolling_friction);
+  spring_ = scene.contact.rolling == RollingLaw::spring;
   pair_tangential_ = scene.material.friction > 0.0;
   pair_rolling_ = scene.material.rolling_friction > 0.0;
   wall_tangential_ = scene.wall.friction > 0.0;
   wall_rolling_ = scene.wall.rolling_friction > 0.0;
   cohesive_ = CohesiveParts(scene);
   pair_range_ = cohesive_.range();
+}
+
+std::vector<std::string_view> ContactModel::particle_arrays(std::size_t wall_parts) const {
+  std::vector<std::string_view> names = cohesive_.particle_arrays(wall_parts);
+  if (wall_rolling_spring()) {
+    for (std::size_t w = 0; w < wall_parts; ++w) {
+      names.insert(names.end(), kWallRollingArrays[w].begin(), kWallRollingArrays[w].end());
+    }
+  }
+  return names;
 }
 
 double ContactModel::pair_range(std::uint8_t, std::uint8_t) const {
@@ -436,8 +520,8 @@ std::size_t ContactModel::add_pair_forces_parallel(Particles& p, ContactList& co
                                                    bool list_events) const {
   std::size_t touching = 0;
   const bool cohesive = cohesive_.any();
-  with_law(pair_, pair_tangential_, pair_rolling_,
-           [&]<class N, bool Tangential, bool Rolling>(const ContactLaw<N>& law) {
+  with_law(pair_, pair_tangential_, rolling_kind(pair_rolling_, spring_),
+           [&]<class N, bool Tangential, RollingKind Rolling>(const ContactLaw<N>& law) {
              touching = cohesive ? pair_loop<N, Tangential, Rolling, true>(
                                        law, p, contacts, buffers, period, dt, history_dt)
                                  : pair_loop<N, Tangential, Rolling, false>(
@@ -461,8 +545,8 @@ std::size_t ContactModel::add_wall_forces(Particles& p, std::span<const Index> c
                                           const Drum& drum, double omega, WallHistory& history,
                                           double dt, double history_dt) const {
   std::size_t contacts = 0;
-  with_law(wall_, wall_tangential_, wall_rolling_,
-           [&]<class N, bool Tangential, bool Rolling>(const ContactLaw<N>& law) {
+  with_law(wall_, wall_tangential_, rolling_kind(wall_rolling_, spring_),
+           [&]<class N, bool Tangential, RollingKind Rolling>(const ContactLaw<N>& law) {
              contacts = wall_loop<N, Tangential, Rolling>(law, p, candidates, drum, omega, history,
                                                           dt, history_dt);
            });
@@ -476,12 +560,12 @@ void ContactModel::pair_forces(const Particles& p, const ContactList& contacts, 
                                double dt, std::vector<ContactForce>& out) const {
   std::visit(
       [&](const auto& normal) {
-        const auto law = make_law(normal, pair_.tangential, pair_.rolling);
+        const auto law = make_law(normal, pair_.tangential, pair_.rolling, pair_.rolling_spring);
         using N = std::decay_t<decltype(normal)>;
         if (pair_tangential_) {
-          pair_force_loop<N, true, false>(law, p, contacts, period, dt, out);
+          pair_force_loop<N, true, RollingKind::none>(law, p, contacts, period, dt, out);
         } else {
-          pair_force_loop<N, false, false>(law, p, contacts, period, dt, out);
+          pair_force_loop<N, false, RollingKind::none>(law, p, contacts, period, dt, out);
         }
       },
       pair_.normal);

@@ -20,6 +20,7 @@
 #include "engine/contact/linear_spring_dashpot.hpp"
 #include "engine/contact/linear_viscoelastic.hpp"
 #include "engine/contact/rolling_resistance.hpp"
+#include "engine/contact/rolling_spring.hpp"
 #include "engine/drum.hpp"
 #include "engine/particles.hpp"
 #include "engine/scene/scene_config.hpp"
@@ -35,7 +36,15 @@ struct ContactLaw {
   Normal normal;
   MindlinTangential tangential;
   RollingResistance rolling;
+  RollingSpring rolling_spring;  ///< used instead of `rolling` by RollingKind::spring
 };
+
+/// The rolling part a force loop is compiled with: none, RollingResistance (constant torque) or
+/// RollingSpring (spring, dashpot, Coulomb limit; keeps xi_r per contact).
+enum class RollingKind : std::uint8_t { none, torque, spring };
+constexpr bool rolls(RollingKind r) {
+  return r != RollingKind::none;
+}
 
 using NormalVariant = std::variant<HertzNormal, LinearSpringDashpot, LinearViscoelastic>;
 
@@ -75,6 +84,11 @@ class ContactModel {
 
   bool pair_tangential() const { return pair_tangential_; }
   bool pair_rolling() const { return pair_rolling_; }
+  /// Whether the rolling resistance is the spring (`[contact] rolling = "spring"`): a pair keeps
+  /// xi_r in the last kRollingStateSize scalars of its contact state, a particle one per wall
+  /// part in kWallRollingArrays.
+  bool pair_rolling_spring() const { return pair_rolling_ && spring_; }
+  bool wall_rolling_spring() const { return wall_rolling_ && spring_; }
   bool wall_tangential() const { return wall_tangential_; }
   bool wall_rolling() const { return wall_rolling_; }
   /// Interaction range of the composed particle-particle law (m): the largest surface gap
@@ -87,8 +101,14 @@ class ContactModel {
   /// (the rupture distance of a wall bridge of the largest volume; 0 without wall bridges).
   double wall_range() const { return cohesive_.wall_range(); }
   /// Scalars the composed law keeps per particle-particle contact (ContactList::set_state_size):
-  /// the sum over its cohesive parts; 0 for a dry law.
-  std::size_t pair_state_size() const { return cohesive_.state_size(); }
+  /// the sum over its cohesive parts (from offset 0), then the rolling spring's xi_r; 0 for a dry
+  /// law without the spring.
+  std::size_t pair_state_size() const {
+    return cohesive_.state_size() + (pair_rolling_spring() ? kRollingStateSize : 0);
+  }
+  /// The per-particle arrays the composed law keeps (the cohesive parts' films and wall bridges,
+  /// the wall rolling springs), each once; `wall_parts`: 1 with periodic ends, else kWallParts.
+  std::vector<std::string_view> particle_arrays(std::size_t wall_parts) const;
   /// The cohesive part Law (cohesive_laws.hpp) if the scene has it, e.g. part<LiquidBridge>()
   /// with [liquid], part<SjkrCohesion>() with [cohesion]; else nullptr.
   template <class Law>
@@ -163,6 +183,7 @@ class ContactModel {
   bool pair_rolling_ = false;
   bool wall_tangential_ = false;
   bool wall_rolling_ = false;
+  bool spring_ = false;  ///< RollingLaw::spring
   CohesiveParts cohesive_;
   double pair_range_ = 0.0;
 };

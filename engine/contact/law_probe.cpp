@@ -58,7 +58,7 @@ LawCurve probe_law(const SceneConfig& scene, const LawProbeOptions& o) {
   Particles& p = bodies.p;
   p.add(Vec3::Zero(), ra, scene.material.density, o.class_a);
   if (!o.wall) p.add(Vec3::Zero(), rb, scene.material.density, o.class_b);
-  for (const std::string_view name : model.cohesive_parts().particle_arrays(kWallParts)) {
+  for (const std::string_view name : model.particle_arrays(kWallParts)) {
     p.add_array(name, 0.0);
   }
   if (p.find_array(kLiquidFilmArray) != nullptr) {

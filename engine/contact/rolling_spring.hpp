@@ -13,16 +13,32 @@
 // re-ordering that flips a pair moves it without negating it. No twisting resistance (the peer's
 // torsion coefficient is 0 in its drum).
 //
-// Not yet composed into ContactModel: it needs a second per-contact history (xi_r) in the pair
-// and wall loops and the batched kernel (engine/README.md, "The laws against MercuryDPM's
-// species").
+// Composed by ContactModel with `[contact] rolling = "spring"`: a pair keeps xi_r as the last
+// kRollingStateSize scalars of its contact state (ContactList::state(): carried by the merge,
+// moved without negation at re-ordering, saved in checkpoints, packed for MPI); a particle keeps
+// one xi_r per wall part in the per-particle arrays kWallRollingArrays. Like the sliding spring,
+// xi_r is reset when the overlap ends.
 #include <Eigen/Geometry>
+#include <array>
 #include <cmath>
+#include <string_view>
 
 #include "engine/contact/lane_vec.hpp"
 #include "engine/types.hpp"
 
 namespace drumlab {
+
+/// Scalars of a pair's rolling spring in its contact state (xi_r: x, y, z; m).
+inline constexpr std::size_t kRollingStateSize = 3;
+
+/// The per-particle arrays of each particle's rolling spring against each wall part (mantle, low
+/// cap, high cap), component by component (m): registered by a scene with a rolling spring at
+/// the wall, carried by re-ordering, checkpoints and MPI migration like every array.
+inline constexpr std::array<std::array<std::string_view, 3>, 3> kWallRollingArrays = {{
+    {"wall_rolling_x_mantle", "wall_rolling_y_mantle", "wall_rolling_z_mantle"},
+    {"wall_rolling_x_low_cap", "wall_rolling_y_low_cap", "wall_rolling_z_low_cap"},
+    {"wall_rolling_x_high_cap", "wall_rolling_y_high_cap", "wall_rolling_z_high_cap"},
+}};
 
 struct RollingSpring {
   double stiffness = 0.0;  ///< k_r, N/m (the peer: 2/7 of the normal k)

@@ -28,6 +28,10 @@ struct Material {
 /// linear_viscoelastic: linear_viscoelastic.hpp (k and damping from a collision time and e).
 enum class NormalLaw { hertz, linear, linear_viscoelastic };
 
+/// constant_torque: rolling_resistance.hpp (drumlab's default); spring: rolling_spring.hpp
+/// (MercuryDPM's rolling spring, dashpot and Coulomb limit; needs NormalLaw::linear_viscoelastic).
+enum class RollingLaw { constant_torque, spring };
+
 /// [time] max_overlap: its default and the largest value accepted (radii of the smaller body).
 /// Beyond one radius the overlap lens of a small sphere on a large one is no longer a lens.
 inline constexpr double kDefaultMaxOverlap = 0.5;
@@ -46,6 +50,11 @@ struct ContactConfig {
   /// and dashpot (MercuryDPM's drum: 2/7 each).
   double tangential_stiffness_ratio = 2.0 / 7.0;
   double tangential_damping_ratio = 2.0 / 7.0;
+  /// The rolling resistance law (used where rolling_friction > 0); with RollingLaw::spring,
+  /// k_r / k and gamma_r / gamma of the normal law's k and gamma (MercuryDPM's drum: 2/7 each).
+  RollingLaw rolling = RollingLaw::constant_torque;
+  double rolling_stiffness_ratio = 2.0 / 7.0;
+  double rolling_damping_ratio = 2.0 / 7.0;
 
   friend bool operator==(const ContactConfig&, const ContactConfig&) = default;
 };

@@ -30,9 +30,12 @@ SceneFeature tangential(const char* who, const char* key, double mu) {
                        : fmt::format("{} = 0: no tangential force, no history update", key));
 }
 
-SceneFeature rolling(const char* who, const char* key, double mu_r) {
+SceneFeature rolling(const char* who, const char* key, double mu_r, bool spring) {
   return term(fmt::format("rolling resistance ({})", who), mu_r > 0.0,
-              mu_r > 0.0 ? fmt::format("{} = {} > 0", key, mu_r)
+              mu_r > 0.0 ? fmt::format("{} = {} > 0{}", key, mu_r,
+                                       spring ? ": contact.rolling = spring (xi_r per contact, "
+                                                "largest torque mu_r |F_n| 2 R*)"
+                                              : "")
                          : fmt::format("{} = 0: no rolling torque", key));
 }
 
@@ -130,15 +133,17 @@ SceneFeatures scene_features(const SceneConfig& scene) {
   f.shallow = largest > 0.0 && f.depth_in_diameters <= kShallowDepthInDiameters;
   f.grid_2d = grid_of(scene.search_method) == "2D";
 
+  const bool spring = scene.contact.rolling == RollingLaw::spring;
   f.list.push_back(tangential("particle-particle", "material.friction", scene.material.friction));
   f.list.push_back(tangential("particle-wall", "wall.friction", scene.wall.friction));
   f.list.push_back(term("rotation (angular velocity)", f.rotation,
                         f.rotation ? "some contact applies a torque (friction or rolling > 0)"
                                    : "no friction and no rolling resistance: no torque, "
                                      "angular velocities are not integrated"));
+  f.list.push_back(rolling("particle-particle", "material.rolling_friction",
+                           scene.material.rolling_friction, spring));
   f.list.push_back(
-      rolling("particle-particle", "material.rolling_friction", scene.material.rolling_friction));
-  f.list.push_back(rolling("particle-wall", "wall.rolling_friction", scene.wall.rolling_friction));
+      rolling("particle-wall", "wall.rolling_friction", scene.wall.rolling_friction, spring));
   add_cohesion_terms(scene, f);
   f.list.push_back(term("end-cap contacts", f.end_caps,
                         f.end_caps ? "drum.ends = caps: mantle and both caps tested per particle"

@@ -296,11 +296,30 @@ void read_linear_viscoelastic(const Scope& s, ContactConfig& c) {
   c.tangential_damping_ratio = s.number_or("tangential_damping_ratio", c.tangential_damping_ratio);
 }
 
+// [contact] rolling = "constant_torque" (default) | "spring", with the spring's ratios.
+void read_rolling(const Scope& s, ContactConfig& c) {
+  const std::string rolling = s.string("rolling").value_or("constant_torque");
+  if (rolling == "spring") {
+    c.rolling = RollingLaw::spring;
+    c.rolling_stiffness_ratio = s.number_or("rolling_stiffness_ratio", c.rolling_stiffness_ratio);
+    c.rolling_damping_ratio = s.number_or("rolling_damping_ratio", c.rolling_damping_ratio);
+    return;
+  }
+  if (rolling != "constant_torque") {
+    s.fail("rolling", fmt::format("unknown value '{}' (valid: constant_torque, spring)", rolling));
+  }
+  for (const char* key : {"rolling_stiffness_ratio", "rolling_damping_ratio"}) {
+    if (s.has(key)) s.fail(key, "only used with rolling = \"spring\"");
+  }
+}
+
 void read_contact(const Scope& root, SceneConfig& scene) {
   const auto s = root.table("contact");
   if (!s) return;
   s->allow_only({"normal", "linear_stiffness", "collision_time", "reference_radius",
-                 "tangential_stiffness_ratio", "tangential_damping_ratio"});
+                 "tangential_stiffness_ratio", "tangential_damping_ratio", "rolling",
+                 "rolling_stiffness_ratio", "rolling_damping_ratio"});
+  read_rolling(*s, scene.contact);
   const std::string normal = s->string("normal").value_or("hertz");
   if (normal != "linear_viscoelastic") {
     for (const char* key : {"collision_time", "reference_radius", "tangential_stiffness_ratio",

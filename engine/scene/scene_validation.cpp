@@ -150,8 +150,20 @@ Problem check_material(std::string_view table, const Material& m, bool with_dens
   return std::nullopt;
 }
 
+Problem check_rolling(const ContactConfig& c) {
+  if (c.rolling != RollingLaw::spring) return std::nullopt;
+  if (c.normal != NormalLaw::linear_viscoelastic) {
+    return fail(
+        "contact.rolling",
+        "\"spring\" needs normal = \"linear_viscoelastic\" (its k and gamma set k_r, gamma_r)");
+  }
+  if (auto p = positive("contact.rolling_stiffness_ratio", c.rolling_stiffness_ratio)) return p;
+  return non_negative("contact.rolling_damping_ratio", c.rolling_damping_ratio);
+}
+
 Problem check_contact(const SceneConfig& s) {
   const ContactConfig& c = s.contact;
+  if (auto p = check_rolling(c)) return p;
   if (c.normal == NormalLaw::linear)
     return positive("contact.linear_stiffness", c.linear_stiffness);
   if (c.normal != NormalLaw::linear_viscoelastic) return std::nullopt;

@@ -131,7 +131,7 @@ toml::table wall_table(const Material& wall, const Material& m) {
   return t;
 }
 
-toml::table contact_table(const ContactConfig& c) {
+toml::table contact_normal_table(const ContactConfig& c) {
   if (c.normal == NormalLaw::linear) {
     return toml::table{{"normal", "linear"}, {"linear_stiffness", c.linear_stiffness}};
   }
@@ -143,6 +143,16 @@ toml::table contact_table(const ContactConfig& c) {
                        {"tangential_damping_ratio", c.tangential_damping_ratio}};
   }
   return toml::table{{"normal", "hertz"}};
+}
+
+toml::table contact_table(const ContactConfig& c) {
+  toml::table t = contact_normal_table(c);
+  if (c.rolling == RollingLaw::spring) {
+    t.insert("rolling", "spring");
+    t.insert("rolling_stiffness_ratio", c.rolling_stiffness_ratio);
+    t.insert("rolling_damping_ratio", c.rolling_damping_ratio);
+  }
+  return t;
 }
 
 toml::table liquid_table(const LiquidConfig& l) {

@@ -68,10 +68,10 @@ TEST(ContactKernel, PairBatchGivesTheHertzForce) {
   p.add(Vec3(0.0, 0.0, 0.0), r, 2500.0);
   p.add(Vec3(2.0 * r - delta, 0.0, 0.0), r, 2500.0);
   const ContactLaw<HertzNormal> law{HertzNormal(2e6, 1e6, 1.0), MindlinTangential{0.0},
-                                    RollingResistance{0.0}};
+                                    RollingResistance{0.0}, RollingSpring{}};
   PairBatch b;
   b.add(p, 0, 1, p.position[0] - p.position[1], Vec3::Zero(), 0);
-  b.evaluate<HertzNormal, false, false>(law, 1e-5, 1e-5);
+  b.evaluate<HertzNormal, false, RollingKind::none>(law, 1e-5, 1e-5);
   const double expected = 4.0 / 3.0 * 2e6 * std::sqrt(0.5 * r) * std::pow(delta, 1.5);
   EXPECT_NEAR(b.force.vec3(0).x(), -expected, 1e-12 * expected);  // pushes 0 towards -x
   EXPECT_EQ(b.force.vec3(0).y(), 0.0);
@@ -91,7 +91,7 @@ TEST(ContactKernel, ResultDoesNotDependOnThePlaceInTheBatch) {
     p.omega.back() = Vec3(u(rng), u(rng), u(rng)) * 50.0;
   }
   const ContactLaw<HertzNormal> law{HertzNormal(5e6, 2e6, 0.5), MindlinTangential{0.4},
-                                    RollingResistance{0.05}};
+                                    RollingResistance{0.05}, RollingSpring{}};
   std::vector<Vec3> d, xi;  // overlaps of 0.5e-4 to 1.5e-4 m, slightly oblique
   for (int k = 0; k < 21; ++k) {
     d.push_back(Vec3(2.0 * r - 1e-4 * (1.0 + 0.5 * u(rng)), 1e-4 * u(rng), 0.0));
@@ -99,11 +99,11 @@ TEST(ContactKernel, ResultDoesNotDependOnThePlaceInTheBatch) {
   }
   PairBatch many;
   for (int k = 0; k < 21; ++k) many.add(p, k, static_cast<Index>(k + 1), d[k], xi[k], k);
-  many.evaluate<HertzNormal, true, true>(law, 1e-5, 1e-5);
+  many.evaluate<HertzNormal, true, RollingKind::torque>(law, 1e-5, 1e-5);
   for (int k : {0, 5, 17, 20}) {
     PairBatch one;
     one.add(p, k, static_cast<Index>(k + 1), d[k], xi[k], k);
-    one.evaluate<HertzNormal, true, true>(law, 1e-5, 1e-5);
+    one.evaluate<HertzNormal, true, RollingKind::torque>(law, 1e-5, 1e-5);
     EXPECT_EQ(one.force.vec3(0), many.force.vec3(k)) << k;
     EXPECT_EQ(one.torque_i.vec3(0), many.torque_i.vec3(k)) << k;
     EXPECT_EQ(one.torque_j.vec3(0), many.torque_j.vec3(k)) << k;

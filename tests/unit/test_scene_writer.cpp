@@ -276,7 +276,7 @@ TEST(SceneWriter, SeedBeyondTomlIntegersIsRefusedNamingTheKey) {
 /// makes this fail to compile. Then give the field a setter in `field_setters()`, write it in
 /// engine/scene/scene_writer.cpp and raise its count here.
 constexpr int kSceneFields = 16, kDrumFields = 5, kClassFields = 8, kMaterialFields = 6,
-              kContactFields = 6, kLiquidFields = 15, kCohesionFields = 2, kFillFields = 7,
+              kContactFields = 9, kLiquidFields = 15, kCohesionFields = 2, kFillFields = 7,
               kTimeFields = 5, kPerformanceFields = 2, kOutputFields = 2;
 
 [[maybe_unused]] void field_counts(const SceneConfig& s) {
@@ -289,7 +289,8 @@ constexpr int kSceneFields = 16, kDrumFields = 5, kClassFields = 8, kMaterialFie
   [[maybe_unused]] const auto& [density, youngs, poisson, restitution, friction, rolling] =
       s.material;
   [[maybe_unused]] const auto& [normal, stiffness, collision_time, reference_radius,
-                                tangential_stiffness, tangential_damping] = s.contact;
+                                tangential_stiffness, tangential_damping, rolling_law,
+                                rolling_stiffness, rolling_damping] = s.contact;
   [[maybe_unused]] const auto& [enabled, tension, angle, volume, migration, content, film_share,
                                 max_volume, film_radius, proportional_draw, viscosity, min_gap,
                                 wall_bridges, wall_tension, wall_angle] = s.liquid;
@@ -412,6 +413,23 @@ std::vector<FieldSetter> field_setters(const fs::path& other_csv) {
        [](SceneConfig& s) {
          linear_viscoelastic(s, 1e-3, 0.01);
          s.contact.tangential_damping_ratio = 0.0;
+       }},
+      {"contact.rolling", B::every_key,
+       [](SceneConfig& s) {
+         linear_viscoelastic(s, 1e-3, 0.01);
+         s.contact.rolling = RollingLaw::spring;
+       }},
+      {"contact.rolling_stiffness_ratio", B::every_key,
+       [](SceneConfig& s) {
+         linear_viscoelastic(s, 1e-3, 0.01);
+         s.contact.rolling = RollingLaw::spring;
+         s.contact.rolling_stiffness_ratio = 0.3;
+       }},
+      {"contact.rolling_damping_ratio", B::every_key,
+       [](SceneConfig& s) {
+         linear_viscoelastic(s, 1e-3, 0.01);
+         s.contact.rolling = RollingLaw::spring;
+         s.contact.rolling_damping_ratio = 0.0;
        }},
       {"liquid.enabled", B::every_key, [](SceneConfig& s) { s.liquid = LiquidConfig{}; }},
       {"liquid.surface_tension", B::every_key,

@@ -90,13 +90,15 @@ TEST(SearchMethodsInADrum, SwitchingMethodMidRunChangesNothing) {
 }
 
 // The teaching drum with MercuryDPM's law parts (issue 33): the linear law set by a collision time
-// (3 ms for two 10 mm spheres: ~25 steps), liquid migration with equal films (film_radius) and
-// the proportional draw. They must keep the invariants of the laws before them.
+// (3 ms for two 10 mm spheres: ~25 steps), the rolling spring, liquid migration with equal films
+// (film_radius) and the proportional draw. They must keep the invariants of the laws before them.
 SceneConfig mercury_parts_scene() {
   SceneConfig scene = load_scene(std::string(DRUMLAB_SCENES_DIR) + "/teach_stencil.toml");
   scene.contact.normal = NormalLaw::linear_viscoelastic;
   scene.contact.collision_time = 3e-3;
   scene.contact.reference_radius = 0.01;
+  scene.contact.rolling = RollingLaw::spring;
+  scene.material.rolling_friction = scene.wall.rolling_friction = 0.5;
   LiquidConfig& l = scene.liquid;
   l.enabled = true;
   l.surface_tension = l.wall_surface_tension = 0.072;

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <numbers>
 
+#include "engine/contact/linear_viscoelastic.hpp"
 #include "physics_test_helpers.hpp"
 
 namespace drumlab {
@@ -85,6 +86,44 @@ TEST(FloorContact, RollingResistanceDeceleratesAtFiveSeventhsMuRG) {
   EXPECT_NEAR(v, expected, 0.01 * expected);
   EXPECT_LT(sim.particles().velocity[0].norm(), 1e-6);
   EXPECT_LT(sim.particles().omega[0].norm(), 1e-6);
+}
+
+// The rolling spring ([contact] rolling = "spring", MercuryDPM's law) on the same floor with the
+// linear viscoelastic law: once the spring reaches its Coulomb limit the torque is
+// mu_r |F_n| 2 r, twice the constant torque's mu_r r |F_n|, so the ball decelerates at
+// 5/7 (2 mu_r) g, as the constant torque with 2 mu_r does. Tolerance 1 % on v(0.3 s) against that
+// and against the constant-torque run (the spring loads within a few steps); after the stop the
+// spring holds the ball: speed below 1e-4 m/s.
+TEST(FloorContact, RollingSpringDeceleratesAsTheConstantTorqueOfTwiceMuR) {
+  const double mu_r = 0.05, v0 = 0.5;
+  const auto run = [&](RollingLaw law, double mu, double seconds) {
+    Floor f = floor_scene(0.5, mu, Vec3(v0, 0, 0), Vec3(0, -v0 / kR, 0));
+    SceneConfig& s = f.scene;
+    s.contact.normal = NormalLaw::linear_viscoelastic;
+    s.contact.collision_time = 2e-3;
+    s.contact.reference_radius = kR;
+    s.contact.rolling = law;
+    s.time.dt = 1e-4;
+    const double m = s.material.density * 4.0 / 3.0 * std::numbers::pi * kR * kR * kR;
+    const auto normal = LinearViscoelastic::from_collision(2e-3, 0.3, m, 2.0 / 7.0, 2.0 / 7.0);
+    f.particles.position[0].z() = 0.2 - kR + m * kG / normal.stiffness;  // static overlap
+    Simulation sim(s, std::move(f.particles));
+    sim.advance(static_cast<std::uint64_t>(seconds / sim.dt()));
+    return std::pair(sim.particles().velocity[0], sim.time());
+  };
+  const auto [v_spring, t] = run(RollingLaw::spring, mu_r, 0.3);
+  const auto [v_torque, t2] = run(RollingLaw::constant_torque, 2.0 * mu_r, 0.3);
+  const double expected = v0 - 5.0 / 7.0 * 2.0 * mu_r * kG * t;
+  const double t_stop = 7.0 * v0 / (5.0 * 2.0 * mu_r * kG);
+  const Vec3 v_end = run(RollingLaw::spring, mu_r, t_stop + 0.5).first;
+  std::printf(
+      "rolling spring: v(0.3 s) = %.5f (constant torque 2 mu_r: %.5f, expected %.5f); "
+      "after the stop v = %.2e\n",
+      v_spring.x(), v_torque.x(), expected, v_end.norm());
+  EXPECT_NEAR(v_spring.x(), expected, 0.01 * expected);
+  EXPECT_NEAR(v_spring.x(), v_torque.x(), 0.01 * expected);
+  EXPECT_EQ(t, t2);
+  EXPECT_LT(v_end.norm(), 1e-4);
 }
 
 }  // namespace
