@@ -278,6 +278,25 @@ void drop_pair(const CohesiveParts& parts, const ContactList& contacts, std::siz
   });
 }
 
+// A decomposed run replays the events across ranks moving films only: no rupture sharing there.
+void refuse_replayed(const RuptureSharing& sharing, const BridgeEventFilms* replay) {
+  if (replay == nullptr || !sharing.active()) return;
+  throw InputError(
+      "liquid.rupture_to_bridges > 0 is not supported on a decomposed (MPI) run yet: the replay "
+      "of bridge events across ranks moves films only (run drumlab, or set it to 0)");
+}
+
+// Dropped pair q settled: each part's drop, its liquid to the films, or with the rupture
+// sharing ([liquid] rupture_to_bridges) to the particles' other bridges.
+void settle_dropped_pair(const CohesiveParts& parts, const ContactList& contacts, std::size_t q,
+                         double* film, RuptureSharing& sharing) {
+  if (!sharing.active()) return drop_pair(parts, contacts, q, film);
+  const IndexPair pair = contacts.dropped()[q];
+  sharing.dropped(pair.i, pair.j,
+                  event_liquid(parts, &contacts.dropped_state()[q * contacts.state_size()]));
+  drop_pair(parts, contacts, q, nullptr);  // the state ends; its liquid is shared above
+}
+
 }  // namespace
 
 WallGap wall_gap(const Drum& drum, WallPart part, const Vec3& x, double r) {
@@ -313,6 +332,8 @@ void cohesion_ordered_pass(const CohesiveParts& parts, Particles& p, ContactList
   if (replay != nullptr && (film == nullptr || replay->before.size() != buffers.events.size())) {
     throw std::logic_error("bridge-event replay without films or of other events");
   }
+  RuptureSharing sharing(parts, contacts, film, buffers.rupture);
+  refuse_replayed(sharing, replay);
   // The listed events' places in buffers.events: the listed pairs' first, then the dropped ones'.
   std::size_t next_listed = 0;
   std::size_t next_dropped = replay != nullptr ? marked_events(contacts, blocks, buffers) : 0;
@@ -335,7 +356,7 @@ void cohesion_ordered_pass(const CohesiveParts& parts, Particles& p, ContactList
     for (; q < dropped.size() && dropped[q] < until; ++q) {
       if (!live_for_events(parts, &contacts.dropped_state()[q * stride])) continue;
       if (run_here(next_dropped++, dropped[q].i, dropped[q].j)) {
-        drop_pair(parts, contacts, q, film);
+        settle_dropped_pair(parts, contacts, q, film, sharing);
       }
     }
   };
@@ -349,6 +370,7 @@ void cohesion_ordered_pass(const CohesiveParts& parts, Particles& p, ContactList
         const Vec3 d = nearest_image(p.position[e->i], p.position[e->j], period);
         const double dist = d.norm();
         const double gap = dist - (p.radius[e->i] + p.radius[e->j]);
+        if (sharing.active()) sharing.listed(e->k, e->i, e->j, gap);
         const double pull =
             pair_attraction(parts, {p, e->i, e->j, d, dist, gap}, &state[e->k * stride], film, dt);
         if (pull == 0.0) continue;

@@ -18,6 +18,7 @@
 #include "engine/contact/bond.hpp"
 #include "engine/contact/cohesive_laws.hpp"
 #include "engine/contact/contact_history.hpp"
+#include "engine/contact/liquid_rupture.hpp"
 #include "engine/drum.hpp"
 #include "engine/parallel/bridge_events.hpp"
 #include "engine/particles.hpp"
@@ -46,6 +47,9 @@ struct CohesionBuffers {
   /// replays them across the ranks, parallel/bridge_events.hpp): the marked listed pairs by
   /// increasing (i, j), then the dropped pairs that a part with events settles.
   std::vector<BridgeEvent> events;
+  /// Scratch of the ordered pass's rupture sharing ([liquid] rupture_to_bridges,
+  /// liquid_rupture.hpp).
+  mutable RuptureScratch rupture;
 };
 
 /// A listed pair's touch mark at squared centre distance dist2, radii summing to sum_r:

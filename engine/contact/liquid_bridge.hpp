@@ -28,7 +28,13 @@
 //     bridge of V_max takes V_max film_i / (film_i + film_j) from i and the rest from j.
 //   forming with the wall: V = min(film_i, V_max), all from the particle's film.
 //   rupture between particles: half of V to each film (the equal split); with the wall: all of V
-//     back to the particle's film.
+//     back to the particle's film. With `rupture_to_bridges` = c > 0 ([liquid]
+//     rupture_to_bridges, MercuryDPM's distribution coefficient, LiquidMigrationWilletInteraction
+//     ::rupture()): each particle's half goes, for the share c, to that particle's other live
+//     particle-particle bridges, c V/2 / n to each of its n, each topped at V_max with the excess
+//     to its film (add_shared), and the rest to its film; without another bridge the whole half
+//     goes to its film. The ordered pass does that (cohesion_loops.cpp, RuptureSharing): it needs
+//     the particle's other contacts.
 // Without migration every bridge has the fixed volume LiquidConfig::bridge_volume and no film.
 // State per contact: [0] V (m^3, 0: no bridge), [1] its age (s since it formed). State per
 // particle (wall bridges): the volume and age of its bridge with each wall part, in the arrays
@@ -104,7 +110,8 @@ struct LiquidBridge {
   /// Largest bridge volume (m^3): the fixed volume, or the migration's maximum.
   double max_volume = 0.0;
   bool migration = false;
-  bool proportional_draw = false;  ///< a bridge of V_max draws from the films in proportion
+  bool proportional_draw = false;   ///< a bridge of V_max draws from the films in proportion
+  double rupture_to_bridges = 0.0;  ///< c: the share of a ruptured half for the other bridges
   bool wall_bridges = false;
   double viscosity = 0.0;  ///< eta, Pa s; 0: no viscous term
   double min_gap = 0.0;    ///< s_min of the viscous term, m
@@ -176,6 +183,7 @@ struct LiquidBridge {
     b.wall = {l.wall_surface_tension, l.wall_contact_angle_deg * kDegree};
     b.migration = l.migration;
     b.proportional_draw = l.proportional_draw;
+    b.rupture_to_bridges = l.migration ? l.rupture_to_bridges : 0.0;
     b.fixed_volume = l.migration ? 0.0 : l.bridge_volume;
     b.max_volume = l.migration ? l.max_bridge_volume : l.bridge_volume;
     b.wall_bridges = l.wall_bridges;
@@ -233,6 +241,13 @@ struct LiquidBridge {
       const double vn = (g.p.velocity[g.i] - g.p.velocity[g.j]).dot(g.d) / g.dist;
       pull -= viscous_force(g.gap, r_i * r_j / (r_i + r_j), vn);
     }
+  }
+  /// Adds `v` (m^3) to a live bridge's state s, topped at V_max; returns the excess (m^3, >= 0).
+  double add_shared(double* s, double v) const {
+    const double sum = s[0] + v;
+    const double excess = std::max(sum - max_volume, 0.0);
+    s[0] = std::min(sum, max_volume);
+    return excess;
   }
   /// A dropped pair is beyond every rupture distance: its bridge ends.
   void drop(double* s, double* film, Index i, Index j) const {

@@ -161,6 +161,11 @@ struct LiquidConfig {
   /// Migration: a new bridge of V_max draws half from each film (false) or from the two films in
   /// proportion to their volumes (true, MercuryDPM's LiquidMigrationWilletInteraction::form).
   bool proportional_draw = false;
+  /// Migration: MercuryDPM's distribution coefficient c in [0, 1] (its default 1): at a rupture
+  /// each particle's half goes, for the share c, to that particle's other live bridges (equal
+  /// shares, each topped at max_bridge_volume with the excess to the film), the rest to its film;
+  /// a particle without another bridge takes its whole half. 0: all to the films.
+  double rupture_to_bridges = 0.0;
   double viscosity = 0.0;    ///< eta of the liquid, Pa s; 0: no viscous term
   double min_gap = 0.0;      ///< m, > 0 with viscosity: the viscous term's smallest gap
   bool wall_bridges = true;  ///< particle-wall bridges (R = 2 Rp)

@@ -83,8 +83,13 @@ void add_cohesion_terms(const SceneConfig& scene, SceneFeatures& f) {
                      : "no [liquid]: no bridges, search margin 0"));
   f.list.push_back(term(
       "liquid migration", l.migration,
-      l.migration ? fmt::format("liquid_content = {}: films give and take the bridges' liquid",
-                                l.liquid_content)
+      l.migration ? fmt::format("liquid_content = {}: films give and take the bridges' liquid{}",
+                                l.liquid_content,
+                                l.rupture_to_bridges > 0.0
+                                    ? fmt::format(", rupture_to_bridges = {} (a ruptured "
+                                                  "bridge feeds the particles' other bridges)",
+                                                  l.rupture_to_bridges)
+                                    : std::string())
       : l.enabled
           ? fmt::format("bridge_volume = {} m^3: every bridge the same, no films", l.bridge_volume)
           : std::string("no [liquid]")));

@@ -444,8 +444,9 @@ void read_liquid(const Scope& root, SceneConfig& scene) {
   const auto s = root.table("liquid");
   if (!s) return;
   s->allow_only({"surface_tension", "contact_angle_deg", "bridge_volume", "liquid_content",
-                 "film_share", "max_bridge_volume", "film_radius", "bridge_draw", "viscosity",
-                 "min_gap", "wall_bridges", "wall_surface_tension", "wall_contact_angle_deg"});
+                 "film_share", "max_bridge_volume", "film_radius", "bridge_draw",
+                 "rupture_to_bridges", "viscosity", "min_gap", "wall_bridges",
+                 "wall_surface_tension", "wall_contact_angle_deg"});
   LiquidConfig& l = scene.liquid;
   l.enabled = true;
   l.surface_tension = s->required_number("surface_tension", "N/m, > 0");
@@ -465,7 +466,8 @@ void read_liquid(const Scope& root, SceneConfig& scene) {
   if (!l.migration) {
     l.bridge_volume = s->required_number(
         "bridge_volume", "m^3, > 0; or liquid_content with max_bridge_volume for migration");
-    for (const char* key : {"film_share", "max_bridge_volume", "film_radius", "bridge_draw"}) {
+    for (const char* key :
+         {"film_share", "max_bridge_volume", "film_radius", "bridge_draw", "rupture_to_bridges"}) {
       if (s->has(key)) s->fail(key, "only with liquid_content (liquid migration)");
     }
   } else {
@@ -478,6 +480,7 @@ void read_liquid(const Scope& root, SceneConfig& scene) {
       s->fail("bridge_draw", fmt::format("unknown value '{}' (valid: halves, proportional)", draw));
     }
     l.proportional_draw = draw == "proportional";
+    l.rupture_to_bridges = s->number_or("rupture_to_bridges", 0.0);
   }
   l.viscosity = s->number_or("viscosity", 0.0);
   l.min_gap = s->number_or("min_gap", 0.0);

@@ -212,6 +212,12 @@ Problem check_liquid_volumes(const SceneConfig& s) {
   if (!(l.film_share >= 0.0 && l.film_share <= 1.0)) {
     return fail("liquid.film_share", fmt::format("must be in [0, 1], got {}", l.film_share));
   }
+  if (!(l.rupture_to_bridges >= 0.0 && l.rupture_to_bridges <= 1.0)) {
+    return fail("liquid.rupture_to_bridges",
+                fmt::format("must be in [0, 1] (share of a ruptured bridge's halves that goes to "
+                            "the particles' other bridges), got {}",
+                            l.rupture_to_bridges));
+  }
   if (auto p = positive("liquid.max_bridge_volume", l.max_bridge_volume, " (m^3)")) return p;
   return check_bridge_reach(s, "liquid.max_bridge_volume", l.max_bridge_volume);
 }

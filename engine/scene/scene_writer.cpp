@@ -167,6 +167,7 @@ toml::table liquid_table(const LiquidConfig& l) {
     t.insert("max_bridge_volume", l.max_bridge_volume);
     if (l.film_radius > 0.0) t.insert("film_radius", l.film_radius);
     if (l.proportional_draw) t.insert("bridge_draw", "proportional");
+    if (l.rupture_to_bridges > 0.0) t.insert("rupture_to_bridges", l.rupture_to_bridges);
   } else {
     t.insert("bridge_volume", l.bridge_volume);
   }

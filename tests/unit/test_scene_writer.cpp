@@ -276,7 +276,7 @@ TEST(SceneWriter, SeedBeyondTomlIntegersIsRefusedNamingTheKey) {
 /// makes this fail to compile. Then give the field a setter in `field_setters()`, write it in
 /// engine/scene/scene_writer.cpp and raise its count here.
 constexpr int kSceneFields = 16, kDrumFields = 5, kClassFields = 8, kMaterialFields = 6,
-              kContactFields = 9, kLiquidFields = 15, kCohesionFields = 2, kFillFields = 7,
+              kContactFields = 9, kLiquidFields = 16, kCohesionFields = 2, kFillFields = 7,
               kTimeFields = 5, kPerformanceFields = 2, kOutputFields = 2;
 
 [[maybe_unused]] void field_counts(const SceneConfig& s) {
@@ -292,8 +292,9 @@ constexpr int kSceneFields = 16, kDrumFields = 5, kClassFields = 8, kMaterialFie
                                 tangential_stiffness, tangential_damping, rolling_law,
                                 rolling_stiffness, rolling_damping] = s.contact;
   [[maybe_unused]] const auto& [enabled, tension, angle, volume, migration, content, film_share,
-                                max_volume, film_radius, proportional_draw, viscosity, min_gap,
-                                wall_bridges, wall_tension, wall_angle] = s.liquid;
+                                max_volume, film_radius, proportional_draw, rupture_share,
+                                viscosity, min_gap, wall_bridges, wall_tension, wall_angle] =
+      s.liquid;
   [[maybe_unused]] const auto& [cohesive, energy_density] = s.cohesion;
   [[maybe_unused]] const auto& [kind, count, fraction, seed, settle, box, file] = s.fill;
   [[maybe_unused]] const auto& [dt, dt_factor, duration, revolutions, max_overlap] = s.time;
@@ -454,6 +455,11 @@ std::vector<FieldSetter> field_setters(const fs::path& other_csv) {
        [](SceneConfig& s) {
          migrate(s, 0.05, 1e-9);
          s.liquid.proportional_draw = true;
+       }},
+      {"liquid.rupture_to_bridges", B::every_key,
+       [](SceneConfig& s) {
+         migrate(s, 0.05, 1e-9);
+         s.liquid.rupture_to_bridges = 0.75;
        }},
       {"liquid.viscosity", B::every_key,
        [](SceneConfig& s) {

@@ -91,7 +91,8 @@ TEST(SearchMethodsInADrum, SwitchingMethodMidRunChangesNothing) {
 
 // The teaching drum with MercuryDPM's law parts (issue 33): the linear law set by a collision time
 // (3 ms for two 10 mm spheres: ~25 steps), the rolling spring, liquid migration with equal films
-// (film_radius) and the proportional draw. They must keep the invariants of the laws before them.
+// (film_radius), the proportional draw and the rupture into the other bridges. They must keep the
+// invariants of the laws before them.
 SceneConfig mercury_parts_scene() {
   SceneConfig scene = load_scene(std::string(DRUMLAB_SCENES_DIR) + "/teach_stencil.toml");
   scene.contact.normal = NormalLaw::linear_viscoelastic;
@@ -107,6 +108,7 @@ SceneConfig mercury_parts_scene() {
   l.max_bridge_volume = 1e-8;
   l.film_radius = 0.01;
   l.proportional_draw = true;
+  l.rupture_to_bridges = 1.0;
   validate(scene, "mercury parts");
   return scene;
 }
