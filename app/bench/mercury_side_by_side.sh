@@ -20,6 +20,7 @@
 #                           the peer over its second half revolution with 4 outputs a revolution,
 #                           drumlab's stepping over one revolution after settling, one thread
 #   --drumlab PATH          the drumlab executable [build/bin/drumlab]
+#   --report-only           start no run: print the table from the runs OUT_DIR already holds
 #
 # The drum is scenes/mercury_wet_drum.toml (the peer's drum in drumlab's keys; read its header
 # for the one difference, the periodic width). Bo sets the surface tension in both codes:
@@ -44,6 +45,7 @@ revolutions=3
 window_from=1
 jobs=2
 throughput=0
+report_only=0
 drumlab="$here/build/bin/drumlab"
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -55,6 +57,7 @@ while [ $# -gt 0 ]; do
     --jobs) jobs=$2; shift 2 ;;
     --throughput) throughput=1; shift ;;
     --drumlab) drumlab=$2; shift 2 ;;
+    --report-only) report_only=1; shift ;;
     *) echo "mercury_side_by_side: unknown option '$1'" >&2; exit 2 ;;
   esac
 done
@@ -84,10 +87,12 @@ gammas=$(python3 -c "import sys; print(','.join(f'{0.0392*float(b):.6g}' for b i
 seed_list=$(echo $seeds | tr ' ' ',')
 
 for mu in $rolling; do
+  [ "$report_only" = 1 ] && break
   for b in $bonds; do for s in $seeds; do echo "$b $mu $s"; done; done
-done | xargs -P "$jobs" -L 1 bash -c 'peer_run "$0" "$1" "$2"'
+done | xargs -r -P "$jobs" -L 1 bash -c 'peer_run "$0" "$1" "$2"'
 
 for mu in $rolling; do
+  [ "$report_only" = 1 ] && break
   "$drumlab" sweep "$scene" --set "liquid.surface_tension=$gammas" \
     --set "material.rolling_friction=$mu" --set "wall.rolling_friction=$mu" \
     --seeds "$seed_list" --out "$out/drumlab_mur$mu" --jobs "$jobs" \
@@ -108,7 +113,8 @@ def peer_runs(bo, mu):
     folder = os.path.join(out, "peer")
     for d in sorted(os.listdir(folder)):
         m = re.fullmatch(rf"bo{re.escape(bo)}_mur{re.escape(mu)}_seed(\d+)", d)
-        if not m or open(os.path.join(folder, d, "rc")).read().strip() != "0":
+        rc = os.path.join(folder, d, "rc")
+        if not m or not os.path.exists(rc) or open(rc).read().strip() != "0":
             continue
         angles, bridges = [], []
         for text in open(os.path.join(folder, d, "log.txt"), errors="replace"):
@@ -123,6 +129,8 @@ def peer_runs(bo, mu):
 def drumlab_runs(bo, mu):
     path = os.path.join(out, f"drumlab_mur{mu}", "sweep.csv")
     runs, drift = [], 0.0
+    if not os.path.exists(path):
+        return runs, drift
     gamma = 0.0392 * float(bo)
     for row in csv.DictReader(open(path)):
         if abs(float(row["liquid.surface_tension"]) - gamma) <= 1e-6 * max(gamma, 1e-12):
