@@ -156,7 +156,7 @@ FrameSnapshot view_snapshot(const Simulation& sim, const ViewOptions& options,
     request.focus_id = options.focus_id;
   }
   FrameSnapshot s = take_snapshot(sim, request);
-  s.color_values = particle_color_values(sim, options.color_by, options.granule_age);
+  s.color_values = particle_color_values(sim, options.color_by, options.granule);
   s.color_by = color_by_name(options.color_by);
   return s;
 }

@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/analysis/granule_criterion.hpp"
 #include "engine/search/cell_grid.hpp"
 #include "engine/session/frame_snapshot.hpp"
 #include "engine/simulation.hpp"
@@ -39,7 +40,7 @@ struct ViewOptions {
   int width = 1280;
   int height = 720;
   ColorBy color_by = ColorBy::size;
-  double granule_age = -1.0;  ///< criterion of ColorBy::agglomerate (granule_options), s
+  GranuleCriterion granule;  ///< criterion of ColorBy::agglomerate (granule_options), s
   CameraMode camera = CameraMode::axis;
   bool grid = false;               ///< colour the active grid's cells by occupancy
   std::optional<Index> focus_id;   ///< stable id of the particle whose search is shown

@@ -40,10 +40,11 @@ std::vector<std::pair<double, std::string>> size_categories(const FrameSnapshot&
 
 }  // namespace
 
-std::vector<double> particle_color_values(const Simulation& sim, ColorBy by, double granule_age) {
+std::vector<double> particle_color_values(const Simulation& sim, ColorBy by,
+                                          const GranuleCriterion& granule) {
   const Particles& p = sim.particles();
   if (by == ColorBy::agglomerate) {
-    const std::vector<std::uint32_t> label = agglomerate_labels(sim, granule_age);
+    const std::vector<std::uint32_t> label = agglomerate_labels(sim, granule);
     std::vector<std::uint32_t> sorted(label);
     std::sort(sorted.begin(), sorted.end());
     std::vector<double> values(p.size());

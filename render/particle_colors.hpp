@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "engine/analysis/granule_criterion.hpp"
 #include "engine/session/frame_snapshot.hpp"
 #include "engine/simulation.hpp"
 
@@ -29,10 +30,10 @@ ColorBy parse_color_by(std::string_view s);
 /// (rad/s), stable id, or coordination (Simulation::coordination_numbers, periodic ends included,
 /// the same count as the VTU's coordination array), or agglomerate: 0 for a particle alone in
 /// its agglomerate (grey), else 1 + (agglomerate id mod 7), the colour of the categorical palette
-/// (agglomerate_labels with granule_age, the VTU's agglomerate_id; an agglomerate keeps its
+/// (agglomerate_labels with granule, the VTU's agglomerate_id; an agglomerate keeps its
 /// colour while it keeps its id).
 std::vector<double> particle_color_values(const Simulation& sim, ColorBy by,
-                                          double granule_age = -1.0);
+                                          const GranuleCriterion& granule = {});
 
 /// How a frame maps its colour values (FrameSnapshot::color_values) to colours.
 struct ColorMap {

@@ -102,8 +102,9 @@ vtkSmartPointer<vtkDataSet> to_vtk(const paraview::DataSet& d) {
   return out;
 }
 
-vtkSmartPointer<vtkUnstructuredGrid> particles_dataset(const Simulation& sim, double granule_age) {
-  return vtkUnstructuredGrid::SafeDownCast(to_vtk(paraview::particles(sim, granule_age)));
+vtkSmartPointer<vtkUnstructuredGrid> particles_dataset(const Simulation& sim,
+                                                       const GranuleCriterion& granule) {
+  return vtkUnstructuredGrid::SafeDownCast(to_vtk(paraview::particles(sim, granule)));
 }
 
 vtkSmartPointer<vtkUnstructuredGrid> particles_dataset(const SeriesFrame& frame) {

@@ -7,6 +7,7 @@
 
 #include <vtkSmartPointer.h>
 
+#include "engine/analysis/granule_criterion.hpp"
 #include "engine/io/paraview/frame_datasets.hpp"
 
 class vtkDataSet;
@@ -22,9 +23,9 @@ using paraview::kParticleArrays;
 /// active attributes, points in double precision.
 vtkSmartPointer<vtkDataSet> to_vtk(const paraview::DataSet& d);
 
-/// paraview::particles(sim, granule_age) as VTK.
+/// paraview::particles(sim, granule) as VTK.
 vtkSmartPointer<vtkUnstructuredGrid> particles_dataset(const Simulation& sim,
-                                                       double granule_age = -1.0);
+                                                       const GranuleCriterion& granule = {});
 /// paraview::particles(frame) as VTK.
 vtkSmartPointer<vtkUnstructuredGrid> particles_dataset(const SeriesFrame& frame);
 /// paraview::bonds(frame) as VTK.

@@ -17,7 +17,7 @@ void VtuSeriesWriter::write_frame(const Simulation& sim) {
     files.emplace_back(stem, series_.file_name(stem, ext));
     write_vtk_xml(data, directory() / files.back().second);
   };
-  write("particles", "vtu", to_vtk(paraview::particles(sim, options_.granule_age)));
+  write("particles", "vtu", to_vtk(paraview::particles(sim, options_.granule)));
   write("drum", "vtp", to_vtk(paraview::drum(sim)));
   if (options_.contacts) write("contacts", "vtp", to_vtk(paraview::contacts(sim)));
   if (options_.grid) {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/analysis/granule_criterion.hpp"
 #include "engine/io/paraview/pvd_series.hpp"
 #include "engine/io/series_frame.hpp"
 #include "engine/simulation.hpp"
@@ -19,9 +20,9 @@
 namespace drumlab::render {
 
 struct VtuSeriesOptions {
-  bool contacts = false;      ///< contacts_NNNNNN.vtp + contacts.pvd
-  bool grid = false;          ///< grid_NNNNNN.vti + grid.pvd
-  double granule_age = -1.0;  ///< criterion of agglomerate_id (granule_options), s
+  bool contacts = false;     ///< contacts_NNNNNN.vtp + contacts.pvd
+  bool grid = false;         ///< grid_NNNNNN.vti + grid.pvd
+  GranuleCriterion granule;  ///< criterion of agglomerate_id (granule_options), s
 };
 
 class VtuSeriesWriter {

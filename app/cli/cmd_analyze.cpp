@@ -1,4 +1,5 @@
-// drumlab analyze SERIES.h5 --agglomerates FILE.csv [--granule-age T]
+// drumlab analyze SERIES.h5 --agglomerates FILE.csv [--granule-criterion C] [--granule-age T]
+//                                                  [--granule-resolution R]
 // The agglomerate table of `run --agglomerates` computed afterwards from an HDF5 series (which
 // stores the bond graph of every frame of a scene with bonds), with its chart FILE.png.
 // drumlab analyze TABLE.csv
@@ -7,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "app/cli/commands.hpp"
+#include "app/run/granule_flags.hpp"
 #include "engine/analysis/agglomerate_table.hpp"
 #include "engine/io/h5_series.hpp"
 #ifdef DRUMLAB_WITH_RENDER
@@ -19,7 +21,7 @@ namespace {
 struct AnalyzeOptions {
   std::string series;
   std::string agglomerates;
-  double granule_age = -1.0;
+  GranuleFlags granule;
 };
 
 void chart(const std::filesystem::path& table) {
@@ -35,6 +37,7 @@ void chart(const std::filesystem::path& table) {
 }
 
 void analyze(const AnalyzeOptions& o) {
+  check_granule_flags(o.granule);
   if (o.series.ends_with(".csv")) {
     if (!o.agglomerates.empty()) {
       throw InputError(fmt::format("--agglomerates: {} is already a table", o.series));
@@ -68,7 +71,7 @@ void analyze(const AnalyzeOptions& o) {
     in.wall_liquid = f.wall_liquid;
     in.period = f.period;
     in.time = f.time;
-    table.add(find_agglomerates(in, granule_options(f.drum_omega, o.granule_age)).stats);
+    table.add(find_agglomerates(in, granule_options(f.drum_omega, o.granule.criterion)).stats);
   }
   table.finish();
   const AgglomerateStats& last = table.rows().back();
@@ -96,10 +99,7 @@ void add_analyze_command(CLI::App& app) {
       ->required();
   cmd->add_option("--agglomerates", o->agglomerates,
                   "write the statistics to FILE.csv and their chart to FILE.png");
-  cmd->add_option("--granule-age", o->granule_age,
-                  "granule criterion: bonds older than T s join (0: plain components; default: "
-                  "one drum revolution)")
-      ->check(CLI::NonNegativeNumber);
+  add_granule_flags(cmd, o->granule);
   cmd->callback([o] { analyze(*o); });
 }
 

@@ -166,7 +166,7 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--camera", args->camera, "axis (along the drum axis) or iso");
   cmd->callback([opt, args] {
     RenderOutput out = make_output(*args);
-    out.view.granule_age = opt->granule_age;
+    out.view.granule = opt->granule.criterion;
     if (args->grid) {  // fail now, not after settling; --focus shows every method's search
       const std::string method =
           opt->method.empty() ? load_dynamic_scene(opt->scene).search_method : opt->method;

@@ -230,8 +230,9 @@ void add_sweep_command(CLI::App& app) {
       if (!value.empty()) o->run_args.push_back(value);
     };
   };
-  for (const char* flag : {"--revolutions", "--steps", "--every", "--threads", "--method",
-                           "--settle-time", "--dt-factor", "--granule-age"}) {
+  for (const char* flag :
+       {"--revolutions", "--steps", "--every", "--threads", "--method", "--settle-time",
+        "--dt-factor", "--granule-age", "--granule-criterion", "--granule-resolution"}) {
     cmd->add_option_function<std::string>(flag, pass(flag), "as for drumlab run");
   }
   cmd->add_flag_callback(

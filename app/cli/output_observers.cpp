@@ -35,7 +35,7 @@ class VtuObserver final : public FrameObserver {
 class PlainVtuObserver final : public FrameObserver {
  public:
   explicit PlainVtuObserver(const RunOptions& opt)
-      : series_(opt.vtu_dir, opt.contacts_vtk, opt.granule_age) {}
+      : series_(opt.vtu_dir, opt.contacts_vtk, opt.granule.criterion) {}
   void on_frame(const Simulation& sim, std::uint64_t) override { series_.write_frame(sim); }
   void on_finish(const Simulation&) override {
     print_vtu_written(series_.frames(), series_.directory());
@@ -59,10 +59,10 @@ class ObservableObserver final : public FrameObserver {
 
 class H5Observer final : public FrameObserver {
  public:
-  H5Observer(const std::string& file, double granule_age)
-      : series_(file), granule_age_(granule_age) {}
+  H5Observer(const std::string& file, const GranuleCriterion& granule)
+      : series_(file), granule_(granule) {}
   void on_frame(const Simulation& sim, std::uint64_t) override {
-    write_series_frame(series_, sim, granule_age_, bonds_);
+    write_series_frame(series_, sim, granule_, bonds_);
   }
   void on_finish(const Simulation&) override {
     series_.finish();
@@ -71,14 +71,15 @@ class H5Observer final : public FrameObserver {
 
  private:
   H5Series series_;
-  double granule_age_;
+  GranuleCriterion granule_;
   std::vector<Bond> bonds_;
 };
 
 /// --agglomerates FILE.csv: a row per frame, the chart FILE.png at the end.
 class AgglomerateObserver final : public FrameObserver {
  public:
-  AgglomerateObserver(const std::string& file, double granule_age) : rows_(file, granule_age) {}
+  AgglomerateObserver(const std::string& file, const GranuleCriterion& granule)
+      : rows_(file, granule) {}
   void on_frame(const Simulation& sim, std::uint64_t) override { rows_.add(sim); }
   void on_finish(const Simulation&) override {
     rows_.finish();
@@ -104,7 +105,7 @@ std::vector<std::unique_ptr<FrameObserver>> make_output_observers(const RunOptio
     render::VtuSeriesOptions v;
     v.contacts = opt.contacts_vtk;
     v.grid = opt.grid_vtk;
-    v.granule_age = opt.granule_age;
+    v.granule = opt.granule.criterion;
     out.push_back(std::make_unique<VtuObserver>(opt.vtu_dir, v));
 #else
     if (opt.grid_vtk) {
@@ -115,7 +116,7 @@ std::vector<std::unique_ptr<FrameObserver>> make_output_observers(const RunOptio
 #endif
   }
   if (!opt.h5_file.empty()) {
-    out.push_back(std::make_unique<H5Observer>(opt.h5_file, opt.granule_age));
+    out.push_back(std::make_unique<H5Observer>(opt.h5_file, opt.granule.criterion));
   }
   if (!opt.checkpoint.empty()) {
     check_parent_directory(opt.checkpoint, "--checkpoint");
@@ -131,7 +132,7 @@ std::vector<std::unique_ptr<FrameObserver>> make_output_observers(const RunOptio
   }
   if (!opt.agglomerates.empty()) {  // last: it opens FILE.part at once
     check_parent_directory(opt.agglomerates, "--agglomerates");
-    out.push_back(std::make_unique<AgglomerateObserver>(opt.agglomerates, opt.granule_age));
+    out.push_back(std::make_unique<AgglomerateObserver>(opt.agglomerates, opt.granule.criterion));
   }
   return out;
 }

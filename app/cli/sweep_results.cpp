@@ -40,6 +40,18 @@ std::pair<double, double> mean_sd(const std::vector<double>& v) {
   return {mean, n > 1.0 ? std::sqrt(ss / (n - 1.0)) : 0.0};
 }
 
+/// The text of column `name` in the first data row of `file` ("" if the table has no rows).
+std::string first_text_cell(const std::filesystem::path& file, const std::string& name) {
+  std::ifstream in(file);
+  std::string header, line;
+  if (!std::getline(in, header) || !std::getline(in, line)) return {};
+  const std::vector<std::string> columns = cells_of(header), cells = cells_of(line);
+  const auto at = std::find(columns.begin(), columns.end(), name);
+  if (at == columns.end()) throw InputError(fmt::format("{}: no column '{}'", file.string(), name));
+  const auto k = static_cast<std::size_t>(at - columns.begin());
+  return k < cells.size() ? cells[k] : std::string();
+}
+
 }  // namespace
 
 std::size_t CsvTable::column(const std::string& name, const std::filesystem::path& file) const {
@@ -79,7 +91,7 @@ RunResult summarise_run(const SweepRun& run, const std::filesystem::path& dir, d
   const CsvTable obs = read_numeric_csv(obs_file);
   if (obs.rows.empty()) throw InputError(fmt::format("{}: no frames", obs_file.string()));
   const std::size_t rev = obs.column("revolutions", obs_file);
-  RunResult r{run.name, run.values, run.seed, 0, window_from, {}, {}, 0.0};
+  RunResult r{run.name, run.values, run.seed, 0, window_from, {}, {}, 0.0, {}};
   if (r.window_from < 0.0) r.window_from = 0.5 * obs.rows.back()[rev];
   std::vector<bool> in_window(obs.rows.size());
   for (std::size_t k = 0; k < obs.rows.size(); ++k) {
@@ -97,6 +109,7 @@ RunResult summarise_run(const SweepRun& run, const std::filesystem::path& dir, d
     throw InputError(fmt::format("{}: {} rows, observables.csv has {}", agg_file.string(),
                                  agg.rows.size(), obs.rows.size()));
   }
+  if (run.has_bonds) r.criterion = first_text_cell(agg_file, "criterion");
   for (const SweptQuantity& q : kSweptQuantities) {
     std::vector<double> values;
     if (!q.agglomerates || run.has_bonds) {
@@ -125,7 +138,7 @@ RunResult summarise_run(const SweepRun& run, const std::filesystem::path& dir, d
 std::string sweep_header(const std::vector<SweepSet>& sets) {
   std::string h = "run";
   for (const SweepSet& s : sets) h += "," + s.key;
-  h += ",seed,window_from,frames";
+  h += ",seed,window_from,frames,granule_criterion";
   for (const SweptQuantity& q : kSweptQuantities) h += fmt::format(",{},{}_sd", q.name, q.name);
   return h + ",liquid_drift";
 }
@@ -133,7 +146,7 @@ std::string sweep_header(const std::vector<SweepSet>& sets) {
 std::string sweep_row(const RunResult& r) {
   std::string row = r.name;
   for (const std::string& v : r.values) row += "," + v;
-  row += fmt::format(",{},{:.6g},{}", r.seed, r.window_from, r.frames);
+  row += fmt::format(",{},{:.6g},{},{}", r.seed, r.window_from, r.frames, r.criterion);
   for (std::size_t k = 0; k < r.mean.size(); ++k) {
     row += fmt::format(",{:.6g},{:.6g}", r.mean[k], r.sd[k]);
   }

@@ -35,6 +35,7 @@ struct RunResult {
   double window_from = 0.0;      ///< revolutions
   std::vector<double> mean, sd;  ///< per kSweptQuantities (nan: not measured)
   double liquid_drift = 0.0;     ///< max |total - first total| / first total (0: dry)
+  std::string criterion;         ///< the granule criterion of agglomerates.csv ("" without bonds)
 };
 
 /// Reads a run's tables in `dir` (observables.csv, agglomerates.csv when `run.has_bonds`) and

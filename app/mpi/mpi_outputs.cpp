@@ -39,9 +39,9 @@ class Timed {
 /// --h5 FILE: every rank writes its particles' rows of each frame, or rank 0 the gathered state.
 class SeriesWriter final : public FrameObserver {
  public:
-  SeriesWriter(MpiDomain& domain, const std::string& file, double granule_age, bool gather,
-               OutputTimes& times)
-      : domain_(domain), granule_age_(granule_age), gather_(gather), times_(times) {
+  SeriesWriter(MpiDomain& domain, const std::string& file, const GranuleCriterion& granule,
+               bool gather, OutputTimes& times)
+      : domain_(domain), granule_(granule), gather_(gather), times_(times) {
     if (gather_) {
       h5::on_root(root(), [&] { series_.emplace(file); });
     } else {
@@ -54,10 +54,10 @@ class SeriesWriter final : public FrameObserver {
       std::optional<SimulationState> state = domain_.gather(sim);
       h5::on_root(root(), [&] {
         const Simulation whole(sim.scene(), std::move(*state));  // the serial run at this step
-        write_series_frame(*series_, whole, granule_age_, bonds_);
+        write_series_frame(*series_, whole, granule_, bonds_);
       });
     } else {
-      write_frame_mpi(*series_, domain_, sim, granule_age_);
+      write_frame_mpi(*series_, domain_, sim, granule_);
     }
     ++times_.frames;
   }
@@ -75,7 +75,7 @@ class SeriesWriter final : public FrameObserver {
  private:
   MPI_Comm root() { return domain_.comm().comm(); }
   MpiDomain& domain_;
-  double granule_age_;
+  GranuleCriterion granule_;
   bool gather_;
   OutputTimes& times_;
   std::optional<H5Series> series_;
@@ -132,9 +132,9 @@ void draw_chart(const std::filesystem::path& table) {
 /// --agglomerates FILE.csv: the state gathered on rank 0, its agglomerates found there.
 class AgglomerateWriter final : public FrameObserver {
  public:
-  AgglomerateWriter(MpiDomain& domain, const std::string& file, double granule_age)
+  AgglomerateWriter(MpiDomain& domain, const std::string& file, const GranuleCriterion& granule)
       : domain_(domain) {
-    h5::on_root(domain_.comm().comm(), [&] { rows_.emplace(file, granule_age); });
+    h5::on_root(domain_.comm().comm(), [&] { rows_.emplace(file, granule); });
   }
   void on_frame(const Simulation& sim, std::uint64_t) override {
     std::optional<SimulationState> state = domain_.gather(sim);
@@ -159,7 +159,8 @@ class VtuWriter final : public FrameObserver {
  public:
   VtuWriter(MpiDomain& domain, const cli::RunOptions& opt, OutputTimes& times)
       : domain_(domain), times_(times) {
-    h5::on_root(root(), [&] { series_.emplace(opt.vtu_dir, opt.contacts_vtk, opt.granule_age); });
+    h5::on_root(root(),
+                [&] { series_.emplace(opt.vtu_dir, opt.contacts_vtk, opt.granule.criterion); });
   }
   void on_frame(const Simulation& sim, std::uint64_t) override {
     const Timed t(times_.frame_seconds);
@@ -189,11 +190,17 @@ std::vector<std::unique_ptr<FrameObserver>> make_mpi_outputs(MpiDomain& domain,
         "--grid-vtk: each rank searches its own box, so a decomposed run has no one grid to "
         "write; `drumlab run --vtu DIR --grid-vtk` writes the serial run's");
   }
+  if (!opt.h5_file.empty() && !gather && opt.granule.criterion.method == GranuleMethod::community) {
+    throw InputError(
+        "--granule-criterion community: the ranks write the --h5 series where the particles are, "
+        "and communities need the whole bond network; add --gather-output, or run `drumlab "
+        "analyze SERIES.h5 --granule-criterion community` on the series");
+  }
   std::vector<std::unique_ptr<FrameObserver>> out;
   if (!opt.vtu_dir.empty()) out.push_back(std::make_unique<VtuWriter>(domain, opt, times));
   if (!opt.h5_file.empty()) {
     out.push_back(
-        std::make_unique<SeriesWriter>(domain, opt.h5_file, opt.granule_age, gather, times));
+        std::make_unique<SeriesWriter>(domain, opt.h5_file, opt.granule.criterion, gather, times));
   }
   if (!opt.checkpoint.empty()) {
     cli::check_parent_directory(opt.checkpoint, "--checkpoint");
@@ -218,7 +225,8 @@ std::vector<std::unique_ptr<FrameObserver>> make_mpi_outputs(MpiDomain& domain,
   }
   if (!opt.agglomerates.empty()) {  // last: it opens FILE.part at once
     cli::check_parent_directory(opt.agglomerates, "--agglomerates");
-    out.push_back(std::make_unique<AgglomerateWriter>(domain, opt.agglomerates, opt.granule_age));
+    out.push_back(
+        std::make_unique<AgglomerateWriter>(domain, opt.agglomerates, opt.granule.criterion));
   }
   return out;
 }

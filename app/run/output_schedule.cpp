@@ -46,12 +46,12 @@ void CheckpointSchedule::on_finish(const Simulation& sim) {
   }
 }
 
-AgglomerateRows::AgglomerateRows(const std::string& file, double granule_age)
-    : table_(file), granule_age_(granule_age) {}
+AgglomerateRows::AgglomerateRows(const std::string& file, const GranuleCriterion& granule)
+    : table_(file), granule_(granule) {}
 
 void AgglomerateRows::add(const Simulation& whole) {
   const AgglomerateInput in = agglomerate_input(whole, bonds_);
-  table_.add(find_agglomerates(in, granule_options(whole.scene().drum.omega, granule_age_)).stats);
+  table_.add(find_agglomerates(in, granule_options(whole.scene().drum.omega, granule_)).stats);
 }
 
 void AgglomerateRows::finish() {

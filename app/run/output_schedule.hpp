@@ -14,6 +14,7 @@
 
 #include "app/run/run_options.hpp"
 #include "engine/analysis/agglomerate_table.hpp"
+#include "engine/analysis/granule_criterion.hpp"
 #include "engine/session/run_session.hpp"
 
 namespace drumlab::cli {
@@ -51,7 +52,7 @@ class CheckpointSchedule final : public FrameObserver {
 /// state a decomposed run gathered), the table closed at the end.
 class AgglomerateRows {
  public:
-  AgglomerateRows(const std::string& file, double granule_age);
+  AgglomerateRows(const std::string& file, const GranuleCriterion& granule);
   void add(const Simulation& whole);
   /// Closes the table and prints its line.
   void finish();
@@ -59,7 +60,7 @@ class AgglomerateRows {
 
  private:
   AgglomerateTable table_;
-  double granule_age_;
+  GranuleCriterion granule_;
   std::vector<Bond> bonds_;
 };
 

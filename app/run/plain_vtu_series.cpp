@@ -8,8 +8,9 @@
 
 namespace drumlab::cli {
 
-PlainVtuSeries::PlainVtuSeries(const std::string& directory, bool contacts, double granule_age)
-    : series_(directory), contacts_(contacts), granule_age_(granule_age) {}
+PlainVtuSeries::PlainVtuSeries(const std::string& directory, bool contacts,
+                               const GranuleCriterion& granule)
+    : series_(directory), contacts_(contacts), granule_(granule) {}
 
 void PlainVtuSeries::write_frame(const Simulation& whole) {
   std::vector<std::pair<std::string, std::string>> files;
@@ -17,7 +18,7 @@ void PlainVtuSeries::write_frame(const Simulation& whole) {
     files.emplace_back(stem, series_.file_name(stem, ext));
     paraview::write_xml_file(d, directory() / files.back().second);
   };
-  write("particles", "vtu", paraview::particles(whole, granule_age_));
+  write("particles", "vtu", paraview::particles(whole, granule_));
   write("drum", "vtp", paraview::drum(whole));
   if (contacts_) write("contacts", "vtp", paraview::contacts(whole));
   series_.commit(files, whole.time());  // the collections, once every file of the frame exists

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "engine/analysis/granule_criterion.hpp"
 #include "engine/io/paraview/pvd_series.hpp"
 #include "engine/simulation.hpp"
 
@@ -16,7 +17,7 @@ namespace drumlab::cli {
 class PlainVtuSeries {
  public:
   /// Creates `directory` if needed; throws InputError if it cannot.
-  PlainVtuSeries(const std::string& directory, bool contacts, double granule_age);
+  PlainVtuSeries(const std::string& directory, bool contacts, const GranuleCriterion& granule);
   /// One frame of the whole state (a serial simulation, or the state a decomposed run gathered).
   void write_frame(const Simulation& whole);
 
@@ -26,7 +27,7 @@ class PlainVtuSeries {
  private:
   paraview::PvdSeries series_;
   bool contacts_;
-  double granule_age_;
+  GranuleCriterion granule_;
 };
 
 }  // namespace drumlab::cli

@@ -43,10 +43,7 @@ void add_run_options(CLI::App* cmd, RunOptions& opt) {
   cmd->add_option("--h5", opt.h5_file, "write an HDF5 time series (+ XDMF sidecar) to FILE");
   cmd->add_option("--agglomerates", opt.agglomerates,
                   "write agglomerate statistics per frame to FILE.csv and their chart to FILE.png");
-  cmd->add_option("--granule-age", opt.granule_age,
-                  "granule criterion: bonds older than T s join (0: plain components; default: "
-                  "one drum revolution)")
-      ->check(CLI::NonNegativeNumber);
+  add_granule_flags(cmd, opt.granule);
   cmd->add_option("--observables", opt.observables,
                   "write the drum observables per frame (angle of repose by surface fit and by "
                   "centre of mass, flowing layer, liquid) to FILE.csv");
@@ -118,6 +115,7 @@ void check_run_options(const RunOptions& opt, bool frames_taken) {
         "--every: no output takes frames (give --h5 FILE, --vtu DIR, --agglomerates FILE or "
         "--observables FILE; the checkpoint keeps --checkpoint-every)");
   }
+  check_granule_flags(opt.granule);
   if (!opt.h5_file.empty() && !opt.checkpoint.empty() && same_file(opt.h5_file, opt.checkpoint)) {
     throw InputError(fmt::format("--h5 and --checkpoint both name {}", opt.h5_file));
   }

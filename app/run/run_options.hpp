@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/run/granule_flags.hpp"
 #include "engine/session/run_session.hpp"
 
 namespace drumlab::cli {
@@ -34,10 +35,10 @@ struct RunOptions {
   std::string h5_file;        ///< --h5 FILE
   std::string checkpoint;     ///< --checkpoint FILE (written at the end)
   std::uint64_t checkpoint_every = 0;
-  std::string agglomerates;   ///< --agglomerates FILE.csv (+ FILE.png)
-  double granule_age = -1.0;  ///< --granule-age T (s); < 0: one drum revolution
-  std::string observables;    ///< --observables FILE.csv (observable_rows.hpp)
-  std::string restart;        ///< --restart FILE: skip fill and settling, continue from the file
+  std::string agglomerates;  ///< --agglomerates FILE.csv (+ FILE.png)
+  GranuleFlags granule;      ///< --granule-criterion, --granule-age, --granule-resolution
+  std::string observables;   ///< --observables FILE.csv (observable_rows.hpp)
+  std::string restart;       ///< --restart FILE: skip fill and settling, continue from the file
 
   /// Whether an output takes frames (--h5, --vtu, --agglomerates, --observables).
   bool frame_outputs() const {

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "engine/analysis/disjoint_sets.hpp"
+#include "engine/analysis/granule_communities.hpp"
 #include "engine/contact/cohesion_loops.hpp"
 #include "engine/periodic.hpp"
 #include "engine/simulation.hpp"
@@ -104,7 +105,7 @@ Clusters cluster_primaries(const AgglomerateInput& in, const AgglomerateOptions&
   Clusters c;
   for (const Bond& b : in.bonds) {
     plain.unite(b.i, b.j);
-    if (bond_joins(b, options)) {
+    if (!options.community && bond_joins(b, options)) {
       sets.unite(b.i, b.j);
       c.used.push_back(&b);
     }
@@ -114,6 +115,13 @@ Clusters cluster_primaries(const AgglomerateInput& in, const AgglomerateOptions&
     if (plain.find(i) == i) largest_plain = std::max(largest_plain, plain.size_of_root(i));
   }
   st.largest_plain_share = n ? static_cast<double>(largest_plain) / static_cast<double>(n) : 0.0;
+  if (options.community) {
+    c.root = bond_communities(in.id, in.bonds, options.resolution);
+    for (const Bond& b : in.bonds) {
+      if (c.root[b.i] == c.root[b.j]) c.used.push_back(&b);
+    }
+    return c;
+  }
   c.root.resize(n);
   for (std::size_t i = 0; i < n; ++i) c.root[i] = sets.find(i);
   return c;
@@ -233,11 +241,28 @@ double default_granule_age(double omega) {
   return omega != 0.0 ? 2.0 * std::numbers::pi / std::abs(omega) : 0.0;
 }
 
-AgglomerateOptions granule_options(double omega, double requested) {
-  return {requested < 0.0 ? default_granule_age(omega) : requested};
+AgglomerateOptions granule_options(double omega, const GranuleCriterion& criterion) {
+  AgglomerateOptions o;
+  switch (criterion.method) {
+    case GranuleMethod::age:
+      o.min_bond_age = criterion.age < 0.0 ? default_granule_age(omega) : criterion.age;
+      break;
+    case GranuleMethod::components:
+      break;
+    case GranuleMethod::community:
+      if (!(criterion.resolution > 0.0) || !std::isfinite(criterion.resolution)) {
+        throw InputError(
+            fmt::format("--granule-resolution: {} is not a positive number", criterion.resolution));
+      }
+      o.community = true;
+      o.resolution = criterion.resolution;
+      break;
+  }
+  return o;
 }
 
 std::string criterion_name(const AgglomerateOptions& options) {
+  if (options.community) return fmt::format("community(resolution={:.6g})", options.resolution);
   if (options.min_bond_age <= 0.0) return "components";
   return fmt::format("bond_age>={:.6g}s", options.min_bond_age);
 }
@@ -258,10 +283,11 @@ AgglomerateInput agglomerate_input(const Simulation& sim, std::vector<Bond>& bon
   return in;
 }
 
-std::vector<std::uint32_t> agglomerate_labels(const Simulation& sim, double granule_age) {
+std::vector<std::uint32_t> agglomerate_labels(const Simulation& sim,
+                                              const GranuleCriterion& granule) {
   std::vector<Bond> bonds;
   return find_agglomerates(agglomerate_input(sim, bonds),
-                           granule_options(sim.scene().drum.omega, granule_age))
+                           granule_options(sim.scene().drum.omega, granule))
       .label;
 }
 

@@ -23,11 +23,14 @@
 // rigid-body ride in the passive region plus the avalanche) takes less than a revolution, so a
 // bond older than that has survived at least one pass through the shear zone. The plain largest
 // component is always reported beside it (largest_plain_share) so a percolating network shows.
+// The community criterion (AgglomerateOptions::community, engine/analysis/granule_communities.hpp)
+// groups the particles by communities of the force-weighted bond network instead.
 #include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "engine/analysis/granule_criterion.hpp"
 #include "engine/contact/bond.hpp"
 #include "engine/scene/scene_config.hpp"
 #include "engine/types.hpp"
@@ -52,6 +55,8 @@ struct AgglomerateInput {
 
 struct AgglomerateOptions {
   double min_bond_age = 0.0;  ///< s; 0: plain connected components of all bonds
+  bool community = false;     ///< communities of the force-weighted bond network instead
+  double resolution = 1.0;    ///< community: the modularity's resolution (> 0)
 };
 
 struct Agglomerate {
@@ -67,7 +72,7 @@ struct Agglomerate {
 /// The statistics of a frame (one CSV row of `run --agglomerates` and `analyze`).
 struct AgglomerateStats {
   double time = 0.0;
-  std::string criterion;    ///< "components" or "bond_age>=T" (T in s)
+  std::string criterion;    ///< "components", "bond_age>=T" (T in s) or "community(resolution=R)"
   std::size_t count = 0;    ///< agglomerates of size >= 2
   double mean_size = 0.0;   ///< mean primaries of those (0 when there are none)
   std::size_t largest = 0;  ///< primaries of the largest agglomerate (1 without bonds)
@@ -89,7 +94,8 @@ struct AgglomerateFrame {
   AgglomerateStats stats;
 };
 
-/// Whether bond `b` joins its two particles under the criterion `options` (its age).
+/// Whether bond `b` joins its two particles under the age criterion `options` (its age; every
+/// bond for components; the community criterion joins by community instead).
 bool bond_joins(const Bond& b, const AgglomerateOptions& options);
 
 /// Finds the agglomerates of one frame with the given criterion. Throws std::invalid_argument if
@@ -103,10 +109,10 @@ bool scene_has_bonds(const SceneConfig& scene);
 /// One drum revolution 2 pi / |omega| (s, omega in rad/s); 0 for a drum at rest.
 double default_granule_age(double omega);
 
-/// The criterion for a requested persistence time: requested < 0 (not given): one revolution
-/// (default_granule_age; plain components for a drum at rest); 0: plain components; > 0: that
-/// time (s).
-AgglomerateOptions granule_options(double omega, double requested);
+/// The options of a criterion: age: its age, or for age < 0 (not given) one revolution
+/// (default_granule_age; plain components for a drum at rest); components: age 0; community:
+/// its resolution. Throws InputError for a resolution that is not positive and finite.
+AgglomerateOptions granule_options(double omega, const GranuleCriterion& criterion);
 
 /// The criterion's name as the outputs print it.
 std::string criterion_name(const AgglomerateOptions& options);
@@ -114,10 +120,11 @@ std::string criterion_name(const AgglomerateOptions& options);
 /// The live frame of `sim`; `bonds` must outlive the returned spans (it is refilled).
 AgglomerateInput agglomerate_input(const Simulation& sim, std::vector<Bond>& bonds);
 
-/// Agglomerate id of each particle of `sim` (storage order) with the criterion for `granule_age`
+/// Agglomerate id of each particle of `sim` (storage order) with the criterion `granule`
 /// (granule_options with the scene's omega): the one quantity the VTU, the HDF5 series and
 /// `render --color-by agglomerate` show.
-std::vector<std::uint32_t> agglomerate_labels(const Simulation& sim, double granule_age);
+std::vector<std::uint32_t> agglomerate_labels(const Simulation& sim,
+                                              const GranuleCriterion& granule);
 
 /// The CSV header and one row (SI units; diameters in m, liquid in m^3, 12 significant digits:
 /// free_liquid + bridge_liquid + wall_bridge_liquid is the scene's liquid).

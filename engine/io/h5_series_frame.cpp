@@ -5,7 +5,7 @@
 
 namespace drumlab {
 
-void write_series_frame(H5Series& series, const Simulation& sim, double granule_age,
+void write_series_frame(H5Series& series, const Simulation& sim, const GranuleCriterion& granule,
                         std::vector<Bond>& bonds) {
   if (!scene_has_bonds(sim.scene())) {  // a dry scene's series: the particles only
     series.write_frame(sim.particles(), sim.time(), sim.steps());
@@ -13,7 +13,7 @@ void write_series_frame(H5Series& series, const Simulation& sim, double granule_
   }
   const double omega = sim.scene().drum.omega;
   const AgglomerateInput in = agglomerate_input(sim, bonds);
-  const AgglomerateFrame frame = find_agglomerates(in, granule_options(omega, granule_age));
+  const AgglomerateFrame frame = find_agglomerates(in, granule_options(omega, granule));
   const SeriesBondFrame b{series_bond_rows(sim.particles(), bonds), frame.label, in.period, omega,
                           in.wall_liquid};
   series.write_frame(sim.particles(), sim.time(), sim.steps(), &b);

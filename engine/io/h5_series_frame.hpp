@@ -4,6 +4,7 @@
 // graph and agglomerate labels, any other scene with its particles only.
 #include <vector>
 
+#include "engine/analysis/granule_criterion.hpp"
 #include "engine/contact/bond.hpp"
 #include "engine/io/h5_series.hpp"
 
@@ -12,9 +13,9 @@ namespace drumlab {
 class Simulation;
 
 /// Appends sim's current state to `series`. The agglomerate labels use the criterion
-/// granule_options(scene omega, granule_age) (engine/analysis/agglomerates.hpp); `bonds` is
+/// granule_options(scene omega, granule) (engine/analysis/agglomerates.hpp); `bonds` is
 /// scratch, kept by the caller so that a long series does not reallocate it every frame.
-void write_series_frame(H5Series& series, const Simulation& sim, double granule_age,
+void write_series_frame(H5Series& series, const Simulation& sim, const GranuleCriterion& granule,
                         std::vector<Bond>& bonds);
 
 }  // namespace drumlab

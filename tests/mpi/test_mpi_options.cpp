@@ -49,7 +49,8 @@ TEST_F(MpiOptions, ContradictingFlagsAreOneLineAndExitTwoInBothExecutables) {
   for (const auto& [args, flag] :
        {std::pair<std::string, std::string>{"--checkpoint-every 10", "--checkpoint-every"},
         {"--every 10" + ck, "--every"},
-        {"--method nope", "--method"}}) {
+        {"--method nope", "--method"},
+        {"--granule-criterion community --granule-age 1", "--granule-age"}}) {
     const Ran serial = shell(std::string(DRUMLAB_CLI) + " run " + scene + " --steps 5 " + args);
     EXPECT_EQ(serial.exit_code, 2) << serial.output;
     EXPECT_EQ(count(serial.output, "drumlab: error: " + flag), 1u) << serial.output;
@@ -67,6 +68,15 @@ TEST_F(MpiOptions, ContradictingFlagsAreOneLineAndExitTwoInBothExecutables) {
             1u)
       << grid.output;
   EXPECT_FALSE(std::filesystem::exists(dir.file("vtu")));
+  // Communities need the whole bond network, which a series written where the particles are
+  // does not hold on one rank.
+  const Ran community = shell(mpirun(2) + "--timeout 60 " + DRUMLAB_MPI_CLI + " run " + scene +
+                              " --steps 5 --granule-criterion community --h5 " + dir.file("s.h5"));
+  EXPECT_EQ(community.exit_code, 2) << community.output;
+  EXPECT_EQ(count(community.output, "drumlab-mpi: error: --granule-criterion community: the ranks"),
+            1u)
+      << community.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("s.h5")));
 }
 
 // --agglomerates (the gathered state's table on rank 0, its chart), --observables, --team,

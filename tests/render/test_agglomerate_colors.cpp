@@ -46,8 +46,8 @@ TEST(AgglomerateColors, VtuArraysAndColoursFollowTheEngineLabels) {
   std::vector<Bond> bonds;
   sim->bonds(bonds);
   ASSERT_EQ(bonds.size(), 2u);
-  const std::vector<std::uint32_t> label = agglomerate_labels(*sim, 0.0);
-  const auto grid = render::particles_dataset(*sim, 0.0);
+  const std::vector<std::uint32_t> label = agglomerate_labels(*sim, {GranuleMethod::components});
+  const auto grid = render::particles_dataset(*sim, {GranuleMethod::components});
   vtkDataArray* vtu = grid->GetPointData()->GetArray("agglomerate_id");
   ASSERT_NE(vtu, nullptr);
   ASSERT_NE(grid->GetPointData()->GetArray("liquid_volume"), nullptr);
@@ -65,8 +65,8 @@ TEST(AgglomerateColors, VtuArraysAndColoursFollowTheEngineLabels) {
     EXPECT_GT(force->GetTuple1(k), 0.0);
   }
 
-  const std::vector<double> values =
-      render::particle_color_values(*sim, render::ColorBy::agglomerate, 0.0);
+  const std::vector<double> values = render::particle_color_values(
+      *sim, render::ColorBy::agglomerate, {GranuleMethod::components});
   const Particles& q = sim->particles();
   std::vector<double> by_id(q.size());
   for (std::size_t i = 0; i < q.size(); ++i) by_id[q.id[i]] = values[i];
@@ -80,7 +80,7 @@ TEST(AgglomerateColors, VtuArraysAndColoursFollowTheEngineLabels) {
   opt.width = 320;
   opt.height = 240;
   opt.color_by = render::ColorBy::agglomerate;
-  opt.granule_age = 0.0;
+  opt.granule = {GranuleMethod::components};
   render::OffscreenContext context(opt.width, opt.height);
   render::DrumView view(opt, context);
   const render::Image img = view.render(*sim);

@@ -49,7 +49,7 @@ TEST(PlainVtkXml, DryFrameReadsBackAsVtksOwn) {
 TEST(PlainVtkXml, WetFrameAndBondsReadBackAsVtksOwn) {
   TempDir dir("plain-xml-wet");
   auto sim = settled_simulation(parse_scene(wet_output_scene_text(), "wet"), 300);
-  const paraview::DataSet particles = paraview::particles(*sim, 0.0);
+  const paraview::DataSet particles = paraview::particles(*sim, {GranuleMethod::components});
   ASSERT_EQ(particles.point_data.size(), std::size(paraview::kParticleArrays) + 2);
   expect_same_files(particles, dir, "particles");
   expect_same_files(paraview::contacts(*sim), dir, "contacts");
@@ -65,7 +65,7 @@ TEST(PlainVtkXml, WetFrameAndBondsReadBackAsVtksOwn) {
   frame.size_class = p.size_class;
   frame.has_bonds = true;
   frame.film.assign(p.size(), 1e-12);
-  frame.agglomerate_id = agglomerate_labels(*sim, 0.0);
+  frame.agglomerate_id = agglomerate_labels(*sim, {GranuleMethod::components});
   sim->bonds(frame.bonds);
   ASSERT_GT(frame.bonds.size(), 0u);
   expect_same_files(paraview::particles(frame), dir, "frame_particles");

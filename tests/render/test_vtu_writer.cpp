@@ -71,7 +71,7 @@ TEST(VtuSeries, ParticlesReadBackEqualTheEngine) {
   TempDir dir("vtu-series");
   const SceneConfig scene = output_scene();
   auto sim = settled_simulation(scene, 300);
-  VtuSeriesWriter writer(dir.path() / "vtu", VtuSeriesOptions{true, true});
+  VtuSeriesWriter writer(dir.path() / "vtu", VtuSeriesOptions{true, true, {}});
   writer.write_frame(*sim);
   const double t0 = sim->time();
   sim->advance(40);

@@ -115,6 +115,29 @@ TEST(AgglomerateOutputs, AnalyzeOfTheRunsSeriesEqualsTheRunsTable) {
   r = run_cli("analyze " + d + "s.h5 --granule-age 0 --agglomerates " + d + "plain.csv");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(count_of(read_text(d + "plain.csv"), ",components,"), 7u);
+  // Communities of the force network: the CSV says which criterion; no community is larger than
+  // the largest plain component.
+  r = run_cli("analyze " + d + "s.h5 --granule-criterion community --agglomerates " + d +
+              "community.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::vector<AgglomerateStats> communities = read_agglomerate_table(d + "community.csv");
+  ASSERT_EQ(communities.size(), 7u);
+  for (const AgglomerateStats& row : communities) {
+    EXPECT_EQ(row.criterion, "community(resolution=1)");
+    EXPECT_LE(static_cast<double>(row.largest), row.largest_plain_share * 250.0 + 1e-9);
+  }
+  r = run_cli("analyze " + d + "s.h5 --granule-criterion community --granule-age 1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("--granule-age applies to --granule-criterion age, not community"),
+            std::string::npos)
+      << r.output;
+  r = run_cli("analyze " + d + "s.h5 --granule-resolution 2 --agglomerates " + d + "x.csv");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.output.find("--granule-resolution applies to --granule-criterion community"),
+            std::string::npos)
+      << r.output;
+  r = run_cli("analyze " + d + "s.h5 --granule-criterion louvain");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
 
   // The table read back gives the rows it was written from (drumlab analyze TABLE.csv charts it).
   const std::vector<AgglomerateStats> rows = read_agglomerate_table(d + "run.csv");

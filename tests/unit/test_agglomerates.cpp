@@ -180,9 +180,16 @@ TEST(Agglomerates, LiveWetDrumHasBridgedAgglomerates) {
   ASSERT_TRUE(scene_has_bonds(scene));
   EXPECT_FALSE(scene_has_bonds(output_scene()));
   EXPECT_NEAR(default_granule_age(scene.drum.omega), 2.0 * M_PI / 3.0, 1e-12);
-  EXPECT_EQ(granule_options(3.0, -1.0).min_bond_age, default_granule_age(3.0));
-  EXPECT_EQ(granule_options(3.0, 0.0).min_bond_age, 0.0);
-  EXPECT_EQ(granule_options(0.0, -1.0).min_bond_age, 0.0);  // a drum at rest: plain
+  EXPECT_EQ(granule_options(3.0, {}).min_bond_age, default_granule_age(3.0));
+  EXPECT_EQ(granule_options(3.0, {GranuleMethod::age, 0.0}).min_bond_age, 0.0);
+  EXPECT_EQ(granule_options(0.0, {}).min_bond_age, 0.0);  // a drum at rest: plain
+  EXPECT_EQ(granule_options(3.0, {GranuleMethod::components, 5.0}).min_bond_age, 0.0);
+  EXPECT_FALSE(granule_options(3.0, {GranuleMethod::components}).community);
+  const AgglomerateOptions community = granule_options(3.0, {GranuleMethod::community, -1.0, 2.5});
+  EXPECT_TRUE(community.community);
+  EXPECT_EQ(community.resolution, 2.5);
+  EXPECT_EQ(criterion_name(community), "community(resolution=2.5)");
+  EXPECT_THROW(granule_options(3.0, {GranuleMethod::community, -1.0, 0.0}), InputError);
   auto sim = settled_simulation(scene, 300);
   std::vector<Bond> bonds;
   const AgglomerateInput in = agglomerate_input(*sim, bonds);

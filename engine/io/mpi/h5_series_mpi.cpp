@@ -21,7 +21,7 @@ H5Series::Access mpi_series_access(MpiComm& comm, const std::filesystem::path& f
 }
 
 void write_frame_mpi(H5Series& series, MpiDomain& domain, const Simulation& sim,
-                     double granule_age) {
+                     const GranuleCriterion& granule) {
   MpiComm& comm = domain.comm();
   const SimulationState local = sim.state();
   const h5::OwnedParticles o = h5::owned_particles(comm, local, sim.ghost_mask(), domain.slots());
@@ -31,7 +31,7 @@ void write_frame_mpi(H5Series& series, MpiDomain& domain, const Simulation& sim,
     return;
   }
   const double omega = sim.scene().drum.omega;
-  MpiBondFrame f = mpi_bond_frame(domain, sim, granule_options(omega, granule_age));
+  MpiBondFrame f = mpi_bond_frame(domain, sim, granule_options(omega, granule));
   const SeriesBondFrame b{std::move(f.bonds),
                           f.label,
                           sim.search_input().period_z.value_or(0.0),

@@ -8,6 +8,7 @@
 // (each rank its rows of the bond list) and the agglomerate labels, found without gathering.
 #include <filesystem>
 
+#include "engine/analysis/granule_criterion.hpp"
 #include "engine/io/h5_series.hpp"
 #include "engine/parallel/mpi/mpi_domain.hpp"
 #include "engine/simulation.hpp"
@@ -20,10 +21,10 @@ H5Series::Access mpi_series_access(MpiComm& comm, const std::filesystem::path& f
 
 /// Appends the current state of `sim` (the local set of `domain`) as a frame of `series` (made
 /// with mpi_series_access), as write_series_frame would the serial run's: for a scene with bonds
-/// with its bond graph and agglomerate labels under the criterion for `granule_age`
+/// with its bond graph and agglomerate labels under the criterion for `granule`
 /// (granule_options), found where the particles are (engine/parallel/mpi/bond_frame_mpi.hpp).
 /// Collective; throws on every rank alike.
 void write_frame_mpi(H5Series& series, MpiDomain& domain, const Simulation& sim,
-                     double granule_age);
+                     const GranuleCriterion& granule);
 
 }  // namespace drumlab

@@ -81,7 +81,7 @@ DataSet particles(const ParticleFields& f) {
   return d;
 }
 
-DataSet particles(const Simulation& sim, double granule_age) {
+DataSet particles(const Simulation& sim, const GranuleCriterion& granule) {
   const Particles& p = sim.particles();
   std::vector<std::uint32_t> coordination;
   sim.coordination_numbers(coordination);
@@ -97,7 +97,7 @@ DataSet particles(const Simulation& sim, double granule_age) {
   std::vector<std::uint32_t> label;
   std::vector<double> liquid;
   if (scene_has_bonds(sim.scene())) {
-    label = agglomerate_labels(sim, granule_age);
+    label = agglomerate_labels(sim, granule);
     const std::vector<double>* film = p.find_array(kLiquidFilmArray);
     liquid = film ? *film : std::vector<double>(p.size(), 0.0);
     f.agglomerate_id = label;

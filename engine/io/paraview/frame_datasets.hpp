@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <span>
 
+#include "engine/analysis/granule_criterion.hpp"
 #include "engine/io/paraview/dataset.hpp"
 #include "engine/io/series_frame.hpp"
 #include "engine/simulation.hpp"
@@ -38,8 +39,8 @@ DataSet particles(const ParticleFields& f);
 /// The particles of the current state: force is the engine's contact force (pairs and walls,
 /// without gravity), coordination the particle-particle contacts with overlap > 0. A scene with
 /// bonds (scene_has_bonds) adds agglomerate_id (engine/analysis/agglomerates.hpp, with the
-/// criterion of granule_age: see granule_options) and liquid_volume (the film; 0 without one).
-DataSet particles(const Simulation& sim, double granule_age = -1.0);
+/// criterion of granule: see granule_options) and liquid_volume (the film; 0 without one).
+DataSet particles(const Simulation& sim, const GranuleCriterion& granule = {});
 
 /// A frame of an HDF5 series: the arrays of kParticleArrays the series stores (no force, no
 /// coordination), and agglomerate_id and liquid_volume for a frame with a bond graph.

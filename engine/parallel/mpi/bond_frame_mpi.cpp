@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 #include <numeric>
+#include <stdexcept>
 
 #include "engine/analysis/disjoint_sets.hpp"
 #include "engine/contact/liquid_bridge.hpp"
@@ -82,6 +83,10 @@ double ordered_wall_liquid(MpiComm& comm, const Simulation& sim,
 
 MpiBondFrame mpi_bond_frame(MpiDomain& domain, const Simulation& sim,
                             const AgglomerateOptions& options) {
+  if (options.community) {
+    throw std::invalid_argument(
+        "mpi_bond_frame: the community criterion needs the whole bond network (gather it)");
+  }
   const Particles& p = sim.particles();
   const std::vector<std::uint64_t>& slot = domain.slots();
   std::vector<Bond> bonds;
