@@ -23,6 +23,7 @@
 #include "engine/periodic.hpp"
 #include "engine/search/verlet_list.hpp"
 #include "engine/spatial_order.hpp"
+#include "engine/spray/droplet_cloud.hpp"
 #include "engine/stability.hpp"
 
 namespace drumlab {
@@ -131,6 +132,9 @@ struct Simulation::Impl {
   std::vector<double> liquid_reserve;
   /// A decomposed run's replay of this step's bridge events (replay_bridge_events).
   BridgeEventFilms bridge_replay;
+  /// The binder droplets of a scene with [[spray]] (engine/spray/droplet_cloud.hpp); null
+  /// without: a scene without spray pays nothing.
+  std::unique_ptr<DropletCloud> spray;
 };
 
 Simulation::Simulation(const SceneConfig& scene, Particles particles, SimulationOptions options)
@@ -144,6 +148,9 @@ Simulation::Simulation(const SceneConfig& scene, Particles particles, Simulation
   impl_->wall_history.assign(particles_.size(), {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
   impl_->contacts.set_state_size(impl_->model.pair_state_size());
   register_liquid_arrays(true);
+  if (!scene_.sprays.empty()) {
+    impl_->spray = std::make_unique<DropletCloud>(scene_.sprays, impl_->drum, gravity_);
+  }
   // Forces of the initial state, for the first half kick (no history increment, not counted).
   compute_forces(0.0, false);
 }
@@ -151,6 +158,11 @@ Simulation::Simulation(const SceneConfig& scene, Particles particles, Simulation
 Simulation::Simulation(const SceneConfig& scene, SimulationState state)
     : scene_(scene), particles_(std::move(state.particles)) {
   if (!state.search_method.empty()) scene_.search_method = state.search_method;
+  if (!scene_.sprays.empty()) {
+    throw InputError(
+        "restart: a scene with [[spray]] cannot continue from a saved state yet (checkpoints do "
+        "not carry the airborne droplets)");
+  }
   impl_ = std::make_unique<Impl>(scene_);
   use_search(make_search(scene_.search_method, search_tuning()));
   gravity_ = drum_frame_gravity(scene_.gravity, scene_.drum.tilt);
@@ -195,6 +207,11 @@ Simulation::Simulation(const SceneConfig& scene, SimulationState state)
 Simulation::~Simulation() = default;
 
 SimulationState Simulation::state() const {
+  if (impl_->spray) {
+    throw InputError(
+        "checkpoint: a scene with [[spray]] cannot be saved yet (its airborne droplets are not "
+        "part of the state)");
+  }
   SimulationState s;
   state_into(s);
   return s;
@@ -587,6 +604,12 @@ void Simulation::step() {
   const auto t3 = Clock::now();
   timers_.integration += seconds_between(t0, t1) + seconds_between(t2, t3);
   work_.particles += particles_.size();
+  if (impl_->spray) {
+    // Droplets fly over [time, time + dt] against the bed at the step's end; what they bring to
+    // the films forms bridges from the next step on.
+    std::vector<double>& film = *particles_.find_array(kLiquidFilmArray);
+    impl_->spray->advance(time_, dt_, particles_.position, particles_.radius, particles_.id, film);
+  }
   time_ += dt_;
   drum_angle_ += omega_ * dt_;
   ++steps_;
@@ -622,7 +645,14 @@ void Simulation::replace_local(SimulationState& state, std::vector<std::uint8_t>
 }
 
 void Simulation::set_domain(DomainHooks* domain) {
+  if (domain != nullptr && impl_->spray) {
+    throw InputError("[[spray]]: not on a decomposed (MPI) run yet; run the scene with drumlab");
+  }
   domain_ = domain;
+}
+
+const DropletCloud* Simulation::spray() const {
+  return impl_->spray.get();
 }
 
 void Simulation::set_drum_omega(double omega) {

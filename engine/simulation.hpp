@@ -60,6 +60,8 @@ struct SimulationOptions {
   double dt_factor_override = 0.0;  ///< > 0 replaces the scene's dt_factor
 };
 
+class DropletCloud;
+
 class Simulation {
  public:
   /// Takes the scene's physics and the given particles (already placed by a fill).
@@ -152,6 +154,9 @@ class Simulation {
   /// Liquid in films, bridges and wall bridges (m^3), with the live bridge counts; zeros for a
   /// dry scene. Films + bridges + wall bridges is conserved by every step (round-off).
   LiquidTotals liquid() const;
+  /// The binder droplets and their liquid accounting of a scene with [[spray]]; null without.
+  /// Films + bridges + wall bridges + airborne + lost = the scene's liquid + the sprayed.
+  const DropletCloud* spray() const;
   /// Particle-particle contacts (overlap > 0) of each particle; replaces `out` (size N).
   void coordination_numbers(std::vector<std::uint32_t>& out) const;
 

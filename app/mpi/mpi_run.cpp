@@ -72,7 +72,11 @@ Start read_shares(MpiComm& comm, const SceneConfig& scene, const SessionOptions&
 Start start_run(MPI_Comm comm, int rank, const SceneConfig& scene, const SessionOptions& o) {
   Start s;
   std::string error;
-  if (rank == 0) {
+  if (rank == 0 && !scene.sprays.empty()) {
+    error =
+        "[[spray]]: not on drumlab-mpi yet (the droplets are not decomposed); run the scene "
+        "with drumlab";
+  } else if (rank == 0) {
     try {
       RunSession session(scene, o);
       s.scene = session.scene();

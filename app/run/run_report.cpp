@@ -70,6 +70,7 @@ RunSummary run_summary(const Simulation& sim, const PhaseStats& phase, std::uint
   s.method_description = sim.search().description();
   s.search_detail = sim.search().report();
   s.diagnostics = sim.diagnostics();
+  if (const DropletCloud* spray = sim.spray()) s.spray = spray->totals();
   return s;
 }
 
@@ -119,6 +120,14 @@ void print_summary(const RunSummary& s) {
       "health            max overlap/radius {:.4f}, outside drum {}, non-finite {}, contacts {} + "
       "{} wall\n",
       d.max_overlap_ratio, d.outside_drum, d.non_finite, d.contacts, d.wall_contacts);
+  if (s.spray) {
+    const SprayTotals& t = *s.spray;
+    fmt::print(
+        "spray             sprayed {:.6g} m^3 in {} droplets = airborne {:.6g} + absorbed by "
+        "particles {:.6g} ({} droplets) + lost at the wall {:.6g} ({} droplets)\n",
+        t.sprayed, t.emitted_count, t.airborne, t.absorbed, t.absorbed_count, t.lost, t.lost_count);
+    fmt::print("liquid            films + bridges + wall bridges {:.12g} m^3\n", d.liquid_volume);
+  }
 }
 
 void settle_with_progress(RunSession& session, std::uint64_t steps, bool shown) {

@@ -5,12 +5,14 @@
 // the simulation between steps; never changes it.
 #include <chrono>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 
 #include "engine/session/phase_meter.hpp"
 #include "engine/session/run_session.hpp"
 #include "engine/simulation.hpp"
+#include "engine/spray/droplet_cloud.hpp"
 
 namespace drumlab::cli {
 
@@ -47,7 +49,8 @@ struct RunSummary {
   PhaseStats phase;
   double dt = 0.0, rayleigh_time = 0.0, time = 0.0;
   std::string method, method_description, search_detail;
-  Diagnostics diagnostics;  ///< at the end of the phase
+  Diagnostics diagnostics;           ///< at the end of the phase
+  std::optional<SprayTotals> spray;  ///< a scene with [[spray]]: its liquid accounting
 };
 
 /// The summary of `phase` of `sim` (`particles`: of the whole run). Calls sim.diagnostics(),

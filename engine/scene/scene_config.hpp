@@ -9,6 +9,7 @@
 
 #include "engine/scene/size_distribution.hpp"
 #include "engine/search/verlet_skin.hpp"
+#include "engine/spray/spray_config.hpp"
 #include "engine/types.hpp"
 
 namespace drumlab {
@@ -204,6 +205,7 @@ struct SceneConfig {
   ContactConfig contact;
   LiquidConfig liquid;
   CohesionConfig cohesion;
+  std::vector<SprayConfig> sprays;  ///< [[spray]]: nozzles of binder (engine/spray)
   FillConfig fill;
   TimeConfig time;
   std::string search_method = "m5";

@@ -498,6 +498,46 @@ void read_cohesion(const Scope& root, SceneConfig& scene) {
   scene.cohesion.energy_density = s->required_number("energy_density", "k_c, J/m^3, >= 0");
 }
 
+// [[spray]]: nozzles of binder (engine/spray/spray_config.hpp); the validation checks the values.
+void read_sprays(const Scope& root, SceneConfig& scene) {
+  const toml::node* node = root.raw().get("spray");
+  if (!node) return;
+  const toml::array* array = node->as_array();
+  if (!array || !array->is_array_of_tables()) {
+    root.fail("spray",
+              fmt::format("expected an array of tables [[spray]], got {}", type_name(*node)));
+  }
+  for (std::size_t i = 0; i < array->size(); ++i) {
+    const Scope s(*(*array)[i].as_table(), fmt::format("spray[{}]", i), root.source());
+    s.allow_only({"name", "position", "direction", "shape", "angle_deg", "fan_axis", "rate",
+                  "start", "stop", "droplet_radius", "droplet_speed"});
+    SprayConfig c;
+    c.name = s.string("name").value_or(fmt::format("spray{}", i));
+    const auto position = s.vec3("position");
+    if (!position) s.missing("position", "[x, y, z] of the nozzle in the drum frame, m");
+    c.position = *position;
+    const auto direction = s.vec3("direction");
+    if (!direction) s.missing("direction", "[x, y, z] the nozzle points along");
+    c.direction = *direction;
+    const std::string shape = s.string("shape").value_or("cone");
+    if (shape == "flat_fan") {
+      c.shape = SprayShape::flat_fan;
+      c.fan_axis = s.vec3("fan_axis").value_or(c.fan_axis);
+    } else if (shape == "cone") {
+      if (s.has("fan_axis")) s.fail("fan_axis", "only with shape = \"flat_fan\"");
+    } else {
+      s.fail("shape", fmt::format("unknown value '{}' (valid: cone, flat_fan)", shape));
+    }
+    c.angle_deg = s.number_or("angle_deg", c.angle_deg);
+    c.rate = s.required_number("rate", "liquid volume per second, m^3/s");
+    c.start = s.number_or("start", c.start);
+    c.stop = s.number_or("stop", c.stop);
+    c.droplet_radius = s.required_number("droplet_radius", "m, > 0");
+    c.droplet_speed = s.required_number("droplet_speed", "speed at the nozzle, m/s");
+    scene.sprays.push_back(std::move(c));
+  }
+}
+
 void read_performance(const Scope& root, SceneConfig& scene) {
   const auto s = root.table("performance");
   if (!s) return;
@@ -512,7 +552,7 @@ void read_performance(const Scope& root, SceneConfig& scene) {
 
 void read_top_level(const Scope& root, SceneConfig& scene) {
   root.allow_only({"name", "description", "gravity", "search", "drum", "particles", "material",
-                   "wall", "contact", "liquid", "cohesion", "fill", "time", "performance",
+                   "wall", "contact", "liquid", "cohesion", "spray", "fill", "time", "performance",
                    "output"});
   const std::string stem = std::filesystem::path(scene.source).stem().string();
   scene.name = root.string("name").value_or(stem.empty() ? "scene" : stem);
@@ -578,6 +618,7 @@ SceneConfig build_scene(const toml::table& table, std::string_view source) {
   read_contact(root, scene);
   read_liquid(root, scene);
   read_cohesion(root, scene);
+  read_sprays(root, scene);
   read_fill(root, scene);
   read_time(root, scene);
   read_performance(root, scene);

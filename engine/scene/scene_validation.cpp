@@ -243,6 +243,62 @@ Problem check_cohesion(const SceneConfig& s) {
   return non_negative("cohesion.energy_density", s.cohesion.energy_density);
 }
 
+Problem check_spray(const SceneConfig& s, const SprayConfig& c, const std::string& key) {
+  if (!s.liquid.enabled || !s.liquid.migration) {
+    return fail(key,
+                "needs [liquid] with liquid_content (the particles' films take the droplets; "
+                "liquid_content = 0 for a dry powder)");
+  }
+  if (!c.position.allFinite()) return fail(key + ".position", "elements must be finite numbers");
+  if (!c.direction.allFinite() || !(c.direction.norm() > 0.0)) {
+    return fail(key + ".direction", "must be a finite vector of non-zero length");
+  }
+  if (!(c.angle_deg >= 0.0 && c.angle_deg < 180.0)) {
+    return fail(key + ".angle_deg",
+                fmt::format("must be in [0, 180) degrees, got {}", c.angle_deg));
+  }
+  if (c.shape == SprayShape::flat_fan) {
+    const Vec3 d = c.direction.normalized();
+    if (!c.fan_axis.allFinite() ||
+        !((c.fan_axis - c.fan_axis.dot(d) * d).norm() > 1e-9 * c.fan_axis.norm())) {
+      return fail(key + ".fan_axis", "must be a finite vector not parallel to direction");
+    }
+  }
+  if (auto p = non_negative(key + ".rate", c.rate)) return p;
+  if (auto p = non_negative(key + ".start", c.start)) return p;
+  if (!(c.stop > c.start)) {
+    return fail(key + ".stop", fmt::format("must be after start ({} s), got {}", c.start, c.stop));
+  }
+  if (auto p = positive(key + ".droplet_radius", c.droplet_radius, " m")) return p;
+  if (c.droplet_radius > s.min_radius()) {
+    return fail(key + ".droplet_radius",
+                fmt::format("{} m is larger than the smallest particle ({} m): a droplet is "
+                            "absorbed by particles larger than itself",
+                            c.droplet_radius, s.min_radius()));
+  }
+  if (auto p = non_negative(key + ".droplet_speed", c.droplet_speed)) return p;
+  const double radial = std::hypot(c.position.x(), c.position.y());
+  const bool inside =
+      radial + c.droplet_radius < 0.5 * s.drum.diameter &&
+      (s.drum.ends == DrumEnds::periodic || (c.position.z() - c.droplet_radius > 0.0 &&
+                                             c.position.z() + c.droplet_radius < s.drum.depth));
+  if (!inside) {
+    return fail(key + ".position",
+                fmt::format("the nozzle [{}, {}, {}] is not inside the drum (radius {} m about the "
+                            "z axis, z in [0, {}] m)",
+                            c.position.x(), c.position.y(), c.position.z(), 0.5 * s.drum.diameter,
+                            s.drum.depth));
+  }
+  return std::nullopt;
+}
+
+Problem check_sprays(const SceneConfig& s) {
+  for (std::size_t i = 0; i < s.sprays.size(); ++i) {
+    if (auto p = check_spray(s, s.sprays[i], fmt::format("spray[{}]", i))) return p;
+  }
+  return std::nullopt;
+}
+
 Problem check_fill(const SceneConfig& s) {
   const FillConfig& f = s.fill;
   switch (f.kind) {
@@ -353,7 +409,7 @@ std::optional<SceneProblem> scene_problem(const SceneConfig& scene) {
     if (auto p = check(scene)) return p;
   }
   if (auto p = law_problem(scene)) return p;
-  for (auto check : {check_fill, check_time, check_performance, check_output}) {
+  for (auto check : {check_sprays, check_fill, check_time, check_performance, check_output}) {
     if (auto p = check(scene)) return p;
   }
   return std::nullopt;

@@ -7,6 +7,7 @@
 #include "engine/scene/scene_writer.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <sstream>
@@ -155,6 +156,25 @@ toml::table contact_table(const ContactConfig& c) {
   return t;
 }
 
+toml::array spray_array(const std::vector<SprayConfig>& sprays) {
+  toml::array out;
+  for (const SprayConfig& c : sprays) {
+    toml::table t{{"name", c.name},
+                  {"position", vec3(c.position)},
+                  {"direction", vec3(c.direction)},
+                  {"shape", c.shape == SprayShape::flat_fan ? "flat_fan" : "cone"},
+                  {"angle_deg", c.angle_deg},
+                  {"rate", c.rate},
+                  {"start", c.start},
+                  {"droplet_radius", c.droplet_radius},
+                  {"droplet_speed", c.droplet_speed}};
+    if (c.shape == SprayShape::flat_fan) t.insert("fan_axis", vec3(c.fan_axis));
+    if (std::isfinite(c.stop)) t.insert("stop", c.stop);
+    out.push_back(std::move(t));
+  }
+  return out;
+}
+
 toml::table liquid_table(const LiquidConfig& l) {
   toml::table t{{"surface_tension", l.surface_tension},
                 {"contact_angle_deg", l.contact_angle_deg},
@@ -238,6 +258,7 @@ toml::table scene_table(const SceneConfig& s, const fs::path& folder) {
     t.insert("wall", std::move(wall));
   }
   if (s.liquid.enabled) t.insert("liquid", liquid_table(s.liquid));
+  if (!s.sprays.empty()) t.insert("spray", spray_array(s.sprays));
   if (s.cohesion.enabled) {
     t.insert("cohesion",
              toml::table{{"model", "sjkr"}, {"energy_density", s.cohesion.energy_density}});

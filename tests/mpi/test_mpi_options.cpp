@@ -77,6 +77,18 @@ TEST_F(MpiOptions, ContradictingFlagsAreOneLineAndExitTwoInBothExecutables) {
             1u)
       << community.output;
   EXPECT_FALSE(std::filesystem::exists(dir.file("s.h5")));
+  // Binder droplets are not decomposed yet.
+  const std::string sprayed = dir.write(
+      "spray.toml", small_scene() +
+                        "[liquid]\nsurface_tension = 0.072\nliquid_content = 0.0\n"
+                        "max_bridge_volume = 1e-9\n[[spray]]\nposition = [0.0, 0.0, 0.01]\n"
+                        "direction = [0.0, -1.0, 0.0]\nrate = 1e-7\ndroplet_radius = 1e-4\n"
+                        "droplet_speed = 1.0\n");
+  const Ran spray =
+      shell(mpirun(2) + "--timeout 60 " + DRUMLAB_MPI_CLI + " run " + sprayed + " --steps 5");
+  EXPECT_EQ(spray.exit_code, 2) << spray.output;
+  EXPECT_EQ(count(spray.output, "drumlab-mpi: error: [[spray]]: not on drumlab-mpi yet"), 1u)
+      << spray.output;
 }
 
 // --agglomerates (the gathered state's table on rank 0, its chart), --observables, --team,

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -275,13 +276,13 @@ TEST(SceneWriter, SeedBeyondTomlIntegersIsRefusedNamingTheKey) {
 /// The number of fields of each config struct, checked by a structured binding: adding a field
 /// makes this fail to compile. Then give the field a setter in `field_setters()`, write it in
 /// engine/scene/scene_writer.cpp and raise its count here.
-constexpr int kSceneFields = 16, kDrumFields = 5, kClassFields = 8, kMaterialFields = 6,
-              kContactFields = 9, kLiquidFields = 16, kCohesionFields = 2, kFillFields = 7,
-              kTimeFields = 5, kPerformanceFields = 2, kOutputFields = 2;
+constexpr int kSceneFields = 17, kDrumFields = 5, kClassFields = 8, kMaterialFields = 6,
+              kContactFields = 9, kLiquidFields = 16, kCohesionFields = 2, kSprayFields = 11,
+              kFillFields = 7, kTimeFields = 5, kPerformanceFields = 2, kOutputFields = 2;
 
 [[maybe_unused]] void field_counts(const SceneConfig& s) {
   [[maybe_unused]] const auto& [name, source, description, gravity, drum, classes, material, wall,
-                                contact, liquid, cohesion, fill, time, search, performance,
+                                contact, liquid, cohesion, sprays, fill, time, search, performance,
                                 output] = s;
   [[maybe_unused]] const auto& [diameter, depth, omega, tilt, ends] = s.drum;
   [[maybe_unused]] const auto& [class_name, radius, class_fraction, distribution, radius_sigma,
@@ -296,13 +297,15 @@ constexpr int kSceneFields = 16, kDrumFields = 5, kClassFields = 8, kMaterialFie
                                 viscosity, min_gap, wall_bridges, wall_tension, wall_angle] =
       s.liquid;
   [[maybe_unused]] const auto& [cohesive, energy_density] = s.cohesion;
+  [[maybe_unused]] const auto& [spray_name, position, direction, shape, angle_deg, fan_axis, rate,
+                                start, stop, droplet_radius, droplet_speed] = s.sprays.front();
   [[maybe_unused]] const auto& [kind, count, fraction, seed, settle, box, file] = s.fill;
   [[maybe_unused]] const auto& [dt, dt_factor, duration, revolutions, max_overlap] = s.time;
   [[maybe_unused]] const auto& [skin, sort_every] = s.performance;
   [[maybe_unused]] const auto& [directory, diagnostics] = s.output;
 }
 
-enum class Base { every_key, paper_packing, file_fill };
+enum class Base { every_key, paper_packing, file_fill, spray };
 
 struct FieldSetter {
   std::string field;  ///< "struct.field" (the struct's scene table, or "scene" for the top level)
@@ -316,6 +319,26 @@ void migrate(SceneConfig& s, double content, double max_bridge_volume) {
   s.liquid.bridge_volume = 0.0;
   s.liquid.liquid_content = content;
   s.liquid.max_bridge_volume = max_bridge_volume;
+}
+
+/// kEveryKey with films (content 0: a dry powder) and a flat-fan nozzle of binder.
+SceneConfig spray_scene() {
+  SceneConfig s = parse_scene(kEveryKey, "every_key.toml");
+  migrate(s, 0.0, 1e-9);
+  SprayConfig c;
+  c.name = "nozzle";
+  c.position = Vec3(0.01, 0.2, 0.075);
+  c.direction = Vec3(0.0, -1.0, 0.0);
+  c.shape = SprayShape::flat_fan;
+  c.angle_deg = 60.0;
+  c.fan_axis = Vec3(0.0, 0.0, 1.0);
+  c.rate = 1e-7;
+  c.start = 0.5;
+  c.stop = 2.0;
+  c.droplet_radius = 1e-4;
+  c.droplet_speed = 2.0;
+  s.sprays.push_back(c);
+  return s;
 }
 
 /// The normal law set by a collision time and a restitution (linear_viscoelastic.hpp).
@@ -432,6 +455,22 @@ std::vector<FieldSetter> field_setters(const fs::path& other_csv) {
          s.contact.rolling = RollingLaw::spring;
          s.contact.rolling_damping_ratio = 0.0;
        }},
+      {"spray.name", B::spray, [](SceneConfig& s) { s.sprays[0].name = "other"; }},
+      {"spray.position", B::spray, [](SceneConfig& s) { s.sprays[0].position.x() = -0.02; }},
+      {"spray.direction", B::spray, [](SceneConfig& s) { s.sprays[0].direction.x() = 0.5; }},
+      {"spray.shape", B::spray,
+       [](SceneConfig& s) {
+         s.sprays[0].shape = SprayShape::cone;
+         s.sprays[0].fan_axis = SprayConfig{}.fan_axis;  // a cone writes none
+       }},
+      {"spray.angle_deg", B::spray, [](SceneConfig& s) { s.sprays[0].angle_deg = 12.5; }},
+      {"spray.fan_axis", B::spray, [](SceneConfig& s) { s.sprays[0].fan_axis.x() = 1.0; }},
+      {"spray.rate", B::spray, [](SceneConfig& s) { s.sprays[0].rate = 3e-8; }},
+      {"spray.start", B::spray, [](SceneConfig& s) { s.sprays[0].start = 0.75; }},
+      {"spray.stop", B::spray,
+       [](SceneConfig& s) { s.sprays[0].stop = std::numeric_limits<double>::infinity(); }},
+      {"spray.droplet_radius", B::spray, [](SceneConfig& s) { s.sprays[0].droplet_radius = 5e-5; }},
+      {"spray.droplet_speed", B::spray, [](SceneConfig& s) { s.sprays[0].droplet_speed = 0.0; }},
       {"liquid.enabled", B::every_key, [](SceneConfig& s) { s.liquid = LiquidConfig{}; }},
       {"liquid.surface_tension", B::every_key,
        [](SceneConfig& s) { s.liquid.surface_tension = 0.05; }},
@@ -513,9 +552,9 @@ TEST(SceneWriter, EveryFieldChangesTheTextAndRoundTrips) {
   TempDir dir("scene-writer-fields");
   dir.write("packing.csv", kCsv);
   const fs::path other_csv = dir.write("other.csv", kCsv);
-  const SceneConfig bases[] = {parse_scene(kEveryKey, "every_key.toml"),
-                               parse_scene(kPaperPacking, "packing.toml"),
-                               parse_scene(kFileFill, (dir.path() / "from_file.toml").string())};
+  const SceneConfig bases[] = {
+      parse_scene(kEveryKey, "every_key.toml"), parse_scene(kPaperPacking, "packing.toml"),
+      parse_scene(kFileFill, (dir.path() / "from_file.toml").string()), spray_scene()};
   const auto setters = field_setters(other_csv);
   for (const FieldSetter& setter : setters) {
     SCOPED_TRACE(setter.field);
@@ -532,7 +571,7 @@ TEST(SceneWriter, EveryFieldChangesTheTextAndRoundTrips) {
     return std::count_if(setters.begin(), setters.end(),
                          [&](const FieldSetter& s) { return s.field.starts_with(prefix); });
   };
-  EXPECT_EQ(count("scene."), kSceneFields - 12);  // name, description, gravity, search
+  EXPECT_EQ(count("scene."), kSceneFields - 13);  // name, description, gravity, search
   EXPECT_EQ(count("drum."), kDrumFields);
   EXPECT_EQ(count("classes."), kClassFields);
   EXPECT_EQ(count("material."), kMaterialFields);
@@ -540,6 +579,7 @@ TEST(SceneWriter, EveryFieldChangesTheTextAndRoundTrips) {
   EXPECT_EQ(count("contact."), kContactFields);
   EXPECT_EQ(count("liquid."), kLiquidFields);
   EXPECT_EQ(count("cohesion."), kCohesionFields);
+  EXPECT_EQ(count("spray."), kSprayFields);
   EXPECT_EQ(count("fill."), kFillFields);
   EXPECT_EQ(count("time."), kTimeFields);
   EXPECT_EQ(count("performance."), kPerformanceFields);

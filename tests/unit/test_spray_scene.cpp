@@ -1,0 +1,152 @@
+// [[spray]] in a scene: the keys and their one-line errors (a nozzle outside the drum, a negative
+// rate, a stop before its start, a droplet larger than the smallest particle...), and a dry
+// powder sprayed in a turning drum: the liquid accounted for at every step (films + bridges +
+// wall bridges + airborne + lost = sprayed), the same films for any thread count and search
+// method, and what a spray scene refuses (checkpoints, MPI).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "engine/fill/random_fill.hpp"
+#include "engine/scene/scene_config.hpp"
+#include "engine/simulation.hpp"
+#include "engine/spray/droplet_cloud.hpp"
+#include "engine/threads.hpp"
+#include "tests/small_drum_text.hpp"
+#include "tests/unit/cli_runner.hpp"
+
+namespace drumlab::test {
+namespace {
+
+const char* const kDryPowder =
+    "[liquid]\nsurface_tension = 0.072\nliquid_content = 0.0\nmax_bridge_volume = 2e-9\n";
+
+std::string nozzle(const std::string& extra = "") {
+  return "[[spray]]\nname = \"top\"\nposition = [0.0, 0.0, 0.025]\ndirection = [0.0, -1.0, "
+         "0.0]\nangle_deg = 40.0\nrate = 2e-7\nstart = 0.0\ndroplet_radius = 3e-4\n"
+         "droplet_speed = 5.0\n" +
+         extra;
+}
+
+std::string scene_text(const std::string& spray, const std::string& liquid = kDryPowder,
+                       const std::string& search = "m5") {
+  SmallDrumText t;
+  t.search = search;
+  t.fill = "count = 200\nsettle_time = 0.01\nseed = 3";
+  return t.text() + liquid + spray;
+}
+
+/// The nozzle table with `key = value` replacing the key's line (or added).
+std::string with(const std::string& key, const std::string& value) {
+  std::string n = nozzle();
+  const std::size_t at = n.find("\n" + key + " = ");
+  if (at == std::string::npos) return n + key + " = " + value + "\n";
+  const std::size_t end = n.find('\n', at + 1);
+  return n.substr(0, at + 1) + key + " = " + value + n.substr(end);
+}
+
+TEST(SprayScene, KeysAreReadAndBadOnesAreOneLineNamingTheKey) {
+  const SceneConfig s = parse_scene(scene_text(nozzle()), "spray.toml");
+  ASSERT_EQ(s.sprays.size(), 1u);
+  EXPECT_EQ(s.sprays[0].name, "top");
+  EXPECT_EQ(s.sprays[0].shape, SprayShape::cone);
+  EXPECT_EQ(s.sprays[0].rate, 2e-7);
+  EXPECT_TRUE(std::isinf(s.sprays[0].stop));
+  const struct {
+    std::string spray, liquid, expected;
+  } bad[] = {
+      {with("position", "[0.0, 0.12, 0.025]"), kDryPowder, "spray[0].position: the nozzle"},
+      {with("position", "[0.0, 0.0, 0.06]"), kDryPowder, "spray[0].position: the nozzle"},
+      {with("rate", "-1e-7"), kDryPowder, "spray[0].rate: must be >= 0"},
+      {with("start", "0.5") + "stop = 0.25\n", kDryPowder, "spray[0].stop: must be after start"},
+      {with("droplet_radius", "0.005"), kDryPowder, "spray[0].droplet_radius: 0.005 m is larger"},
+      {with("droplet_radius", "0.0"), kDryPowder, "spray[0].droplet_radius: must be > 0"},
+      {with("angle_deg", "180.0"), kDryPowder, "spray[0].angle_deg: must be in [0, 180)"},
+      {with("direction", "[0.0, 0.0, 0.0]"), kDryPowder, "spray[0].direction: must be"},
+      {with("shape", "\"jet\""), kDryPowder, "spray[0].shape: unknown value 'jet'"},
+      {with("fan_axis", "[0.0, 0.0, 1.0]"), kDryPowder, "spray[0].fan_axis: only with shape"},
+      {with("shape", "\"flat_fan\"") + "fan_axis = [0.0, 2.0, 0.0]\n", kDryPowder,
+       "spray[0].fan_axis: must be a finite vector not parallel"},
+      {with("nozzle_size", "1.0"), kDryPowder, "spray[0].nozzle_size: unknown key"},
+      {nozzle(), "[liquid]\nsurface_tension = 0.072\nbridge_volume = 1e-9\n",
+       "spray[0]: needs [liquid] with liquid_content"},
+      {nozzle(), "", "spray[0]: needs [liquid] with liquid_content"},
+  };
+  for (const auto& b : bad) {
+    SCOPED_TRACE(b.expected);
+    try {
+      parse_scene(scene_text(b.spray, b.liquid), "bad.toml");
+      ADD_FAILURE() << "accepted";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("bad.toml: " + b.expected), std::string::npos) << what;
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    }
+  }
+}
+
+struct SprayRun {
+  std::vector<double> film;
+  std::vector<Vec3> position;
+  SprayTotals totals;
+};
+
+/// 600 steps of the sprayed powder, the accounting checked at every step.
+SprayRun run(const std::string& search, int threads) {
+  const int saved = max_threads();
+  set_thread_count(threads);
+  const SceneConfig scene = parse_scene(scene_text(nozzle(), kDryPowder, search), "spray.toml");
+  Simulation sim(scene, random_fill(scene));
+  for (int n = 0; n < 600; ++n) {
+    sim.step();
+    const SprayTotals t = sim.spray()->totals();
+    const LiquidTotals bed = sim.liquid();
+    // The powder starts dry: every drop of the bed's liquid came from the nozzle.
+    EXPECT_NEAR(bed.total(), t.absorbed, 1e-12 * std::max(t.sprayed, 1e-300)) << n;
+    EXPECT_NEAR(t.sprayed, t.airborne + t.absorbed + t.lost, 1e-12 * t.sprayed) << n;
+  }
+  set_thread_count(saved);
+  SprayRun r;
+  const Particles& p = sim.particles();
+  r.film.assign(p.size(), 0.0);
+  r.position.assign(p.size(), Vec3::Zero());
+  const std::vector<double>& film = *p.find_array(kLiquidFilmArray);
+  for (std::size_t i = 0; i < p.size(); ++i) {  // by stable id: storage order may differ
+    r.film[p.id[i]] = film[i];
+    r.position[p.id[i]] = p.position[i];
+  }
+  r.totals = sim.spray()->totals();
+  return r;
+}
+
+TEST(SprayScene, LiquidIsAccountedEveryStepAndTheRunIsTheSameForThreadsAndMethods) {
+  const SprayRun one = run("m5", 1);
+  EXPECT_GT(one.totals.absorbed_count, 20u);  // droplets reached the bed
+  EXPECT_GT(one.totals.emitted_count, one.totals.absorbed_count);
+  for (const auto& [search, threads] :
+       {std::pair<std::string, int>{"m5", 2}, {"brute", 1}, {"verlet:m2", 2}}) {
+    SCOPED_TRACE(search + ", " + std::to_string(threads) + " threads");
+    const SprayRun other = run(search, threads);
+    EXPECT_EQ(other.film, one.film);
+    EXPECT_EQ(other.position, one.position);
+    EXPECT_EQ(other.totals.absorbed_count, one.totals.absorbed_count);
+  }
+}
+
+TEST(SprayScene, CheckpointsAndRestartsAreRefusedWithOneLine) {
+  TempDir dir("spray-scene");
+  const std::string scene = dir.write("spray.toml", scene_text(nozzle())).string();
+  const auto r =
+      run_cli("run " + scene + " --steps 10 --checkpoint " + dir.path().string() + "/c.h5");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--checkpoint: a scene with [[spray]] cannot be checkpointed"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "c.h5"));
+  const auto ok = run_cli("run " + scene + " --steps 200");
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  EXPECT_NE(ok.output.find("spray             sprayed "), std::string::npos) << ok.output;
+}
+
+}  // namespace
+}  // namespace drumlab::test
