@@ -69,6 +69,7 @@ void analyze(const AnalyzeOptions& o) {
     in.film = f.film;
     in.bonds = f.bonds;
     in.wall_liquid = f.wall_liquid;
+    in.spray = f.spray;
     in.period = f.period;
     in.time = f.time;
     table.add(find_agglomerates(in, granule_options(f.drum_omega, o.granule.criterion)).stats);

@@ -123,9 +123,11 @@ RunResult summarise_run(const SweepRun& run, const std::filesystem::path& dir, d
     r.mean.push_back(m);
     r.sd.push_back(s);
   }
+  // The conserved total: the bed's liquid plus what flies or was lost, less what was sprayed.
   const std::size_t f = obs.column("free_liquid", obs_file);
+  const std::size_t sprayed = obs.column("sprayed_liquid", obs_file);
   const auto total = [&](const std::vector<double>& row) {
-    return row[f] + row[f + 1] + row[f + 2];
+    return row[f] + row[f + 1] + row[f + 2] + row[sprayed + 1] + row[sprayed + 2] - row[sprayed];
   };
   const double first = total(obs.rows.front());
   for (const auto& row : obs.rows) {

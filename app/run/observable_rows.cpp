@@ -7,13 +7,14 @@
 #include <fmt/format.h>
 
 #include "engine/analysis/drum_observables.hpp"
+#include "engine/spray/droplet_cloud.hpp"
 
 namespace drumlab::cli {
 
 std::string observable_columns() {
   return "time,revolutions,angle_fit_deg,angle_com_deg,flowing_layer,bed_depth,"
          "surface_curvature,relative_speed,airborne_fraction,free_liquid,bridge_liquid,"
-         "wall_liquid,bridges";
+         "wall_liquid,bridges,sprayed_liquid,airborne_liquid,lost_liquid";
 }
 
 ObservableRows::ObservableRows(std::filesystem::path file)
@@ -22,15 +23,18 @@ ObservableRows::ObservableRows(std::filesystem::path file)
 void ObservableRows::add(const Simulation& whole) {
   const DrumObservables o = measure_drum(whole);
   const LiquidTotals liquid = whole.liquid();
+  SprayTotals spray;
+  if (const DropletCloud* cloud = whole.spray()) spray = cloud->totals();
   const double fit =
       o.surface_found ? o.angle_of_repose_deg : std::numeric_limits<double>::quiet_NaN();
   last_angle_ = o.com_angle_deg;
-  table_.add(fmt::format(
-      "{:.9g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.17g},{:.17g},"
-      "{:.17g},{}",
-      whole.time(), whole.drum_angle() / (2.0 * std::numbers::pi), fit, o.com_angle_deg,
-      o.flowing_layer_thickness, o.bed_depth, o.surface_curvature, o.relative_speed,
-      o.airborne_fraction, liquid.films, liquid.bridges, liquid.wall_bridges, liquid.bridge_count));
+  table_.add(
+      fmt::format("{:.9g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.17g},{:.17g},"
+                  "{:.17g},{},{:.17g},{:.17g},{:.17g}",
+                  whole.time(), whole.drum_angle() / (2.0 * std::numbers::pi), fit, o.com_angle_deg,
+                  o.flowing_layer_thickness, o.bed_depth, o.surface_curvature, o.relative_speed,
+                  o.airborne_fraction, liquid.films, liquid.bridges, liquid.wall_bridges,
+                  liquid.bridge_count, spray.sprayed, spray.airborne, spray.lost));
 }
 
 void ObservableRows::finish() {

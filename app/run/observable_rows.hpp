@@ -7,8 +7,9 @@
 // drum's turn since the start of the turning phase), angle_fit_deg (surface fit; nan without a
 // surface), angle_com_deg (from the centre of mass), flowing_layer (m), bed_depth (m),
 // surface_curvature, relative_speed (m/s), airborne_fraction, free_liquid, bridge_liquid,
-// wall_liquid (m^3: films, pair bridges, wall bridges; their sum is the scene's liquid, conserved
-// to round-off), bridges (pair bridges).
+// wall_liquid (m^3: films, pair bridges, wall bridges), bridges (pair bridges), sprayed_liquid,
+// airborne_liquid, lost_liquid (m^3, [[spray]]; 0 without): free + bridge + wall + airborne + lost
+// - sprayed is the scene's initial liquid, conserved to round-off.
 #include <filesystem>
 #include <string>
 

@@ -3,6 +3,7 @@
 #include <charconv>
 #include <sstream>
 #include <string>
+#include <string_view>
 
 #include <fmt/format.h>
 
@@ -45,13 +46,22 @@ bool parse(const std::string& text, T& value) {
   return ec == std::errc() && ptr == end;
 }
 
-bool parse_row(const std::vector<std::string>& f, AgglomerateStats& s) {
-  if (f.size() != 13) return false;
+/// The header of tables written before the spray's columns (their rows have 13 fields).
+constexpr std::string_view kHeaderWithoutSpray =
+    "time,criterion,agglomerates,mean_size,largest,d10,d50,d90,bonds,free_liquid,"
+    "bridge_liquid,wall_bridge_liquid,largest_plain_share";
+
+bool parse_row(const std::vector<std::string>& f, std::size_t fields, AgglomerateStats& s) {
+  if (f.size() != fields) return false;
   s.criterion = f[1];
-  return parse(f[0], s.time) && parse(f[2], s.count) && parse(f[3], s.mean_size) &&
-         parse(f[4], s.largest) && parse(f[5], s.d10) && parse(f[6], s.d50) && parse(f[7], s.d90) &&
-         parse(f[8], s.bonds) && parse(f[9], s.free_liquid) && parse(f[10], s.bridge_liquid) &&
-         parse(f[11], s.wall_liquid) && parse(f[12], s.largest_plain_share);
+  const bool common = parse(f[0], s.time) && parse(f[2], s.count) && parse(f[3], s.mean_size) &&
+                      parse(f[4], s.largest) && parse(f[5], s.d10) && parse(f[6], s.d50) &&
+                      parse(f[7], s.d90) && parse(f[8], s.bonds) && parse(f[9], s.free_liquid) &&
+                      parse(f[10], s.bridge_liquid) && parse(f[11], s.wall_liquid) &&
+                      parse(f[12], s.largest_plain_share);
+  if (fields == 13) return common;
+  return common && parse(f[13], s.spray.sprayed) && parse(f[14], s.spray.airborne) &&
+         parse(f[15], s.spray.lost);
 }
 
 }  // namespace
@@ -60,7 +70,9 @@ std::vector<AgglomerateStats> read_agglomerate_table(const std::filesystem::path
   std::ifstream in(file);
   if (!in) throw InputError(fmt::format("{}: cannot read", file.string()));
   std::string line;
-  if (!std::getline(in, line) || line != agglomerate_csv_header()) {
+  const bool read = static_cast<bool>(std::getline(in, line));
+  const bool current = read && line == agglomerate_csv_header();
+  if (!current && !(read && line == kHeaderWithoutSpray)) {
     throw InputError(
         fmt::format("{}:1: not an agglomerate table (its header differs from "
                     "`drumlab run --agglomerates`)",
@@ -69,7 +81,7 @@ std::vector<AgglomerateStats> read_agglomerate_table(const std::filesystem::path
   std::vector<AgglomerateStats> rows;
   for (std::size_t number = 2; std::getline(in, line); ++number) {
     AgglomerateStats s;
-    if (!parse_row(fields_of(line), s)) {
+    if (!parse_row(fields_of(line), current ? 16 : 13, s)) {
       throw InputError(fmt::format("{}:{}: not a row of the table", file.string(), number));
     }
     rows.push_back(s);

@@ -12,6 +12,7 @@
 #include "engine/contact/cohesion_loops.hpp"
 #include "engine/periodic.hpp"
 #include "engine/simulation.hpp"
+#include "engine/spray/droplet_cloud.hpp"
 
 namespace drumlab {
 namespace {
@@ -215,6 +216,7 @@ AgglomerateFrame find_agglomerates(const AgglomerateInput& in, const Agglomerate
   for (const Bond& b : in.bonds) st.bridge_liquid += b.volume;
   for (double f : in.film) st.free_liquid += f;
   st.wall_liquid = in.wall_liquid;
+  st.spray = in.spray;
 
   const Clusters clusters = cluster_primaries(in, options, st);
   std::vector<std::size_t> member_of;
@@ -278,6 +280,10 @@ AgglomerateInput agglomerate_input(const Simulation& sim, std::vector<Bond>& bon
   if (const std::vector<double>* film = p.find_array(kLiquidFilmArray)) in.film = *film;
   in.bonds = bonds;
   in.wall_liquid = wall_bridge_liquid(p);
+  if (const DropletCloud* spray = sim.spray()) {
+    const SprayTotals t = spray->totals();
+    in.spray = {t.sprayed, t.airborne, t.lost};
+  }
   in.period = sim.search_input().period_z.value_or(0.0);
   in.time = sim.time();
   return in;
@@ -293,14 +299,17 @@ std::vector<std::uint32_t> agglomerate_labels(const Simulation& sim,
 
 std::string agglomerate_csv_header() {
   return "time,criterion,agglomerates,mean_size,largest,d10,d50,d90,bonds,free_liquid,"
-         "bridge_liquid,wall_bridge_liquid,largest_plain_share";
+         "bridge_liquid,wall_bridge_liquid,largest_plain_share,sprayed_liquid,airborne_liquid,"
+         "lost_liquid";
 }
 
 std::string agglomerate_csv_row(const AgglomerateStats& s) {
   return fmt::format(
-      "{:.9g},{},{},{:.6g},{},{:.6g},{:.6g},{:.6g},{},{:.12g},{:.12g},{:.12g},{:.6g}", s.time,
-      s.criterion, s.count, s.mean_size, s.largest, s.d10, s.d50, s.d90, s.bonds, s.free_liquid,
-      s.bridge_liquid, s.wall_liquid, s.largest_plain_share);
+      "{:.9g},{},{},{:.6g},{},{:.6g},{:.6g},{:.6g},{},{:.12g},{:.12g},{:.12g},{:.6g},{:.12g},"
+      "{:.12g},{:.12g}",
+      s.time, s.criterion, s.count, s.mean_size, s.largest, s.d10, s.d50, s.d90, s.bonds,
+      s.free_liquid, s.bridge_liquid, s.wall_liquid, s.largest_plain_share, s.spray.sprayed,
+      s.spray.airborne, s.spray.lost);
 }
 
 }  // namespace drumlab

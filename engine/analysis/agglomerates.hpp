@@ -33,6 +33,7 @@
 #include "engine/analysis/granule_criterion.hpp"
 #include "engine/contact/bond.hpp"
 #include "engine/scene/scene_config.hpp"
+#include "engine/spray/spray_liquid.hpp"
 #include "engine/types.hpp"
 
 namespace drumlab {
@@ -49,6 +50,7 @@ struct AgglomerateInput {
   std::span<const double> film;       ///< liquid film volume per particle (m^3); empty: 0
   std::span<const Bond> bonds;
   double wall_liquid = 0.0;  ///< liquid in bridges with the drum wall (m^3), in no agglomerate
+  SprayLiquid spray{};       ///< the spray's terms (scenes with [[spray]])
   double period = 0.0;       ///< z period of periodic ends; <= 0: none
   double time = 0.0;         ///< s
 };
@@ -85,6 +87,9 @@ struct AgglomerateStats {
   double wall_liquid = 0.0;          ///< liquid in wall bridges (m^3): free + bridge + wall
                                      ///< = all the liquid
   double largest_plain_share = 0.0;  ///< share of the particles in the largest plain component
+  SprayLiquid
+      spray{};  ///< sprayed, airborne and lost liquid (m^3): free + bridge + wall + airborne
+                ///< + lost - sprayed = the scene's initial liquid
 };
 
 struct AgglomerateFrame {
@@ -127,7 +132,8 @@ std::vector<std::uint32_t> agglomerate_labels(const Simulation& sim,
                                               const GranuleCriterion& granule);
 
 /// The CSV header and one row (SI units; diameters in m, liquid in m^3, 12 significant digits:
-/// free_liquid + bridge_liquid + wall_bridge_liquid is the scene's liquid).
+/// free_liquid + bridge_liquid + wall_bridge_liquid + airborne_liquid + lost_liquid
+/// - sprayed_liquid is the scene's initial liquid).
 std::string agglomerate_csv_header();
 std::string agglomerate_csv_row(const AgglomerateStats& s);
 

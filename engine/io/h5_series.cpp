@@ -158,6 +158,9 @@ void write_bond_frame(hid_t g, const Particles& p, const SeriesBondFrame& b, con
   h5::write_attribute(g, "period_z", b.period);
   h5::write_attribute(g, "drum_omega", b.drum_omega);
   h5::write_attribute(g, "wall_bridge_liquid", b.wall_liquid);
+  h5::write_attribute(g, "sprayed_liquid", b.spray.sprayed);
+  h5::write_attribute(g, "airborne_liquid", b.spray.airborne);
+  h5::write_attribute(g, "lost_liquid", b.spray.lost);
   h5::write(g, "mass", p.mass, {p.size()}, rows);
   const std::vector<double>* film = p.find_array(kLiquidFilmArray);
   const std::vector<double> no_film(film ? 0 : p.size(), 0.0);
@@ -281,6 +284,12 @@ SeriesFrame read_series_frame(const std::filesystem::path& file, std::size_t k) 
   s.drum_omega = h5::read_double_attribute(g.get(), "drum_omega");
   if (H5Aexists(g.get(), "wall_bridge_liquid") > 0) {
     s.wall_liquid = h5::read_double_attribute(g.get(), "wall_bridge_liquid");
+  }
+  for (const auto& [name, value] :
+       {std::pair<const char*, double*>{"sprayed_liquid", &s.spray.sprayed},
+        {"airborne_liquid", &s.spray.airborne},
+        {"lost_liquid", &s.spray.lost}}) {
+    if (H5Aexists(g.get(), name) > 0) *value = h5::read_double_attribute(g.get(), name);
   }
   h5::Handle b = h5::open_group(g.get(), "bonds");
   const std::vector<std::uint32_t> id_a = h5::read_u32(b.get(), "id_a", h5::kAnySize);

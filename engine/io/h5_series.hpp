@@ -31,6 +31,7 @@
 #include "engine/io/h5_file.hpp"
 #include "engine/io/series_frame.hpp"
 #include "engine/particles.hpp"
+#include "engine/spray/spray_liquid.hpp"
 
 namespace drumlab {
 
@@ -54,6 +55,7 @@ struct SeriesBondFrame {
   /// Serial: all rows. Parallel: this rank's rows of the frame's bond list (increasing, the rows
   /// of `bonds` in their order), every rank passing the same scalars.
   h5::Rows bond_rows = h5::all_rows();
+  SprayLiquid spray{};  ///< the spray's terms of the liquid accounting (frame attributes)
 };
 
 class H5Series {

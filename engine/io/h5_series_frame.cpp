@@ -14,8 +14,9 @@ void write_series_frame(H5Series& series, const Simulation& sim, const GranuleCr
   const double omega = sim.scene().drum.omega;
   const AgglomerateInput in = agglomerate_input(sim, bonds);
   const AgglomerateFrame frame = find_agglomerates(in, granule_options(omega, granule));
-  const SeriesBondFrame b{series_bond_rows(sim.particles(), bonds), frame.label, in.period, omega,
-                          in.wall_liquid};
+  SeriesBondFrame b{series_bond_rows(sim.particles(), bonds), frame.label, in.period, omega,
+                    in.wall_liquid};
+  b.spray = in.spray;
   series.write_frame(sim.particles(), sim.time(), sim.steps(), &b);
 }
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "engine/contact/bond.hpp"
+#include "engine/spray/spray_liquid.hpp"
 #include "engine/types.hpp"
 
 namespace drumlab {
@@ -27,6 +28,7 @@ struct SeriesFrame {
   std::vector<std::uint32_t> agglomerate_id;
   std::vector<Bond> bonds;
   double wall_liquid = 0.0;  ///< liquid in wall bridges (frame attribute; 0 in older series)
+  SprayLiquid spray{};  ///< sprayed, airborne, lost liquid (frame attributes; 0 in older series)
   double period = 0.0;
   double drum_omega = 0.0;
 };

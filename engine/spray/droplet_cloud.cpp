@@ -136,10 +136,11 @@ void DropletCloud::bin_particles(std::span<const Vec3> position, double cell, co
   }
   for (std::size_t c = 0; c < cells; ++c) cell_start_[c + 1] += cell_start_[c];
   cell_items_.resize(cell_start_[cells]);
-  std::vector<std::uint32_t> fill(cell_start_.begin(), cell_start_.end() - 1);
+  cell_fill_.assign(cell_start_.begin(), cell_start_.end() - 1);
   for (std::size_t i = 0; i < position.size(); ++i) {
     if (cell_of_[i] >= 0)
-      cell_items_[fill[static_cast<std::size_t>(cell_of_[i])]++] = static_cast<std::uint32_t>(i);
+      cell_items_[cell_fill_[static_cast<std::size_t>(cell_of_[i])]++] =
+          static_cast<std::uint32_t>(i);
   }
 }
 
@@ -208,7 +209,8 @@ SprayStep DropletCloud::advance(double t, double dt, std::span<const Vec3> posit
   // Newborn droplets join at the nozzle with the time they fly in this step as their start.
   start_.clear();
   for (const Droplet& d : droplets_) start_.push_back(d.position);
-  std::vector<double> flight(droplets_.size(), dt);
+  std::vector<double>& flight = flight_;
+  flight.assign(droplets_.size(), dt);
   for (std::size_t s = 0; s < sprays_.size(); ++s) {
     const SprayConfig& c = sprays_[s];
     const std::uint64_t target = emitted_by(s, t1);

@@ -98,11 +98,12 @@ class DropletCloud {
   std::vector<Droplet> droplets_;
   std::vector<Droplet> kept_;  ///< scratch of advance
   std::vector<Vec3> start_;    ///< scratch: each droplet's position at the start of its flight
+  std::vector<double> flight_;  ///< scratch: the time each droplet flies in this step
   // The particle bins of one advance.
   Vec3 low_ = Vec3::Zero();
   double cell_ = 0.0;
   std::int64_t nx_ = 0, ny_ = 0, nz_ = 0;
-  std::vector<std::uint32_t> cell_start_, cell_items_;
+  std::vector<std::uint32_t> cell_start_, cell_items_, cell_fill_;
   std::vector<std::int64_t> cell_of_;
 };
 

@@ -154,12 +154,24 @@ TEST(AgglomerateOutputs, AnalyzeOfTheRunsSeriesEqualsTheRunsTable) {
 TEST(AgglomerateOutputs, DamagedTableIsOneLineNamingFileAndLine) {
   TempDir dir("agglo-table");
   const std::string header = agglomerate_csv_header() + "\n";
-  const std::string good = "0.5,components,2,2.5,3,0.001,0.002,0.003,4,1e-9,2e-9,0,0.5\n";
+  const std::string good = "0.5,components,2,2.5,3,0.001,0.002,0.003,4,1e-9,2e-9,0,0.5,3e-9,0,0\n";
   EXPECT_EQ(read_agglomerate_table(dir.write("ok.csv", header + good)).size(), 1u);
+  EXPECT_EQ(read_agglomerate_table(dir.path() / "ok.csv")[0].spray.sprayed, 3e-9);
+  // A table written before the spray's columns still reads, its spray terms 0.
+  const std::string old_header =
+      "time,criterion,agglomerates,mean_size,largest,d10,d50,d90,bonds,free_liquid,"
+      "bridge_liquid,wall_bridge_liquid,largest_plain_share\n";
+  const auto old = read_agglomerate_table(dir.write(
+      "old.csv", old_header + "0.5,components,2,2.5,3,0.001,0.002,0.003,4,1e-9,2e-9,0,0.5\n"));
+  ASSERT_EQ(old.size(), 1u);
+  EXPECT_EQ(old[0].free_liquid, 1e-9);
+  EXPECT_EQ(old[0].spray, SprayLiquid{});
   for (const auto& [text, where] :
        {std::pair<std::string, std::string>{"time,x\n" + good, "bad.csv:1:"},
         {header + good + "0.5,components,2,2.5\n", "bad.csv:3:"},
-        {header + "0.5,components,two,2.5,3,0.001,0.002,0.003,4,1e-9,2e-9,0,0.5\n", "bad.csv:2:"},
+        {header + "0.5,components,two,2.5,3,0.001,0.002,0.003,4,1e-9,2e-9,0,0.5,0,0,0\n",
+         "bad.csv:2:"},
+        {header + "0.5,components,2,2.5,3,0.001,0.002,0.003,4,1e-9,2e-9,0,0.5\n", "bad.csv:2:"},
         {header, "bad.csv: the table has no rows"}}) {
     const auto file = dir.write("bad.csv", text);
     try {

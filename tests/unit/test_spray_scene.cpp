@@ -6,7 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
+#include "engine/analysis/agglomerate_table.hpp"
 #include "engine/fill/random_fill.hpp"
 #include "engine/scene/scene_config.hpp"
 #include "engine/simulation.hpp"
@@ -17,6 +20,13 @@
 
 namespace drumlab::test {
 namespace {
+
+std::string read_text(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 const char* const kDryPowder =
     "[liquid]\nsurface_tension = 0.072\nliquid_content = 0.0\nmax_bridge_volume = 2e-9\n";
@@ -146,6 +156,32 @@ TEST(SprayScene, CheckpointsAndRestartsAreRefusedWithOneLine) {
   const auto ok = run_cli("run " + scene + " --steps 200");
   ASSERT_EQ(ok.exit_code, 0) << ok.output;
   EXPECT_NE(ok.output.find("spray             sprayed "), std::string::npos) << ok.output;
+}
+
+// The terms reach every output: the agglomerate table (run's and analyze's of the series, equal)
+// and the observables, every frame closing the balance.
+TEST(SprayScene, TablesAndSeriesCarryTheSpraysTerms) {
+  TempDir dir("spray-outputs");
+  const std::string scene = dir.write("spray.toml", scene_text(nozzle())).string();
+  const std::string d = dir.path().string() + "/";
+  auto r = run_cli("run " + scene + " --steps 400 --every 50 --h5 " + d + "s.h5 --agglomerates " +
+                   d + "run.csv --observables " + d + "obs.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::vector<AgglomerateStats> rows = read_agglomerate_table(d + "run.csv");
+  ASSERT_EQ(rows.size(), 9u);
+  for (const AgglomerateStats& row : rows) {
+    const SprayLiquid& s = row.spray;
+    const double balance =
+        row.free_liquid + row.bridge_liquid + row.wall_liquid + s.airborne + s.lost - s.sprayed;
+    EXPECT_NEAR(balance, 0.0, 1e-11 * std::max(s.sprayed, 1e-300)) << row.time;
+  }
+  EXPECT_GT(rows.back().spray.sprayed, 0.0);
+  EXPECT_GT(rows.back().free_liquid + rows.back().bridge_liquid, 0.0);
+  r = run_cli("analyze " + d + "s.h5 --agglomerates " + d + "analyze.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(read_text(d + "analyze.csv"), read_text(d + "run.csv"));
+  const std::string obs = read_text(d + "obs.csv");
+  EXPECT_NE(obs.find(",sprayed_liquid,airborne_liquid,lost_liquid\n"), std::string::npos);
 }
 
 }  // namespace
