@@ -197,6 +197,34 @@ void print_search_method(const SceneConfig& scene, double dt) {
   print_binning(scene, scene.search_method);
 }
 
+/// Each nozzle: its shape, rate and window, its droplets, and the liquid it adds against the
+/// solid volume.
+void print_sprays(const SceneConfig& scene) {
+  double solid = 0.0;
+  const std::vector<std::size_t> counts = particle_counts(scene);
+  for (std::size_t c = 0; c < scene.classes.size(); ++c) {
+    solid += static_cast<double>(counts[c]) * 4.0 / 3.0 * std::numbers::pi *
+             scene.classes[c].size().mean_cube();
+  }
+  for (const SprayConfig& s : scene.sprays) {
+    const double r = s.droplet_radius;
+    const double droplet = 4.0 / 3.0 * std::numbers::pi * r * r * r;
+    const double added = s.rate * (s.stop - s.start);
+    fmt::print(
+        "spray             {}: {} of {:g} deg from [{:g}, {:g}, {:g}] m along [{:g}, {:g}, {:g}], "
+        "{:.4g} m^3/s from {:g} s {}\n",
+        s.name, s.shape == SprayShape::flat_fan ? "flat fan" : "cone", s.angle_deg, s.position.x(),
+        s.position.y(), s.position.z(), s.direction.x(), s.direction.y(), s.direction.z(), s.rate,
+        s.start, std::isfinite(s.stop) ? fmt::format("to {:g} s", s.stop) : std::string("on"));
+    fmt::print("                  {:.4g} droplets/s of r = {:.3g} m at {:g} m/s", s.rate / droplet,
+               r, s.droplet_speed);
+    if (std::isfinite(added) && solid > 0.0) {
+      fmt::print("; adds {:.4g} m^3 = {:.3g} of the solid volume", added, added / solid);
+    }
+    fmt::print("\n");
+  }
+}
+
 void print_info(const std::string& file) {
   const SceneConfig scene = load_scene(file);
   const std::size_t total = print_particles_and_drum(scene, file);
@@ -204,6 +232,7 @@ void print_info(const std::string& file) {
   print_memory(scene, total);
   print_search_method(scene, dt);
   print_cohesion(scene);
+  print_sprays(scene);
   if (scene.dynamic()) print_features(scene);
   if (!scene.dynamic()) fmt::print("note              static packing: use `drumlab paper-table`\n");
 }

@@ -101,6 +101,13 @@ void add_cohesion_terms(const SceneConfig& scene, SceneFeatures& f) {
       "viscous bridge force", l.viscosity > 0.0,
       l.viscosity > 0.0 ? fmt::format("viscosity = {} Pa s, min_gap = {} m", l.viscosity, l.min_gap)
                         : "viscosity = 0: capillary force only"));
+  f.list.push_back(term(
+      "binder spray", !scene.sprays.empty(),
+      scene.sprays.empty()
+          ? std::string("no [[spray]]: no droplets, no droplet pass")
+          : fmt::format("{} nozzle(s): droplets fly outside the contact search, a particle grid "
+                        "near them only while some fly",
+                        scene.sprays.size())));
   f.list.push_back(term("dry adhesion (sjkr)", c.enabled,
                         c.enabled ? fmt::format("cohesion.energy_density = {} J/m^3 (k_c pi a^2 "
                                                 "while overlapping)",
