@@ -5,14 +5,22 @@
 // drumlab analyze TABLE.csv
 // The chart TABLE.png of a finished table (drumlab-mpi writes the table, and has this drawn: an
 // MPI executable links no VTK).
+// --growth FILE.png (with a series or a table): the phases of granulation
+// (engine/analysis/growth_phases.hpp) printed, and d50 and the granule count against the liquid
+// sprayed drawn.
 #include <fmt/format.h>
+
+#include <optional>
 
 #include "app/cli/commands.hpp"
 #include "app/run/granule_flags.hpp"
+#include "app/run/output_schedule.hpp"
 #include "engine/analysis/agglomerate_table.hpp"
+#include "engine/analysis/growth_phases.hpp"
 #include "engine/io/h5_series.hpp"
 #ifdef DRUMLAB_WITH_RENDER
 #include "render/agglomerate_chart.hpp"
+#include "render/growth_chart.hpp"
 #endif
 
 namespace drumlab::cli {
@@ -22,7 +30,32 @@ struct AnalyzeOptions {
   std::string series;
   std::string agglomerates;
   GranuleFlags granule;
+  std::string growth;  ///< --growth FILE.png
 };
+
+/// The phases of granulation in `rows`, one line each, and their chart.
+void growth(const std::vector<AgglomerateStats>& rows, const std::string& png) {
+  const std::vector<GrowthPhase> phases = growth_phases(rows);
+  const bool sprayed = !rows.empty() && rows.back().spray.sprayed > 0.0;
+  const auto at = [&](std::size_t k) {
+    return sprayed ? fmt::format("{:.4g} m^3 sprayed", rows[k].spray.sprayed)
+                   : fmt::format("t = {:.4g} s", rows[k].time);
+  };
+  if (phases.empty()) fmt::print("growth            no granule (size >= 2) in any frame\n");
+  for (const GrowthPhase& p : phases) {
+    fmt::print(
+        "growth            {:<13} frames {}-{} ({} to {}): granules {} -> {}, d50 {:.3g} -> {:.3g} "
+        "mm\n",
+        p.name, p.first, p.last, at(p.first), at(p.last), rows[p.first].count, rows[p.last].count,
+        1e3 * rows[p.first].d50, 1e3 * rows[p.last].d50);
+  }
+#ifdef DRUMLAB_WITH_RENDER
+  render::write_growth_chart(rows, phases, png);
+  fmt::print("growth chart      {}\n", png);
+#else
+  throw InputError(fmt::format("--growth {}: this build has no VTK to draw the chart", png));
+#endif
+}
 
 void chart(const std::filesystem::path& table) {
   const std::vector<AgglomerateStats> rows = read_agglomerate_table(table);
@@ -38,15 +71,22 @@ void chart(const std::filesystem::path& table) {
 
 void analyze(const AnalyzeOptions& o) {
   check_granule_flags(o.granule);
+  if (!o.growth.empty()) check_parent_directory(o.growth, "--growth");
   if (o.series.ends_with(".csv")) {
     if (!o.agglomerates.empty()) {
       throw InputError(fmt::format("--agglomerates: {} is already a table", o.series));
     }
-    chart(o.series);
+    if (!o.growth.empty()) {
+      growth(read_agglomerate_table(o.series), o.growth);
+    } else {
+      chart(o.series);
+    }
     return;
   }
-  if (o.agglomerates.empty()) {
-    throw InputError("--agglomerates FILE.csv: where the table of the series goes (required)");
+  if (o.agglomerates.empty() && o.growth.empty()) {
+    throw InputError(
+        "--agglomerates FILE.csv or --growth FILE.png: what to make of the series (one is "
+        "required)");
   }
   const SeriesInfo info = read_series_info(o.series);
   if (info.frames == 0) throw InputError(fmt::format("{}: the series has no frames", o.series));
@@ -54,7 +94,9 @@ void analyze(const AnalyzeOptions& o) {
     throw InputError(fmt::format(
         "{}: the series has no bond graph (written for a scene without bonds)", o.series));
   }
-  AgglomerateTable table(o.agglomerates);
+  std::optional<AgglomerateTable> table;
+  if (!o.agglomerates.empty()) table.emplace(o.agglomerates);
+  std::vector<AgglomerateStats> rows;
   std::vector<Bond> bonds;
   for (std::size_t k = 0; k < info.frames; ++k) {
     const SeriesFrame f = read_series_frame(o.series, k);
@@ -72,21 +114,25 @@ void analyze(const AnalyzeOptions& o) {
     in.spray = f.spray;
     in.period = f.period;
     in.time = f.time;
-    table.add(find_agglomerates(in, granule_options(f.drum_omega, o.granule.criterion)).stats);
+    rows.push_back(find_agglomerates(in, granule_options(f.drum_omega, o.granule.criterion)).stats);
+    if (table) table->add(rows.back());
   }
-  table.finish();
-  const AgglomerateStats& last = table.rows().back();
+  const AgglomerateStats& last = rows.back();
   fmt::print("series            {}: {} frames{}\n", o.series, info.frames,
              info.complete ? "" : " (unfinished: the run was stopped; its complete frames)");
-  fmt::print(
-      "agglomerates      {} ({}); last frame: {} of size >= 2, largest {}, d50 {:.3g} mm; "
-      "largest plain component {:.1f} % of the bed\n",
-      table.file().string(), last.criterion, last.count, last.largest, 1000.0 * last.d50,
-      100.0 * last.largest_plain_share);
+  if (table) {
+    table->finish();
+    fmt::print(
+        "agglomerates      {} ({}); last frame: {} of size >= 2, largest {}, d50 {:.3g} mm; "
+        "largest plain component {:.1f} % of the bed\n",
+        table->file().string(), last.criterion, last.count, last.largest, 1000.0 * last.d50,
+        100.0 * last.largest_plain_share);
 #ifdef DRUMLAB_WITH_RENDER
-  render::write_agglomerate_chart(table.rows(), table.chart_file());
-  fmt::print("agglomerate chart {}\n", table.chart_file().string());
+    render::write_agglomerate_chart(table->rows(), table->chart_file());
+    fmt::print("agglomerate chart {}\n", table->chart_file().string());
 #endif
+  }
+  if (!o.growth.empty()) growth(rows, o.growth);
 }
 
 }  // namespace
@@ -101,6 +147,9 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_option("--agglomerates", o->agglomerates,
                   "write the statistics to FILE.csv and their chart to FILE.png");
   add_granule_flags(cmd, o->granule);
+  cmd->add_option("--growth", o->growth,
+                  "the phases of granulation (nucleation, growth, consolidation) and the chart "
+                  "FILE.png of d50 and the granule count against the liquid sprayed");
   cmd->callback([o] { analyze(*o); });
 }
 
