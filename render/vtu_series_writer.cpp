@@ -20,6 +20,10 @@ void VtuSeriesWriter::write_frame(const Simulation& sim) {
   write("particles", "vtu", to_vtk(paraview::particles(sim, options_.granule)));
   write("drum", "vtp", to_vtk(paraview::drum(sim)));
   if (options_.contacts) write("contacts", "vtp", to_vtk(paraview::contacts(sim)));
+  if (sim.spray() != nullptr) {
+    write("droplets", "vtu", to_vtk(paraview::droplets(sim)));
+    write("nozzles", "vtp", to_vtk(paraview::nozzles(sim.scene())));
+  }
   if (options_.grid) {
     if (auto image = grid_dataset(sim)) write("grid", "vti", image);
   }

@@ -5,6 +5,8 @@
 //   contacts_NNNNNN.vtp    contacts as lines with force magnitude (on request)
 //   grid_NNNNNN.vti        contact-search grid occupancy (on request; grid methods only)
 //   bonds_NNNNNN.vtp       the bond graph of an HDF5 series frame (drumlab convert)
+//   droplets_NNNNNN.vtu    the airborne binder droplets, nozzles_NNNNNN.vtp the nozzles and
+//                          their cones or fans (a scene with [[spray]])
 // and rewrites particles.pvd, drum.pvd (, contacts.pvd, grid.pvd) so each is always a valid series
 // of the frames written so far. Every file goes through a temporary name and a rename.
 #include <cstdint>

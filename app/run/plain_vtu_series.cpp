@@ -21,6 +21,10 @@ void PlainVtuSeries::write_frame(const Simulation& whole) {
   write("particles", "vtu", paraview::particles(whole, granule_));
   write("drum", "vtp", paraview::drum(whole));
   if (contacts_) write("contacts", "vtp", paraview::contacts(whole));
+  if (whole.spray() != nullptr) {
+    write("droplets", "vtu", paraview::droplets(whole));
+    write("nozzles", "vtp", paraview::nozzles(whole.scene()));
+  }
   series_.commit(files, whole.time());  // the collections, once every file of the frame exists
 }
 

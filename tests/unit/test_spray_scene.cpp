@@ -165,8 +165,16 @@ TEST(SprayScene, TablesAndSeriesCarryTheSpraysTerms) {
   const std::string scene = dir.write("spray.toml", scene_text(nozzle())).string();
   const std::string d = dir.path().string() + "/";
   auto r = run_cli("run " + scene + " --steps 400 --every 50 --h5 " + d + "s.h5 --agglomerates " +
-                   d + "run.csv --observables " + d + "obs.csv");
+                   d + "run.csv --observables " + d + "obs.csv --vtu " + d + "vtu");
   ASSERT_EQ(r.exit_code, 0) << r.output;
+  // The VTU series: the droplets and the nozzle, a file each a frame, and their collections.
+  for (const char* f :
+       {"droplets.pvd", "nozzles.pvd", "droplets_000008.vtu", "nozzles_000008.vtp"}) {
+    EXPECT_TRUE(std::filesystem::exists(d + "vtu/" + f)) << f;
+  }
+  const std::string nozzle_file = read_text(d + "vtu/nozzles_000008.vtp");
+  EXPECT_NE(nozzle_file.find("NumberOfPoints=\"18\""), std::string::npos);  // apex, axis, 16 rays
+  EXPECT_NE(read_text(d + "vtu/droplets_000008.vtu").find("Name=\"velocity\""), std::string::npos);
   const std::vector<AgglomerateStats> rows = read_agglomerate_table(d + "run.csv");
   ASSERT_EQ(rows.size(), 9u);
   for (const AgglomerateStats& row : rows) {

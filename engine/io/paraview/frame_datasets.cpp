@@ -5,9 +5,12 @@
 #include <numbers>
 #include <unordered_map>
 
+#include <Eigen/Geometry>
+
 #include "engine/analysis/agglomerates.hpp"
 #include "engine/drum.hpp"
 #include "engine/periodic.hpp"
+#include "engine/spray/droplet_cloud.hpp"
 
 namespace drumlab::paraview {
 namespace {
@@ -193,6 +196,74 @@ DataSet contacts(const Simulation& sim) {
     d.cell_data.push_back(make_array("bridge_force", std::move(bridge)));
   }
   d.active_scalars = "force_magnitude";
+  return d;
+}
+
+DataSet droplets(const Simulation& sim) {
+  DataSet d;
+  std::vector<double> velocity, radius;
+  std::vector<std::uint32_t> spray;
+  if (const DropletCloud* cloud = sim.spray()) {
+    for (const Droplet& q : cloud->droplets()) {
+      d.points.push_back(q.position);
+      velocity.insert(velocity.end(), q.velocity.data(), q.velocity.data() + 3);
+      radius.push_back(cloud->sprays()[q.spray].droplet_radius);
+      spray.push_back(q.spray);
+    }
+  }
+  d.point_data.push_back(make_array("velocity", std::move(velocity), 3));
+  d.point_data.push_back(make_array("radius", std::move(radius)));
+  d.point_data.push_back(make_array("spray", std::move(spray)));
+  d.active_scalars = "radius";
+  d.active_vectors = "velocity";
+  return d;
+}
+
+DataSet nozzles(const SceneConfig& scene) {
+  DataSet d;
+  d.cells = CellKind::lines;
+  std::vector<std::uint32_t> index;
+  const double length = 0.25 * scene.drum.diameter;
+  for (std::size_t s = 0; s < scene.sprays.size(); ++s) {
+    const SprayConfig& c = scene.sprays[s];
+    const Vec3 axis = c.direction.normalized();
+    const Vec3 helper = std::abs(axis.x()) < 0.9 ? Vec3(1.0, 0.0, 0.0) : Vec3(0.0, 1.0, 0.0);
+    Vec3 e1 = axis.cross(helper).normalized();
+    if (c.shape == SprayShape::flat_fan) {
+      const Vec3 f = c.fan_axis - c.fan_axis.dot(axis) * axis;
+      if (f.norm() > 1e-12) e1 = f.normalized();
+    }
+    const Vec3 e2 = axis.cross(e1);
+    const double half = 0.5 * c.angle_deg * std::numbers::pi / 180.0;
+    const auto origin = static_cast<std::int64_t>(d.points.size());
+    d.points.push_back(c.position);
+    d.points.push_back(c.position + length * axis);
+    d.add_cell({origin, origin + 1});
+    index.push_back(static_cast<std::uint32_t>(s));
+    const bool fan = c.shape == SprayShape::flat_fan;
+    const int rays = fan ? 9 : 16;
+    const auto first = static_cast<std::int64_t>(d.points.size());
+    for (int k = 0; k < rays; ++k) {
+      Vec3 dir;
+      if (fan) {
+        const double theta = -half + 2.0 * half * k / (rays - 1);
+        dir = std::cos(theta) * axis + std::sin(theta) * e1;
+      } else {
+        const double phi = 2.0 * std::numbers::pi * k / rays;
+        dir = std::cos(half) * axis + std::sin(half) * (std::cos(phi) * e1 + std::sin(phi) * e2);
+      }
+      d.points.push_back(c.position + length * dir);
+      d.add_cell({origin, first + k});
+      index.push_back(static_cast<std::uint32_t>(s));
+    }
+    const int ends = fan ? rays - 1 : rays;  // the fan's arc, the cone's closed ring
+    for (int k = 0; k < ends; ++k) {
+      d.add_cell({first + k, first + (k + 1) % rays});
+      index.push_back(static_cast<std::uint32_t>(s));
+    }
+  }
+  d.cell_data.push_back(make_array("spray", std::move(index)));
+  d.active_scalars = "spray";
   return d;
 }
 

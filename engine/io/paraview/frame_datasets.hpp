@@ -59,6 +59,15 @@ DataSet drum(const Simulation& sim, int segments = 96);
 /// >= 0), 0 on a line without a bond. Active scalars force_magnitude.
 DataSet contacts(const Simulation& sim);
 
+/// The airborne binder droplets of a scene with [[spray]] as points (an empty set without).
+/// Point data: velocity (m/s), radius (m), spray (UInt32, the nozzle's index in the scene).
+DataSet droplets(const Simulation& sim);
+
+/// The nozzles of a scene with [[spray]] and the spray each opens: lines from the nozzle along
+/// the edge of its cone (16 rays and the ring joining their ends) or across its fan (9 rays and
+/// the arc), a quarter of the drum diameter long, and its axis. Cell data: spray (UInt32).
+DataSet nozzles(const SceneConfig& scene);
+
 /// The bond graph of a series frame as lines from centre to centre (minimum image across
 /// periodic ends, as contacts). Cell data: bridge_volume (m^3), bridge_force (N, attractive,
 /// >= 0), age (s), id_a, id_b (stable ids). Active scalars bridge_force.
