@@ -34,7 +34,9 @@
 #include <vtkTransformPolyDataFilter.h>
 #include <vtkVariant.h>
 
+#include "engine/io/paraview/frame_datasets.hpp"
 #include "render/grid_overlay.hpp"
+#include "render/vtk_datasets.hpp"
 
 namespace drumlab::render {
 
@@ -211,6 +213,8 @@ struct DrumView::Impl {
   void place_text();  // the overlay text's corner and font for the frame's height
   void build_drum(const FrameSnapshot& s);
   void update_particles(const FrameSnapshot& s);
+  /// The airborne droplets as small blue points (a scene with [[spray]]).
+  void update_droplets(const FrameSnapshot& s);
   void update_overlay(const FrameSnapshot& s);
   void place_camera();
   void show_parts();  // the walls, legend and text toggles
@@ -229,6 +233,9 @@ struct DrumView::Impl {
   vtkNew<vtkTextActor> text;
   vtkSmartPointer<vtkActor> front_cap, back_cap, back_lines;  // the caps' lines turn with the drum
   vtkSmartPointer<vtkActor> mantle;
+  vtkSmartPointer<vtkActor> nozzles;  // the [[spray]] nozzles' cones and fans (lines)
+  vtkNew<vtkPolyData> droplets;
+  vtkNew<vtkActor> droplet_actor;
   std::unique_ptr<GridOverlay> grid;
   bool drum_built = false;
   bool camera_placed = false;
@@ -359,7 +366,41 @@ void DrumView::Impl::build_drum(const FrameSnapshot& s) {
   back_lines->GetProperty()->SetColor(0.45, 0.45, 0.35);
   back_lines->GetProperty()->LightingOff();
   renderer->AddActor(back_lines);
+  if (!s.sprays.empty()) {
+    const vtkSmartPointer<vtkDataSet> lines = to_vtk(paraview::nozzles(s.sprays, 2.0 * radius));
+    nozzles = actor_for(vtkPolyData::SafeDownCast(lines));
+    nozzles->GetMapper()->ScalarVisibilityOff();
+    nozzles->GetProperty()->SetColor(0.3, 0.6, 1.0);
+    nozzles->GetProperty()->SetLineWidth(1.5);
+    nozzles->GetProperty()->LightingOff();
+    renderer->AddActor(nozzles);
+    droplets->SetPoints(vtkNew<vtkPoints>());
+    droplets->SetVerts(vtkNew<vtkCellArray>());
+    vtkNew<vtkPolyDataMapper> mapper;
+    mapper->SetInputData(droplets);
+    droplet_actor->SetMapper(mapper);
+    droplet_actor->GetProperty()->SetColor(0.55, 0.85, 1.0);
+    droplet_actor->GetProperty()->SetPointSize(5.0);
+    droplet_actor->GetProperty()->RenderPointsAsSpheresOn();
+    renderer->AddActor(droplet_actor);
+  }
   drum_built = true;
+}
+
+void DrumView::Impl::update_droplets(const FrameSnapshot& s) {
+  if (!nozzles) return;
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> verts;
+  points->SetNumberOfPoints(static_cast<vtkIdType>(s.droplets.size()));
+  for (std::size_t k = 0; k < s.droplets.size(); ++k) {
+    const Vec3& x = s.droplets[k];
+    points->SetPoint(static_cast<vtkIdType>(k), x.x(), x.y(), x.z());
+    const vtkIdType id = static_cast<vtkIdType>(k);
+    verts->InsertNextCell(1, &id);
+  }
+  droplets->SetPoints(points);
+  droplets->SetVerts(verts);
+  droplets->Modified();
 }
 
 void DrumView::Impl::update_particles(const FrameSnapshot& p) {
@@ -496,6 +537,7 @@ void DrumView::draw(const FrameSnapshot& snapshot) {
   }
   if (m.grid) m.grid->update(snapshot, m.options.grid);
   m.update_particles(snapshot);
+  m.update_droplets(snapshot);
   m.update_overlay(snapshot);
   m.show_parts();
   if (!m.camera_placed) m.place_camera();

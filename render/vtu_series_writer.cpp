@@ -22,7 +22,8 @@ void VtuSeriesWriter::write_frame(const Simulation& sim) {
   if (options_.contacts) write("contacts", "vtp", to_vtk(paraview::contacts(sim)));
   if (sim.spray() != nullptr) {
     write("droplets", "vtu", to_vtk(paraview::droplets(sim)));
-    write("nozzles", "vtp", to_vtk(paraview::nozzles(sim.scene())));
+    write("nozzles", "vtp",
+          to_vtk(paraview::nozzles(sim.scene().sprays, sim.scene().drum.diameter)));
   }
   if (options_.grid) {
     if (auto image = grid_dataset(sim)) write("grid", "vti", image);

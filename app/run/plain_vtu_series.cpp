@@ -23,7 +23,7 @@ void PlainVtuSeries::write_frame(const Simulation& whole) {
   if (contacts_) write("contacts", "vtp", paraview::contacts(whole));
   if (whole.spray() != nullptr) {
     write("droplets", "vtu", paraview::droplets(whole));
-    write("nozzles", "vtp", paraview::nozzles(whole.scene()));
+    write("nozzles", "vtp", paraview::nozzles(whole.scene().sprays, whole.scene().drum.diameter));
   }
   series_.commit(files, whole.time());  // the collections, once every file of the frame exists
 }

@@ -1,4 +1,5 @@
 #include "engine/session/frame_snapshot.hpp"
+#include "engine/spray/droplet_cloud.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -64,6 +65,7 @@ FrameSnapshot take_snapshot(const Simulation& sim, const SnapshotRequest& reques
   s.drum_depth = sim.scene().drum.depth;
   s.scene_omega = sim.scene().drum.omega;
   s.classes = sim.scene().classes;
+  s.sprays = sim.scene().sprays;
 
   s.position = p.position;
   s.velocity = p.velocity;
@@ -72,6 +74,9 @@ FrameSnapshot take_snapshot(const Simulation& sim, const SnapshotRequest& reques
   s.id = p.id;
   s.size_class = p.size_class;
   sim.coordination_numbers(s.coordination);
+  if (const DropletCloud* cloud = sim.spray()) {
+    for (const Droplet& d : cloud->droplets()) s.droplets.push_back(d.position);
+  }
 
   s.time = sim.time();
   s.dt = sim.dt();

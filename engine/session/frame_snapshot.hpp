@@ -51,6 +51,7 @@ struct FrameSnapshot {
   double drum_depth = 0.0;   ///< m
   double scene_omega = 0.0;  ///< the scene's drum angular velocity, rad/s (0 is not "settling")
   std::vector<ParticleClass> classes;
+  std::vector<SprayConfig> sprays;  ///< the scene's nozzles ([[spray]])
 
   // The particles, in storage order (storage slots change when the engine re-sorts; ids do not).
   std::vector<Vec3> position;  ///< m
@@ -60,6 +61,7 @@ struct FrameSnapshot {
   std::vector<Index> id;
   std::vector<std::uint8_t> size_class;
   std::vector<std::uint32_t> coordination;  ///< Simulation::coordination_numbers
+  std::vector<Vec3> droplets;               ///< airborne binder droplets (m), [[spray]] only
 
   // The clock and the drum.
   double time = 0.0;        ///< s

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "engine/session/frame_snapshot.hpp"
 #include "render/drum_view.hpp"
 #include "render/frame_writer.hpp"
 #include "tests/render/render_test_helpers.hpp"
@@ -76,6 +77,52 @@ TEST_F(DrumViewTest, ColourFollowsTheChosenQuantity) {
     EXPECT_LE(test::color_distance(img, static_cast<int>(c[0]), static_cast<int>(c[1]), rgb), 40)
         << "particle " << i;
   }
+}
+
+// A scene with [[spray]]: the airborne droplets show as light-blue points where they are, and the
+// nozzle's cone is drawn; a snapshot without droplets shows the background there.
+TEST_F(DrumViewTest, DropletsAndTheNozzleAreDrawn) {
+  SceneConfig scene = test::small_drum_scene(0.01);
+  scene.liquid.enabled = true;
+  scene.liquid.migration = true;
+  scene.liquid.surface_tension = 0.072;
+  scene.liquid.max_bridge_volume = 1e-9;
+  SprayConfig nozzle;
+  nozzle.position = Vec3(0.0, 0.1, 0.025);
+  nozzle.direction = Vec3(0.0, -1.0, 0.0);
+  nozzle.droplet_radius = 1e-4;
+  scene.sprays.push_back(nozzle);
+  Particles p;
+  p.add(Vec3(-0.08, -0.08, 0.025), 0.01, 2500.0);
+  Simulation sim(scene, std::move(p));
+  render::ViewOptions opt;
+  opt.width = 320;
+  opt.height = 240;
+  opt.overlay = false;
+  render::OffscreenContext context(opt.width, opt.height);
+  render::DrumView view(opt, context);
+  FrameSnapshot snap = render::view_snapshot(sim, opt);
+  ASSERT_EQ(snap.sprays.size(), 1u);
+  const Vec3 drop(0.08, 0.03, 0.05);  // in front, away from the cone and the particle
+  const double blue[3] = {0.55, 0.85, 1.0};
+  const render::Image without = view.render(snap);  // places the camera
+  const auto at = view.project(drop);
+  const int x = static_cast<int>(at[0]), y = static_cast<int>(at[1]);
+  EXPECT_GT(test::color_distance(without, x, y, blue), 60);
+  snap.droplets.push_back(drop);
+  const render::Image with = view.render(snap);
+  if (std::getenv("DRUMLAB_TEST_SAVE") != nullptr) render::write_png(with, "/tmp/droplet.png");
+  EXPECT_LE(test::color_distance(with, x, y, blue), 60)
+      << int(with.pixel(x, y)[0]) << "," << int(with.pixel(x, y)[1]) << ","
+      << int(with.pixel(x, y)[2]);
+  // The cone's axis: a line below the nozzle, drawn in the nozzle's colour family (blue high).
+  const auto on_axis = view.project(Vec3(0.0, 0.06, 0.025));
+  bool line = false;
+  for (int dx = -2; dx <= 2; ++dx) {
+    const auto px = with.pixel(static_cast<int>(on_axis[0]) + dx, static_cast<int>(on_axis[1]));
+    line = line || int(px[2]) > int(px[0]) + 60;
+  }
+  EXPECT_TRUE(line);
 }
 
 }  // namespace

@@ -219,13 +219,13 @@ DataSet droplets(const Simulation& sim) {
   return d;
 }
 
-DataSet nozzles(const SceneConfig& scene) {
+DataSet nozzles(std::span<const SprayConfig> sprays, double drum_diameter) {
   DataSet d;
   d.cells = CellKind::lines;
   std::vector<std::uint32_t> index;
-  const double length = 0.25 * scene.drum.diameter;
-  for (std::size_t s = 0; s < scene.sprays.size(); ++s) {
-    const SprayConfig& c = scene.sprays[s];
+  const double length = 0.25 * drum_diameter;
+  for (std::size_t s = 0; s < sprays.size(); ++s) {
+    const SprayConfig& c = sprays[s];
     const Vec3 axis = c.direction.normalized();
     const Vec3 helper = std::abs(axis.x()) < 0.9 ? Vec3(1.0, 0.0, 0.0) : Vec3(0.0, 1.0, 0.0);
     Vec3 e1 = axis.cross(helper).normalized();

@@ -66,7 +66,7 @@ DataSet droplets(const Simulation& sim);
 /// The nozzles of a scene with [[spray]] and the spray each opens: lines from the nozzle along
 /// the edge of its cone (16 rays and the ring joining their ends) or across its fan (9 rays and
 /// the arc), a quarter of the drum diameter long, and its axis. Cell data: spray (UInt32).
-DataSet nozzles(const SceneConfig& scene);
+DataSet nozzles(std::span<const SprayConfig> sprays, double drum_diameter);
 
 /// The bond graph of a series frame as lines from centre to centre (minimum image across
 /// periodic ends, as contacts). Cell data: bridge_volume (m^3), bridge_force (N, attractive,
