@@ -200,7 +200,11 @@ void H5Series::write_frame(const Particles& p, double time, std::uint64_t step,
       h5::write(g.get(), "size_class", std::span<const std::uint8_t>(p.size_class), rows);
       if (bonds) write_bond_frame(g.get(), p, *bonds, rows);
     }
-    // The frame counts once its time is listed; then it goes to disk.
+    // The frame goes to disk before its time is listed: HDF5 writes a file's metadata in no
+    // order a reader can rely on, so a run killed while the listing goes out must not leave a
+    // listed frame whose group never reached the disk (seen under load: /time one ahead).
+    h5::flush(f);
+    // The frame counts once its time is listed; then the listing goes to disk.
     h5::append(h5::open_dataset(f, "time").get(), time, impl_->access.scalar);
     h5::append(h5::open_dataset(f, "step").get(), step, impl_->access.scalar);
     close_after_writing();
