@@ -96,8 +96,8 @@ class DropletCloud {
   std::vector<double> volume_;
   std::vector<std::uint64_t> emitted_, absorbed_, lost_;
   std::vector<Droplet> droplets_;
-  std::vector<Droplet> kept_;  ///< scratch of advance
-  std::vector<Vec3> start_;    ///< scratch: each droplet's position at the start of its flight
+  std::vector<Droplet> kept_;   ///< scratch of advance
+  std::vector<Vec3> start_;     ///< scratch: each droplet's position at the start of its flight
   std::vector<double> flight_;  ///< scratch: the time each droplet flies in this step
   // The particle bins of one advance.
   Vec3 low_ = Vec3::Zero();
