@@ -63,7 +63,7 @@ LawCurve probe_law(const SceneConfig& scene, const LawProbeOptions& o) {
   }
   if (p.find_array(kLiquidFilmArray) != nullptr) {
     std::vector<double> reserve;
-    fill_films(scene.liquid, p, reserve);  // the reserve: no contacts
+    fill_films(scene, p, reserve);  // the reserve: no contacts
   }
   bodies.contacts.set_state_size(model.pair_state_size());
   bodies.wall_history.assign(p.size(), {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});

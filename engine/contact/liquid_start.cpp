@@ -7,13 +7,18 @@
 
 namespace drumlab {
 
-void fill_films(const LiquidConfig& liquid, Particles& p, std::vector<double>& reserve) {
+void fill_films(const SceneConfig& scene, Particles& p, std::vector<double>& reserve) {
+  const LiquidConfig& liquid = scene.liquid;
   std::vector<double>* film = p.find_array(kLiquidFilmArray);
   if (film == nullptr) throw std::logic_error("fill_films: no film array");
   reserve.assign(p.size(), 0.0);
   for (std::size_t i = 0; i < p.size(); ++i) {
+    const std::size_t c = p.size_class[i];
+    const double content = c < scene.classes.size()
+                               ? scene.classes[c].liquid_content.value_or(liquid.liquid_content)
+                               : liquid.liquid_content;
     const double r = liquid.film_radius > 0.0 ? liquid.film_radius : p.radius[i];
-    const double v = liquid.liquid_content * (4.0 / 3.0) * std::numbers::pi * r * r * r;
+    const double v = content * (4.0 / 3.0) * std::numbers::pi * r * r * r;
     (*film)[i] = liquid.film_share * v;
     reserve[i] = v - (*film)[i];
   }

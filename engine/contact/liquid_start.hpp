@@ -12,10 +12,11 @@
 
 namespace drumlab {
 
-/// Fills the film array (registered) from the scene's liquid content: film_share of each
+/// Fills the film array (registered) from the scene's liquid content (its class's
+/// liquid_content where the class sets one, else [liquid].liquid_content): film_share of each
 /// particle's liquid (content x its solid volume) in its film, the rest in `reserve`
 /// (seed_bridges).
-void fill_films(const LiquidConfig& liquid, Particles& p, std::vector<double>& reserve);
+void fill_films(const SceneConfig& scene, Particles& p, std::vector<double>& reserve);
 
 /// The initial split (LiquidConfig::film_share < 1): every touching listed pair gets a bridge from
 /// the reserves of both particles (m^3 each, not in their films): each particle's reserve divided

@@ -87,6 +87,9 @@ struct ParticleClass {
   double truncate = kDefaultTruncate;  ///< standard deviations kept either side (normal, lognormal)
   std::vector<double> radii = {};      ///< m (table)
   std::vector<double> shares = {};     ///< number shares of `radii`, any positive scale (table)
+  /// liquid / solid volume of this class's particles at the start, in place of
+  /// [liquid].liquid_content (a wet seed among dry fines); unset: the [liquid] value
+  std::optional<double> liquid_content = {};
 
   SizeDistribution size() const;
   double min_radius() const { return size().min_radius(); }

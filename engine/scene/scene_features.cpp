@@ -81,10 +81,14 @@ void add_cohesion_terms(const SceneConfig& scene, SceneFeatures& f) {
       term("liquid bridges", l.enabled,
            l.enabled ? "Willett bridges formed on contact, kept up to s_rup (the search margin)"
                      : "no [liquid]: no bridges, search margin 0"));
+  std::string own;  // classes with their own liquid_content
+  for (const ParticleClass& c : scene.classes) {
+    if (c.liquid_content) own += fmt::format(", class {} {}", c.name, *c.liquid_content);
+  }
   f.list.push_back(term(
       "liquid migration", l.migration,
-      l.migration ? fmt::format("liquid_content = {}: films give and take the bridges' liquid{}",
-                                l.liquid_content,
+      l.migration ? fmt::format("liquid_content = {}{}: films give and take the bridges' liquid{}",
+                                l.liquid_content, own,
                                 l.rupture_to_bridges > 0.0
                                     ? fmt::format(", rupture_to_bridges = {} (a ruptured "
                                                   "bridge feeds the particles' other bridges)",

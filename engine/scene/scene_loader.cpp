@@ -251,10 +251,11 @@ void read_particles(const Scope& root, SceneConfig& scene) {
   for (std::size_t i = 0; i < array->size(); ++i) {
     const Scope s(*(*array)[i].as_table(), fmt::format("particles[{}]", i), root.source());
     s.allow_only({"name", "radius", "volume_fraction", "distribution", "radius_sigma", "truncate",
-                  "radii", "shares"});
+                  "radii", "shares", "liquid_content"});
     ParticleClass c;
     c.name = s.string("name").value_or(fmt::format("class{}", i));
     read_size(s, c);
+    c.liquid_content = s.number("liquid_content");
     if (array->size() == 1) {
       c.volume_fraction = s.number_or("volume_fraction", 1.0);
     } else {

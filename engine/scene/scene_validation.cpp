@@ -222,14 +222,32 @@ Problem check_liquid_volumes(const SceneConfig& s) {
   return check_bridge_reach(s, "liquid.max_bridge_volume", l.max_bridge_volume);
 }
 
+/// A class's own liquid_content: a share of [liquid]'s films, so only with migration.
+Problem check_class_liquid(const SceneConfig& s) {
+  for (std::size_t i = 0; i < s.classes.size(); ++i) {
+    const std::optional<double> content = s.classes[i].liquid_content;
+    if (!content) continue;
+    const std::string key = fmt::format("particles[{}].liquid_content", i);
+    if (!s.liquid.enabled || !s.liquid.migration) {
+      return fail(key, "needs [liquid] with liquid_content (the films that hold a class's liquid)");
+    }
+    if (!(*content >= 0.0 && *content <= 1.0)) {
+      return fail(
+          key, fmt::format("must be in [0, 1] (liquid volume / solid volume), got {}", *content));
+    }
+  }
+  return std::nullopt;
+}
+
 Problem check_liquid(const SceneConfig& s) {
   const LiquidConfig& l = s.liquid;
-  if (!l.enabled) return std::nullopt;
+  if (!l.enabled) return check_class_liquid(s);
   if (auto p = non_negative("liquid.surface_tension", l.surface_tension)) return p;
   if (auto p = angle_deg("liquid.contact_angle_deg", l.contact_angle_deg)) return p;
   if (auto p = non_negative("liquid.wall_surface_tension", l.wall_surface_tension)) return p;
   if (auto p = angle_deg("liquid.wall_contact_angle_deg", l.wall_contact_angle_deg)) return p;
   if (auto p = check_liquid_volumes(s)) return p;
+  if (auto p = check_class_liquid(s)) return p;
   if (auto p = non_negative("liquid.viscosity", l.viscosity)) return p;
   if (l.viscosity > 0.0 && !(l.min_gap > 0.0)) {
     return fail("liquid.min_gap",

@@ -104,6 +104,7 @@ toml::array particles_array(const std::vector<ParticleClass>& classes) {
       t.insert("radius_sigma", c.radius_sigma);
       t.insert("truncate", c.truncate);
     }
+    if (c.liquid_content) t.insert("liquid_content", *c.liquid_content);
     out.push_back(std::move(t));
   }
   return out;

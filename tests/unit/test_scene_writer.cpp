@@ -286,7 +286,7 @@ constexpr int kSceneFields = 17, kDrumFields = 5, kClassFields = 8, kMaterialFie
                                 output] = s;
   [[maybe_unused]] const auto& [diameter, depth, omega, tilt, ends] = s.drum;
   [[maybe_unused]] const auto& [class_name, radius, class_fraction, distribution, radius_sigma,
-                                truncate, radii, shares] = s.classes.front();
+                                truncate, radii, shares, class_liquid] = s.classes.front();
   [[maybe_unused]] const auto& [density, youngs, poisson, restitution, friction, rolling] =
       s.material;
   [[maybe_unused]] const auto& [normal, stiffness, collision_time, reference_radius,
@@ -479,6 +479,11 @@ std::vector<FieldSetter> field_setters(const fs::path& other_csv) {
       {"liquid.bridge_volume", B::every_key, [](SceneConfig& s) { s.liquid.bridge_volume = 3e-9; }},
       {"liquid.migration", B::every_key, [](SceneConfig& s) { migrate(s, 0.05, 1e-9); }},
       {"liquid.liquid_content", B::every_key, [](SceneConfig& s) { migrate(s, 0.02, 1e-9); }},
+      {"particles.liquid_content", B::every_key,
+       [](SceneConfig& s) {
+         migrate(s, 0.05, 1e-9);
+         s.classes[0].liquid_content = 0.3;
+       }},
       {"liquid.film_share", B::every_key,
        [](SceneConfig& s) {
          migrate(s, 0.05, 1e-9);
