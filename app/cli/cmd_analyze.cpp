@@ -8,17 +8,24 @@
 // --growth FILE.png (with a series or a table): the phases of granulation
 // (engine/analysis/growth_phases.hpp) printed, and d50 and the granule count against the liquid
 // sprayed drawn.
+// --accretion FILE.csv --seed-class K (a series): the primaries held in the granules of class K's
+// particles per frame (engine/analysis/accretion.hpp), the saturating exponential fitted to them,
+// and the chart FILE.png.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <optional>
 
 #include "app/cli/commands.hpp"
 #include "app/run/granule_flags.hpp"
 #include "app/run/output_schedule.hpp"
+#include "engine/analysis/accretion.hpp"
 #include "engine/analysis/agglomerate_table.hpp"
 #include "engine/analysis/growth_phases.hpp"
+#include "engine/io/atomic_file.hpp"
 #include "engine/io/h5_series.hpp"
 #ifdef DRUMLAB_WITH_RENDER
+#include "render/accretion_chart.hpp"
 #include "render/agglomerate_chart.hpp"
 #include "render/growth_chart.hpp"
 #endif
@@ -30,8 +37,41 @@ struct AnalyzeOptions {
   std::string series;
   std::string agglomerates;
   GranuleFlags granule;
-  std::string growth;  ///< --growth FILE.png
+  std::string growth;             ///< --growth FILE.png
+  std::string accretion;          ///< --accretion FILE.csv
+  std::optional<int> seed_class;  ///< --seed-class K
 };
+
+/// The accretion curve: its CSV (time, count, the fit's value), the fit printed and its chart.
+void accretion(const std::vector<double>& t, const std::vector<double>& n, int seed_class,
+               const std::string& csv, const std::string& criterion) {
+  if (t.size() < 3) {
+    throw InputError(
+        fmt::format("--accretion: the series has {} frames, the fit needs 3", t.size()));
+  }
+  const SaturatingFit fit = fit_saturating_exponential(t, n);
+  write_file_atomically(csv, [&](std::ostream& out) {
+    out << "time,accreted,fit\n";
+    for (std::size_t k = 0; k < t.size(); ++k) {
+      out << fmt::format("{:.12g},{:.0f},{:.12g}\n", t[k], n[k], saturating_value(fit, t[k]));
+    }
+  });
+  fmt::print(
+      "accretion         {} (class {}, {}): {} -> {} primaries held over t = {:.4g}-{:.4g} s\n",
+      csv, seed_class, criterion, n.front(), n.back(), t.front(), t.back());
+  fmt::print(
+      "accretion fit     N(t) = N_inf - (N_inf - N_0) exp(-(t - {:.4g} s) / tau): N_0 = {:.4g}, "
+      "N_inf = {:.4g}, tau = {:.4g} s{}; rms {:.3g}, R^2 {:.4f} (a straight line: R^2 {:.4f})\n",
+      fit.t0, fit.n0, fit.n_inf, fit.tau,
+      fit.tau_at_grid_edge ? " (the longest tried: the curve has not bent)" : "", fit.rms,
+      fit.r_squared, fit.line_r_squared);
+#ifdef DRUMLAB_WITH_RENDER
+  std::filesystem::path png = csv;
+  png.replace_extension(".png");
+  render::write_accretion_chart(t, n, fit, criterion, png);
+  fmt::print("accretion chart   {}\n", png.string());
+#endif
+}
 
 /// The phases of granulation in `rows`, one line each, and their chart.
 void growth(const std::vector<AgglomerateStats>& rows, const std::string& png) {
@@ -48,6 +88,14 @@ void growth(const std::vector<AgglomerateStats>& rows, const std::string& png) {
         "mm\n",
         p.name, p.first, p.last, at(p.first), at(p.last), rows[p.first].count, rows[p.last].count,
         1e3 * rows[p.first].d50, 1e3 * rows[p.last].d50);
+    if (p.name != "growth" || p.last == p.first) continue;
+    // The growth rate: d50's rise over the phase per second and per liquid added.
+    const AgglomerateStats &a = rows[p.first], &b = rows[p.last];
+    const double rise = 1e3 * (b.d50 - a.d50);
+    const double added = b.spray.sprayed - a.spray.sprayed;
+    fmt::print("growth rate       {:.4g} mm/s{}\n", rise / (b.time - a.time),
+               added > 0.0 ? fmt::format(", {:.4g} mm per 1e-8 m^3 sprayed", rise / added * 1e-8)
+                           : std::string());
   }
 #ifdef DRUMLAB_WITH_RENDER
   render::write_growth_chart(rows, phases, png);
@@ -72,9 +120,21 @@ void chart(const std::filesystem::path& table) {
 void analyze(const AnalyzeOptions& o) {
   check_granule_flags(o.granule);
   if (!o.growth.empty()) check_parent_directory(o.growth, "--growth");
+  if (!o.accretion.empty()) check_parent_directory(o.accretion, "--accretion");
+  if (o.accretion.empty() != !o.seed_class) {
+    throw InputError("--accretion FILE.csv and --seed-class K go together");
+  }
+  if (o.seed_class && !(*o.seed_class >= 0 && *o.seed_class < 256)) {
+    throw InputError(
+        fmt::format("--seed-class {}: a [[particles]] index, 0 to 255", *o.seed_class));
+  }
   if (o.series.ends_with(".csv")) {
     if (!o.agglomerates.empty()) {
       throw InputError(fmt::format("--agglomerates: {} is already a table", o.series));
+    }
+    if (!o.accretion.empty()) {
+      throw InputError(
+          fmt::format("--accretion: needs a series (a table has no particles), got {}", o.series));
     }
     if (!o.growth.empty()) {
       growth(read_agglomerate_table(o.series), o.growth);
@@ -83,10 +143,10 @@ void analyze(const AnalyzeOptions& o) {
     }
     return;
   }
-  if (o.agglomerates.empty() && o.growth.empty()) {
+  if (o.agglomerates.empty() && o.growth.empty() && o.accretion.empty()) {
     throw InputError(
-        "--agglomerates FILE.csv or --growth FILE.png: what to make of the series (one is "
-        "required)");
+        "--agglomerates FILE.csv, --growth FILE.png or --accretion FILE.csv: what to make of the "
+        "series (one is required)");
   }
   const SeriesInfo info = read_series_info(o.series);
   if (info.frames == 0) throw InputError(fmt::format("{}: the series has no frames", o.series));
@@ -97,7 +157,8 @@ void analyze(const AnalyzeOptions& o) {
   std::optional<AgglomerateTable> table;
   if (!o.agglomerates.empty()) table.emplace(o.agglomerates);
   std::vector<AgglomerateStats> rows;
-  std::vector<Bond> bonds;
+  std::vector<double> times, accreted;
+  bool seed_found = false;
   for (std::size_t k = 0; k < info.frames; ++k) {
     const SeriesFrame f = read_series_frame(o.series, k);
     if (!f.has_bonds) {
@@ -114,8 +175,16 @@ void analyze(const AnalyzeOptions& o) {
     in.spray = f.spray;
     in.period = f.period;
     in.time = f.time;
-    rows.push_back(find_agglomerates(in, granule_options(f.drum_omega, o.granule.criterion)).stats);
+    const AgglomerateFrame frame =
+        find_agglomerates(in, granule_options(f.drum_omega, o.granule.criterion));
+    rows.push_back(frame.stats);
     if (table) table->add(rows.back());
+    if (o.seed_class) {
+      const auto seed = static_cast<std::uint8_t>(*o.seed_class);
+      seed_found = seed_found || std::ranges::find(f.size_class, seed) != f.size_class.end();
+      times.push_back(f.time);
+      accreted.push_back(static_cast<double>(accreted_count(frame, f.size_class, seed)));
+    }
   }
   const AgglomerateStats& last = rows.back();
   fmt::print("series            {}: {} frames{}\n", o.series, info.frames,
@@ -133,6 +202,13 @@ void analyze(const AnalyzeOptions& o) {
 #endif
   }
   if (!o.growth.empty()) growth(rows, o.growth);
+  if (o.seed_class) {
+    if (!seed_found) {
+      throw InputError(
+          fmt::format("--seed-class {}: no particle of that class in {}", *o.seed_class, o.series));
+    }
+    accretion(times, accreted, *o.seed_class, o.accretion, last.criterion);
+  }
 }
 
 }  // namespace
@@ -150,6 +226,11 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_option("--growth", o->growth,
                   "the phases of granulation (nucleation, growth, consolidation) and the chart "
                   "FILE.png of d50 and the granule count against the liquid sprayed");
+  cmd->add_option("--accretion", o->accretion,
+                  "with --seed-class: the primaries held in the seeds' granules per frame to "
+                  "FILE.csv, the saturating exponential fitted to them, and the chart FILE.png");
+  cmd->add_option("--seed-class", o->seed_class,
+                  "the seeds of --accretion: the [[particles]] class index K (0 = the first)");
   cmd->callback([o] { analyze(*o); });
 }
 
