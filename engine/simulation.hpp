@@ -4,6 +4,7 @@
 // observers read the public state between steps (particles(), search(), counters, timers).
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string_view>
 
 #include "engine/contact/bond.hpp"
@@ -24,7 +25,8 @@ struct StepTimers {
   double walls = 0.0;
   double integration = 0.0;
   double reorder = 0.0;  ///< re-ordering the particles in memory (every sort_every steps)
-  double total() const { return search + forces + walls + integration + reorder; }
+  double spray = 0.0;    ///< the binder droplets' flight and absorption (scenes with [[spray]])
+  double total() const { return search + forces + walls + integration + reorder + spray; }
 };
 
 /// The work the steps did, summed since construction: what `drumlab bench roofline` multiplies by
@@ -239,6 +241,11 @@ struct TimeStepLimit {
 };
 class ContactModel;
 TimeStepLimit time_step_limit(const SceneConfig& scene, const ContactModel& model, double r_min);
+
+/// m*/c (s) of the liquid bridges' viscous term for the lightest particles (radius r_min) at
+/// the smallest gap, c = 6 pi eta R*^2 / min_gap: between two of them (m* = m/2, R* = r/2) and,
+/// with wall bridges, at the wall (m* = m, R* = r); nullopt without a viscous term.
+std::optional<double> viscous_relaxation_time(const SceneConfig& scene, double r_min);
 
 /// Rayleigh time of a sphere (s): pi r sqrt(rho / G) / (0.1631 nu + 0.8766), G = E / (2 (1 + nu)).
 double rayleigh_time(double radius, const Material& m);

@@ -165,6 +165,38 @@ TEST(WetLaws, ViscousTermFollowsItsFormula) {
   }
 }
 
+TEST(WetLaws, TheViscousTermBoundsTheTimeStep) {
+  // m*/c of the lightest pair (r = 4 mm: m* = m/2, R* = r/2) at min_gap, and at the wall
+  // (m* = m, R* = r: half of it) when the scene has wall bridges.
+  const double r = 0.004, eta = 2.0, gap = 1e-5;
+  const double m = 2500.0 * 4.0 / 3.0 * kPi * r * r * r;
+  const double pair = 0.5 * m * gap / (6.0 * kPi * eta * 0.25 * r * r);
+  const std::string viscous = "viscosity = 2\nmin_gap = 1e-5\n";
+  const SceneConfig no_wall = scene_with(kMigration + viscous + "wall_bridges = false\n");
+  ASSERT_TRUE(viscous_relaxation_time(no_wall, r));
+  EXPECT_NEAR(*viscous_relaxation_time(no_wall, r), pair, 1e-12 * pair);
+  const SceneConfig wall = scene_with(kMigration + viscous);
+  EXPECT_NEAR(*viscous_relaxation_time(wall, r), 0.5 * pair, 1e-12 * pair);
+  const TimeStepLimit limit = time_step_limit(wall, ContactModel(wall), r);
+  EXPECT_EQ(limit.factor, 1.0);
+  EXPECT_NEAR(limit.seconds(), 0.5 * pair, 1e-12 * pair);
+  EXPECT_NE(std::string(limit.unit).find("viscous"), std::string::npos);
+  // The scene's dt (0.2 Rayleigh times, about 1e-4 s) is above it: refused with one line naming
+  // the keys; a thinner liquid is not bound by it.
+  try {
+    Simulation sim(wall, random_fill(wall));
+    FAIL() << "a dt above the viscous limit was accepted";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("time.dt"), std::string::npos) << what;
+    EXPECT_NE(what.find("liquid.viscosity"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+  const SceneConfig thin = scene_with(kMigration + "viscosity = 0.001\nmin_gap = 1e-5\n");
+  EXPECT_EQ(time_step_limit(thin, ContactModel(thin), r).unit, std::string("Rayleigh times"));
+  EXPECT_FALSE(viscous_relaxation_time(scene_with(kMigration), r));
+}
+
 // ---------------------------------------------------------------- migration in a drum
 
 double total_liquid(const SceneConfig& scene) {
