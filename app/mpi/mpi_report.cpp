@@ -9,7 +9,7 @@ namespace drumlab::mpi {
 void reduce_phase(MpiDomain& domain, PhaseStats& phase) {
   const double ranks = static_cast<double>(domain.comm().size());
   for (double* mean : {&phase.timers.search, &phase.timers.forces, &phase.timers.walls,
-                       &phase.timers.integration, &phase.timers.reorder}) {
+                       &phase.timers.integration, &phase.timers.reorder, &phase.timers.spray}) {
     *mean = domain.sum(*mean) / ranks;
   }
   for (std::uint64_t* sum :

@@ -102,6 +102,11 @@ void print_summary(const RunSummary& s) {
       "re-ordering {:.1f} %\n",
       share(phase.timers.search), share(phase.timers.forces), share(phase.timers.walls),
       share(phase.timers.integration), share(phase.timers.reorder));
+  if (s.spray) {
+    fmt::print(
+        "spray pass        {:.3f} s = {:.2f} % of the step (the droplets' flight and absorption)\n",
+        phase.timers.spray, share(phase.timers.spray));
+  }
   fmt::print(
       "search / particle cells visited {:.2f}, pairs tested {:.2f}, contacts {:.3f}, tested per "
       "contact {:.2f}\n",

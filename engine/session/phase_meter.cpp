@@ -17,8 +17,9 @@ PhaseStats PhaseMeter::finish() const {
   s.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   s.cpu_seconds = static_cast<double>(std::clock() - cpu_start_) / CLOCKS_PER_SEC;
   const StepTimers& t = sim_.timers();
-  s.timers = {t.search - timers0_.search, t.forces - timers0_.forces, t.walls - timers0_.walls,
-              t.integration - timers0_.integration, t.reorder - timers0_.reorder};
+  s.timers = {t.search - timers0_.search,   t.forces - timers0_.forces,
+              t.walls - timers0_.walls,     t.integration - timers0_.integration,
+              t.reorder - timers0_.reorder, t.spray - timers0_.spray};
   const SearchCounters& c = sim_.search_totals();
   s.search = {c.cells_visited - search0_.cells_visited, c.pairs_tested - search0_.pairs_tested,
               c.pairs_found - search0_.pairs_found, c.cells_total};
