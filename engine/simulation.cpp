@@ -170,7 +170,8 @@ Simulation::Simulation(const SceneConfig& scene, Particles particles, Simulation
   impl_->contacts.set_state_size(impl_->model.pair_state_size());
   register_liquid_arrays(true);
   if (!scene_.sprays.empty()) {
-    impl_->spray = std::make_unique<DropletCloud>(scene_.sprays, impl_->drum, gravity_);
+    // The wall film's patches: one largest particle diameter wide.
+    make_spray();
   }
   // Forces of the initial state, for the first half kick (no history increment, not counted).
   compute_forces(0.0, false);
@@ -179,10 +180,11 @@ Simulation::Simulation(const SceneConfig& scene, Particles particles, Simulation
 Simulation::Simulation(const SceneConfig& scene, SimulationState state)
     : scene_(scene), particles_(std::move(state.particles)) {
   if (!state.search_method.empty()) scene_.search_method = state.search_method;
-  if (!scene_.sprays.empty()) {
-    throw InputError(
-        "restart: a scene with [[spray]] cannot continue from a saved state yet (checkpoints do "
-        "not carry the airborne droplets)");
+  if (scene_.sprays.empty() != state.spray.empty()) {
+    throw InputError(scene_.sprays.empty()
+                         ? "restart state: it carries binder droplets, the scene has no [[spray]]"
+                         : "restart state: the scene has [[spray]], the state carries no droplets "
+                           "(a checkpoint of a scene without spray)");
   }
   impl_ = std::make_unique<Impl>(scene_);
   use_search(make_search(scene_.search_method, search_tuning()));
@@ -221,18 +223,24 @@ Simulation::Simulation(const SceneConfig& scene, SimulationState state)
   omega_ = state.drum_omega;
   drum_angle_ = state.drum_angle;
   steps_ = state.steps;
+  if (!scene_.sprays.empty()) {
+    make_spray();
+    impl_->spray->restore(std::move(state.spray));
+  }
   // Forces and torques come with the state: recomputing them would advance nothing but could
   // differ in the last bit from those the uninterrupted run carries into its next half kick.
 }
 
 Simulation::~Simulation() = default;
 
+void Simulation::make_spray() {
+  // The wall film's patches: one largest particle diameter wide.
+  double r_max = particles_.empty() ? scene_.max_radius() : 0.0;
+  for (const double r : particles_.radius) r_max = std::max(r_max, r);
+  impl_->spray = std::make_unique<DropletCloud>(scene_.sprays, impl_->drum, gravity_, 2.0 * r_max);
+}
+
 SimulationState Simulation::state() const {
-  if (impl_->spray) {
-    throw InputError(
-        "checkpoint: a scene with [[spray]] cannot be saved yet (its airborne droplets are not "
-        "part of the state)");
-  }
   SimulationState s;
   state_into(s);
   return s;
@@ -273,6 +281,7 @@ void Simulation::state_into(SimulationState& s) const {
   s.contact_history.assign(c.history().begin(), c.history().end());
   s.contact_state_size = c.state_size();
   s.contact_state.assign(c.state().begin(), c.state().end());
+  if (impl_->spray) s.spray = impl_->spray->state();
   s.wall_history = impl_->wall_history;
 }
 
@@ -629,7 +638,8 @@ void Simulation::step() {
     // Droplets fly over [time, time + dt] against the bed at the step's end; what they bring to
     // the films forms bridges from the next step on.
     std::vector<double>& film = *particles_.find_array(kLiquidFilmArray);
-    impl_->spray->advance(time_, dt_, particles_.position, particles_.radius, particles_.id, film);
+    impl_->spray->advance(time_, dt_, particles_.position, particles_.radius, particles_.id, film,
+                          drum_angle_ + omega_ * dt_);
     timers_.spray += seconds_between(t3, Clock::now());
   }
   time_ += dt_;

@@ -176,6 +176,8 @@ class Simulation {
   /// ContactModel::particle_arrays) if the scene has them and the particles do not; `fresh`: fill
   /// the films from the liquid content (else: a restart, which must bring them).
   void register_liquid_arrays(bool fresh);
+  /// Creates the droplet cloud of a scene with [[spray]] (after the particles are in place).
+  void make_spray();
   void choose_time_step(const SimulationOptions& options);
   /// The found pairs the force loop computes: all of them serially; on a rank of a decomposed
   /// run all but those of two ghosts, whose forces would be discarded and whose state no owner

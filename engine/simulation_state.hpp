@@ -1,7 +1,8 @@
 #pragma once
 // Everything a Simulation's next step depends on, as plain data: the particles (every array,
 // including the forces and torques of the current state, which the next half kick uses), the
-// clock, the drum, the contact list with its tangential history and the per-particle wall history.
+// clock, the drum, the contact list with its tangential history, the per-particle wall history and
+// a spraying scene's droplets.
 // Simulation::state() exports it; Simulation(scene, state) continues bit-identically from it.
 #include <cstdint>
 #include <string>
@@ -9,6 +10,7 @@
 
 #include "engine/contact/contact_model.hpp"
 #include "engine/particles.hpp"
+#include "engine/spray/spray_state.hpp"
 
 namespace drumlab {
 
@@ -28,6 +30,7 @@ struct SimulationState {
   std::size_t contact_state_size = 0;
   std::vector<double> contact_state;
   WallHistory wall_history;  ///< per particle, per wall part, m
+  SprayState spray;          ///< the droplets and the wall film ([[spray]]; empty without)
 };
 
 }  // namespace drumlab

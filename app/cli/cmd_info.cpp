@@ -216,8 +216,9 @@ void print_sprays(const SceneConfig& scene) {
         s.name, s.shape == SprayShape::flat_fan ? "flat fan" : "cone", s.angle_deg, s.position.x(),
         s.position.y(), s.position.z(), s.direction.x(), s.direction.y(), s.direction.z(), s.rate,
         s.start, std::isfinite(s.stop) ? fmt::format("to {:g} s", s.stop) : std::string("on"));
-    fmt::print("                  {:.4g} droplets/s of r = {:.3g} m at {:g} m/s", s.rate / droplet,
-               r, s.droplet_speed);
+    fmt::print("                  {:.4g} droplets/s of r = {:.3g} m at {:g} m/s, {} at the wall",
+               s.rate / droplet, r, s.droplet_speed,
+               s.at_wall == SprayAtWall::wet ? "wetting it" : "lost");
     if (std::isfinite(added) && solid > 0.0) {
       fmt::print("; adds {:.4g} m^3 = {:.3g} of the solid volume", added, added / solid);
     }

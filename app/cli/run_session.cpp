@@ -11,12 +11,6 @@ namespace drumlab::cli {
 void run_session(const RunOptions& opt, std::span<FrameObserver* const> extra_observers) {
   const SceneConfig scene = load_dynamic_scene(opt.scene);
   check_run_options(opt, !extra_observers.empty());
-  if (!scene.sprays.empty() && (!opt.checkpoint.empty() || !opt.restart.empty())) {
-    throw InputError(fmt::format(
-        "{}: {}: a scene with [[spray]] cannot be checkpointed or restarted yet (checkpoints do "
-        "not carry the airborne droplets)",
-        opt.scene, opt.checkpoint.empty() ? "--restart" : "--checkpoint"));
-  }
   set_thread_count(opt.threads);
   const std::vector<std::unique_ptr<FrameObserver>> outputs = make_output_observers(opt);
   std::vector<FrameObserver*> observers(extra_observers.begin(), extra_observers.end());

@@ -8,8 +8,8 @@
 // surface), angle_com_deg (from the centre of mass), flowing_layer (m), bed_depth (m),
 // surface_curvature, relative_speed (m/s), airborne_fraction, free_liquid, bridge_liquid,
 // wall_liquid (m^3: films, pair bridges, wall bridges), bridges (pair bridges), sprayed_liquid,
-// airborne_liquid, lost_liquid (m^3, [[spray]]; 0 without): free + bridge + wall + airborne + lost
-// - sprayed is the scene's initial liquid, conserved to round-off.
+// airborne_liquid, lost_liquid, wall_film_liquid (m^3, [[spray]]; 0 without): free + bridge + wall
+// + airborne + lost + wall_film - sprayed is the scene's initial liquid, conserved to round-off.
 #include <filesystem>
 #include <string>
 

@@ -129,8 +129,14 @@ void print_summary(const RunSummary& s) {
     const SprayTotals& t = *s.spray;
     fmt::print(
         "spray             sprayed {:.6g} m^3 in {} droplets = airborne {:.6g} + absorbed by "
-        "particles {:.6g} ({} droplets) + lost at the wall {:.6g} ({} droplets)\n",
+        "particles {:.6g} ({} droplets) + lost at the wall {:.6g} ({} droplets)",
         t.sprayed, t.emitted_count, t.airborne, t.absorbed, t.absorbed_count, t.lost, t.lost_count);
+    if (t.walled_count > 0) {
+      fmt::print(" + wetting the wall {:.6g} ({} droplets; {:.6g} of it taken up by particles)",
+                 t.walled, t.walled_count, t.taken_from_wall);
+    }
+    fmt::print("\n");
+    if (t.walled_count > 0) fmt::print("wall film         {:.12g} m^3 on the wall\n", t.on_wall);
     fmt::print("liquid            films + bridges + wall bridges {:.12g} m^3\n", d.liquid_volume);
   }
 }

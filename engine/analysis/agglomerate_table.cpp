@@ -50,6 +50,11 @@ bool parse(const std::string& text, T& value) {
 constexpr std::string_view kHeaderWithoutSpray =
     "time,criterion,agglomerates,mean_size,largest,d10,d50,d90,bonds,free_liquid,"
     "bridge_liquid,wall_bridge_liquid,largest_plain_share";
+/// The header of tables written before the wall film's column (their rows have 16 fields).
+constexpr std::string_view kHeaderWithoutWallFilm =
+    "time,criterion,agglomerates,mean_size,largest,d10,d50,d90,bonds,free_liquid,"
+    "bridge_liquid,wall_bridge_liquid,largest_plain_share,sprayed_liquid,airborne_liquid,"
+    "lost_liquid";
 
 bool parse_row(const std::vector<std::string>& f, std::size_t fields, AgglomerateStats& s) {
   if (f.size() != fields) return false;
@@ -60,8 +65,10 @@ bool parse_row(const std::vector<std::string>& f, std::size_t fields, Agglomerat
                       parse(f[10], s.bridge_liquid) && parse(f[11], s.wall_liquid) &&
                       parse(f[12], s.largest_plain_share);
   if (fields == 13) return common;
-  return common && parse(f[13], s.spray.sprayed) && parse(f[14], s.spray.airborne) &&
-         parse(f[15], s.spray.lost);
+  const bool spray = common && parse(f[13], s.spray.sprayed) && parse(f[14], s.spray.airborne) &&
+                     parse(f[15], s.spray.lost);
+  if (fields == 16) return spray;
+  return spray && parse(f[16], s.spray.on_wall);
 }
 
 }  // namespace
@@ -71,8 +78,12 @@ std::vector<AgglomerateStats> read_agglomerate_table(const std::filesystem::path
   if (!in) throw InputError(fmt::format("{}: cannot read", file.string()));
   std::string line;
   const bool read = static_cast<bool>(std::getline(in, line));
-  const bool current = read && line == agglomerate_csv_header();
-  if (!current && !(read && line == kHeaderWithoutSpray)) {
+  const std::size_t fields = !read                              ? 0
+                             : line == agglomerate_csv_header() ? 17
+                             : line == kHeaderWithoutWallFilm   ? 16
+                             : line == kHeaderWithoutSpray      ? 13
+                                                                : 0;
+  if (fields == 0) {
     throw InputError(
         fmt::format("{}:1: not an agglomerate table (its header differs from "
                     "`drumlab run --agglomerates`)",
@@ -81,7 +92,7 @@ std::vector<AgglomerateStats> read_agglomerate_table(const std::filesystem::path
   std::vector<AgglomerateStats> rows;
   for (std::size_t number = 2; std::getline(in, line); ++number) {
     AgglomerateStats s;
-    if (!parse_row(fields_of(line), current ? 16 : 13, s)) {
+    if (!parse_row(fields_of(line), fields, s)) {
       throw InputError(fmt::format("{}:{}: not a row of the table", file.string(), number));
     }
     rows.push_back(s);

@@ -282,7 +282,7 @@ AgglomerateInput agglomerate_input(const Simulation& sim, std::vector<Bond>& bon
   in.wall_liquid = wall_bridge_liquid(p);
   if (const DropletCloud* spray = sim.spray()) {
     const SprayTotals t = spray->totals();
-    in.spray = {t.sprayed, t.airborne, t.lost};
+    in.spray = {t.sprayed, t.airborne, t.lost, t.on_wall};
   }
   in.period = sim.search_input().period_z.value_or(0.0);
   in.time = sim.time();
@@ -300,16 +300,16 @@ std::vector<std::uint32_t> agglomerate_labels(const Simulation& sim,
 std::string agglomerate_csv_header() {
   return "time,criterion,agglomerates,mean_size,largest,d10,d50,d90,bonds,free_liquid,"
          "bridge_liquid,wall_bridge_liquid,largest_plain_share,sprayed_liquid,airborne_liquid,"
-         "lost_liquid";
+         "lost_liquid,wall_film_liquid";
 }
 
 std::string agglomerate_csv_row(const AgglomerateStats& s) {
   return fmt::format(
       "{:.9g},{},{},{:.6g},{},{:.6g},{:.6g},{:.6g},{},{:.12g},{:.12g},{:.12g},{:.6g},{:.12g},"
-      "{:.12g},{:.12g}",
+      "{:.12g},{:.12g},{:.12g}",
       s.time, s.criterion, s.count, s.mean_size, s.largest, s.d10, s.d50, s.d90, s.bonds,
       s.free_liquid, s.bridge_liquid, s.wall_liquid, s.largest_plain_share, s.spray.sprayed,
-      s.spray.airborne, s.spray.lost);
+      s.spray.airborne, s.spray.lost, s.spray.on_wall);
 }
 
 }  // namespace drumlab

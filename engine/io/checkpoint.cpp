@@ -126,6 +126,51 @@ void read_contacts(hid_t file, const std::string& label, std::size_t n, const h5
   }
 }
 
+/// /spray (a scene with [[spray]]): the airborne droplets, each nozzle's counts and the wall
+/// film's patches. Serial runs only (a decomposed run refuses a spraying scene).
+void write_spray(hid_t file, const SprayState& s) {
+  h5::Handle g = h5::create_group(file, "spray");
+  std::vector<Vec3> position, velocity;
+  std::vector<std::uint64_t> serial;
+  std::vector<std::uint32_t> nozzle;
+  for (const Droplet& d : s.droplets) {
+    position.push_back(d.position);
+    velocity.push_back(d.velocity);
+    serial.push_back(d.serial);
+    nozzle.push_back(d.spray);
+  }
+  h5::write_vec3(g.get(), "droplet_position", position);
+  h5::write_vec3(g.get(), "droplet_velocity", velocity);
+  h5::write(g.get(), "droplet_serial", std::span<const std::uint64_t>(serial));
+  h5::write(g.get(), "droplet_nozzle", std::span<const std::uint32_t>(nozzle));
+  h5::write(g.get(), "emitted", std::span<const std::uint64_t>(s.emitted));
+  h5::write(g.get(), "absorbed", std::span<const std::uint64_t>(s.absorbed));
+  h5::write(g.get(), "lost", std::span<const std::uint64_t>(s.lost));
+  h5::write(g.get(), "walled", std::span<const std::uint64_t>(s.walled));
+  h5::write(g.get(), "wall_film", std::span<const double>(s.wall_film), {s.wall_film.size()});
+}
+
+SprayState read_spray(hid_t file) {
+  SprayState s;
+  if (!h5::exists(file, "spray")) return s;
+  h5::Handle g = h5::open_group(file, "spray");
+  const std::vector<std::uint64_t> serial = h5::read_u64(g.get(), "droplet_serial", h5::kAnySize);
+  const std::size_t n = serial.size();
+  const std::vector<std::uint32_t> nozzle = h5::read_u32(g.get(), "droplet_nozzle", n);
+  const std::vector<Vec3> position = h5::read_vec3(g.get(), "droplet_position", n);
+  const std::vector<Vec3> velocity = h5::read_vec3(g.get(), "droplet_velocity", n);
+  for (std::size_t k = 0; k < n; ++k) {
+    s.droplets.push_back({position[k], velocity[k], serial[k], nozzle[k]});
+  }
+  s.emitted = h5::read_u64(g.get(), "emitted", h5::kAnySize);
+  const std::size_t m = s.emitted.size();
+  s.absorbed = h5::read_u64(g.get(), "absorbed", m);
+  s.lost = h5::read_u64(g.get(), "lost", m);
+  s.walled = h5::read_u64(g.get(), "walled", m);
+  s.wall_film = h5::read_doubles(g.get(), "wall_film", h5::kAnySize);
+  return s;
+}
+
 }  // namespace
 
 void write_checkpoint_datasets(hid_t f, const SimulationState& state, const std::string& scene_name,
@@ -141,6 +186,7 @@ void write_checkpoint_datasets(hid_t f, const SimulationState& state, const std:
   h5::write_attribute(f, "steps", state.steps);
   write_particles(f, state.particles, rows.particles);
   write_contacts(f, state, rows);
+  if (!state.spray.empty()) write_spray(f, state.spray);
 }
 
 void write_checkpoint(const std::filesystem::path& file, const SimulationState& state,
@@ -177,6 +223,7 @@ Checkpoint read_rows(const std::filesystem::path& file, const h5::RowRange& rang
   }
   s.particles = read_particles(f.get(), c.particles, range);
   read_contacts(f.get(), file.string(), c.particles, range, s);
+  s.spray = read_spray(f.get());
   return c;
 }
 

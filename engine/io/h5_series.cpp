@@ -161,6 +161,7 @@ void write_bond_frame(hid_t g, const Particles& p, const SeriesBondFrame& b, con
   h5::write_attribute(g, "sprayed_liquid", b.spray.sprayed);
   h5::write_attribute(g, "airborne_liquid", b.spray.airborne);
   h5::write_attribute(g, "lost_liquid", b.spray.lost);
+  h5::write_attribute(g, "wall_film_liquid", b.spray.on_wall);
   h5::write(g, "mass", p.mass, {p.size()}, rows);
   const std::vector<double>* film = p.find_array(kLiquidFilmArray);
   const std::vector<double> no_film(film ? 0 : p.size(), 0.0);
@@ -292,7 +293,8 @@ SeriesFrame read_series_frame(const std::filesystem::path& file, std::size_t k) 
   for (const auto& [name, value] :
        {std::pair<const char*, double*>{"sprayed_liquid", &s.spray.sprayed},
         {"airborne_liquid", &s.spray.airborne},
-        {"lost_liquid", &s.spray.lost}}) {
+        {"lost_liquid", &s.spray.lost},
+        {"wall_film_liquid", &s.spray.on_wall}}) {
     if (H5Aexists(g.get(), name) > 0) *value = h5::read_double_attribute(g.get(), name);
   }
   h5::Handle b = h5::open_group(g.get(), "bonds");

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -112,6 +113,14 @@ void add_cohesion_terms(const SceneConfig& scene, SceneFeatures& f) {
           : fmt::format("{} nozzle(s): droplets fly outside the contact search, a particle grid "
                         "near them only while some fly",
                         scene.sprays.size())));
+  const bool wets = std::any_of(scene.sprays.begin(), scene.sprays.end(),
+                                [](const SprayConfig& c) { return c.at_wall == SprayAtWall::wet; });
+  f.list.push_back(term("wall film", wets,
+                        wets
+                            ? std::string("a nozzle has at_wall = \"wet\": droplets that reach the "
+                                          "wall wet it; a pass over the wall's particles while "
+                                          "it holds liquid")
+                            : std::string("no nozzle wets the wall (at_wall = \"lost\")")));
   f.list.push_back(term("dry adhesion (sjkr)", c.enabled,
                         c.enabled ? fmt::format("cohesion.energy_density = {} J/m^3 (k_c pi a^2 "
                                                 "while overlapping)",

@@ -511,7 +511,7 @@ void read_sprays(const Scope& root, SceneConfig& scene) {
   for (std::size_t i = 0; i < array->size(); ++i) {
     const Scope s(*(*array)[i].as_table(), fmt::format("spray[{}]", i), root.source());
     s.allow_only({"name", "position", "direction", "shape", "angle_deg", "fan_axis", "rate",
-                  "start", "stop", "droplet_radius", "droplet_speed"});
+                  "start", "stop", "droplet_radius", "droplet_speed", "at_wall"});
     SprayConfig c;
     c.name = s.string("name").value_or(fmt::format("spray{}", i));
     const auto position = s.vec3("position");
@@ -535,6 +535,12 @@ void read_sprays(const Scope& root, SceneConfig& scene) {
     c.stop = s.number_or("stop", c.stop);
     c.droplet_radius = s.required_number("droplet_radius", "m, > 0");
     c.droplet_speed = s.required_number("droplet_speed", "speed at the nozzle, m/s");
+    const std::string at_wall = s.string("at_wall").value_or("lost");
+    if (at_wall == "wet") {
+      c.at_wall = SprayAtWall::wet;
+    } else if (at_wall != "lost") {
+      s.fail("at_wall", fmt::format("unknown value '{}' (valid: lost, wet)", at_wall));
+    }
     scene.sprays.push_back(std::move(c));
   }
 }

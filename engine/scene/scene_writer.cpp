@@ -171,6 +171,7 @@ toml::array spray_array(const std::vector<SprayConfig>& sprays) {
                   {"droplet_speed", c.droplet_speed}};
     if (c.shape == SprayShape::flat_fan) t.insert("fan_axis", vec3(c.fan_axis));
     if (std::isfinite(c.stop)) t.insert("stop", c.stop);
+    if (c.at_wall == SprayAtWall::wet) t.insert("at_wall", "wet");
     out.push_back(std::move(t));
   }
   return out;

@@ -33,8 +33,10 @@ std::pair<Vec3, Vec3> normal_basis(const Vec3& d) {
 
 }  // namespace
 
-DropletCloud::DropletCloud(std::vector<SprayConfig> sprays, const Drum& drum, const Vec3& gravity)
+DropletCloud::DropletCloud(std::vector<SprayConfig> sprays, const Drum& drum, const Vec3& gravity,
+                           double patch)
     : sprays_(std::move(sprays)), drum_(drum), gravity_(gravity) {
+  double smallest = std::numeric_limits<double>::infinity();
   for (SprayConfig& s : sprays_) {
     const double r = s.droplet_radius;
     const double v = 4.0 / 3.0 * std::numbers::pi * r * r * r;
@@ -47,10 +49,15 @@ DropletCloud::DropletCloud(std::vector<SprayConfig> sprays, const Drum& drum, co
     }
     s.direction.normalize();
     volume_.push_back(v);
+    if (s.at_wall == SprayAtWall::wet) smallest = std::min(smallest, v);
   }
   emitted_.assign(sprays_.size(), 0);
   absorbed_.assign(sprays_.size(), 0);
   lost_.assign(sprays_.size(), 0);
+  walled_.assign(sprays_.size(), 0);
+  // A patch's rest below a millionth of the smallest droplet goes with the particle's share.
+  if (std::isfinite(smallest))
+    wall_film_ = std::make_unique<WallFilm>(drum, patch, 1e-6 * smallest);
 }
 
 Vec3 DropletCloud::droplet_direction(std::size_t s, std::uint64_t k) const {
@@ -103,10 +110,14 @@ SprayTotals DropletCloud::totals() const {
     t.airborne += static_cast<double>(airborne[s]) * v;
     t.absorbed += static_cast<double>(absorbed_[s]) * v;
     t.lost += static_cast<double>(lost_[s]) * v;
+    t.walled += static_cast<double>(walled_[s]) * v;
     t.emitted_count += emitted_[s];
     t.absorbed_count += absorbed_[s];
     t.lost_count += lost_[s];
+    t.walled_count += walled_[s];
   }
+  if (wall_film_) t.on_wall = wall_film_->volume();
+  t.taken_from_wall = t.walled - t.on_wall;
   return t;
 }
 
@@ -203,7 +214,7 @@ std::int64_t DropletCloud::first_hit(const Vec3& a, const Vec3& b, double rd,
 
 SprayStep DropletCloud::advance(double t, double dt, std::span<const Vec3> position,
                                 std::span<const double> radius, std::span<const std::uint32_t> id,
-                                std::span<double> film) {
+                                std::span<double> film, double angle) {
   SprayStep step;
   const double t1 = t + dt;
   // Newborn droplets join at the nozzle with the time they fly in this step as their start.
@@ -224,7 +235,16 @@ SprayStep DropletCloud::advance(double t, double dt, std::span<const Vec3> posit
     }
     emitted_[s] = std::max(emitted_[s], target);
   }
-  if (droplets_.empty()) return step;
+  fly(position, radius, id, film, angle, step);
+  if (wall_film_) step.taken_from_wall = wall_film_->wipe(angle, position, radius, id, film);
+  return step;
+}
+
+void DropletCloud::fly(std::span<const Vec3> position, std::span<const double> radius,
+                       std::span<const std::uint32_t> id, std::span<double> film, double angle,
+                       SprayStep& step) {
+  std::vector<double>& flight = flight_;
+  if (droplets_.empty()) return;
   // Fly: exact for constant gravity.
   double longest = 0.0, rd_max = 0.0;
   Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity());
@@ -264,21 +284,28 @@ SprayStep DropletCloud::advance(double t, double dt, std::span<const Vec3> posit
       continue;
     }
     if (drum_.gap(d.position, rd) <= 0.0) {
-      ++lost_[d.spray];
-      ++step.lost;
+      if (sprays_[d.spray].at_wall == SprayAtWall::wet) {
+        wall_film_->deposit(d.position, angle, volume_[d.spray]);
+        ++walled_[d.spray];
+        ++step.walled;
+      } else {
+        ++lost_[d.spray];
+        ++step.lost;
+      }
       continue;
     }
     if (drum_.periodic()) d.position.z() = drum_.wrap_z(d.position.z());
     kept_.push_back(d);
   }
   droplets_.swap(kept_);
-  return step;
 }
 
 void DropletCloud::restore(std::vector<Droplet> droplets, std::vector<std::uint64_t> emitted,
-                           std::vector<std::uint64_t> absorbed, std::vector<std::uint64_t> lost) {
+                           std::vector<std::uint64_t> absorbed, std::vector<std::uint64_t> lost,
+                           std::vector<std::uint64_t> walled, std::vector<double> wall_film) {
   const std::size_t n = sprays_.size();
-  if (emitted.size() != n || absorbed.size() != n || lost.size() != n) {
+  if (walled.empty()) walled.assign(n, 0);
+  if (emitted.size() != n || absorbed.size() != n || lost.size() != n || walled.size() != n) {
     throw InputError(
         fmt::format("spray state: counts for {} nozzles, the scene has {}", emitted.size(), n));
   }
@@ -288,19 +315,47 @@ void DropletCloud::restore(std::vector<Droplet> droplets, std::vector<std::uint6
       throw InputError(
           fmt::format("spray state: a droplet of nozzle {}, the scene has {}", d.spray, n));
     }
+    if (!d.position.allFinite() || !d.velocity.allFinite() || d.serial == 0 ||
+        d.serial > emitted[d.spray]) {
+      throw InputError(fmt::format(
+          "spray state: droplet {} of nozzle {} is not a droplet the nozzle emitted in flight",
+          d.serial, d.spray));
+    }
     ++airborne[d.spray];
   }
   for (std::size_t s = 0; s < n; ++s) {
-    if (absorbed[s] + lost[s] + airborne[s] != emitted[s]) {
+    if (absorbed[s] + lost[s] + walled[s] + airborne[s] != emitted[s]) {
       throw InputError(fmt::format(
-          "spray state: nozzle {} emitted {} droplets but {} absorbed + {} lost + {} airborne", s,
-          emitted[s], absorbed[s], lost[s], airborne[s]));
+          "spray state: nozzle {} emitted {} droplets but {} absorbed + {} lost + {} on the wall "
+          "+ {} airborne",
+          s, emitted[s], absorbed[s], lost[s], walled[s], airborne[s]));
     }
+    if (walled[s] > 0 && sprays_[s].at_wall != SprayAtWall::wet) {
+      throw InputError(
+          fmt::format("spray state: nozzle {} put droplets on a wall it does not wet", s));
+    }
+  }
+  if (wall_film_) {
+    if (!wall_film.empty()) wall_film_->restore(std::move(wall_film));
+  } else if (!wall_film.empty()) {
+    throw InputError("spray state: a wall film for a scene whose nozzles do not wet the wall");
   }
   droplets_ = std::move(droplets);
   emitted_ = std::move(emitted);
   absorbed_ = std::move(absorbed);
   lost_ = std::move(lost);
+  walled_ = std::move(walled);
+}
+
+SprayState DropletCloud::state() const {
+  SprayState s{droplets_, emitted_, absorbed_, lost_, walled_, {}};
+  if (wall_film_) s.wall_film.assign(wall_film_->patches().begin(), wall_film_->patches().end());
+  return s;
+}
+
+void DropletCloud::restore(SprayState s) {
+  restore(std::move(s.droplets), std::move(s.emitted), std::move(s.absorbed), std::move(s.lost),
+          std::move(s.walled), std::move(s.wall_film));
 }
 
 }  // namespace drumlab

@@ -12,6 +12,11 @@ namespace drumlab {
 
 enum class SprayShape { cone, flat_fan };
 
+/// What becomes of a droplet that reaches the drum wall: lost from the process (MercuryDPM's
+/// DropletBoundary removeDropletsAtWalls), or a film on the wall that turns with the drum and
+/// that particles touching it take up (engine/spray/wall_film.hpp).
+enum class SprayAtWall { lost, wet };
+
 struct SprayConfig {
   std::string name;
   Vec3 position = Vec3::Zero();           ///< nozzle (m), inside the drum
@@ -25,6 +30,7 @@ struct SprayConfig {
   double stop = std::numeric_limits<double>::infinity();  ///< s, > start
   double droplet_radius = 0.0;                            ///< m, > 0
   double droplet_speed = 0.0;                             ///< m/s at the nozzle, >= 0
+  SprayAtWall at_wall = SprayAtWall::lost;
 
   friend bool operator==(const SprayConfig&, const SprayConfig&) = default;
 };

@@ -154,9 +154,22 @@ TEST(AgglomerateOutputs, AnalyzeOfTheRunsSeriesEqualsTheRunsTable) {
 TEST(AgglomerateOutputs, DamagedTableIsOneLineNamingFileAndLine) {
   TempDir dir("agglo-table");
   const std::string header = agglomerate_csv_header() + "\n";
-  const std::string good = "0.5,components,2,2.5,3,0.001,0.002,0.003,4,1e-9,2e-9,0,0.5,3e-9,0,0\n";
+  const std::string good =
+      "0.5,components,2,2.5,3,0.001,0.002,0.003,4,1e-9,2e-9,0,0.5,3e-9,0,0,1e-10\n";
   EXPECT_EQ(read_agglomerate_table(dir.write("ok.csv", header + good)).size(), 1u);
   EXPECT_EQ(read_agglomerate_table(dir.path() / "ok.csv")[0].spray.sprayed, 3e-9);
+  EXPECT_EQ(read_agglomerate_table(dir.path() / "ok.csv")[0].spray.on_wall, 1e-10);
+  // A table written before the wall film's column still reads, its wall film 0.
+  const std::string spray_header =
+      "time,criterion,agglomerates,mean_size,largest,d10,d50,d90,bonds,free_liquid,"
+      "bridge_liquid,wall_bridge_liquid,largest_plain_share,sprayed_liquid,airborne_liquid,"
+      "lost_liquid\n";
+  const auto before = read_agglomerate_table(dir.write(
+      "before.csv",
+      spray_header + "0.5,components,2,2.5,3,0.001,0.002,0.003,4,1e-9,2e-9,0,0.5,3e-9,0,1e-10\n"));
+  ASSERT_EQ(before.size(), 1u);
+  EXPECT_EQ(before[0].spray.lost, 1e-10);
+  EXPECT_EQ(before[0].spray.on_wall, 0.0);
   // A table written before the spray's columns still reads, its spray terms 0.
   const std::string old_header =
       "time,criterion,agglomerates,mean_size,largest,d10,d50,d90,bonds,free_liquid,"
@@ -169,7 +182,7 @@ TEST(AgglomerateOutputs, DamagedTableIsOneLineNamingFileAndLine) {
   for (const auto& [text, where] :
        {std::pair<std::string, std::string>{"time,x\n" + good, "bad.csv:1:"},
         {header + good + "0.5,components,2,2.5\n", "bad.csv:3:"},
-        {header + "0.5,components,two,2.5,3,0.001,0.002,0.003,4,1e-9,2e-9,0,0.5,0,0,0\n",
+        {header + "0.5,components,two,2.5,3,0.001,0.002,0.003,4,1e-9,2e-9,0,0.5,0,0,0,0\n",
          "bad.csv:2:"},
         {header + "0.5,components,2,2.5,3,0.001,0.002,0.003,4,1e-9,2e-9,0,0.5\n", "bad.csv:2:"},
         {header, "bad.csv: the table has no rows"}}) {

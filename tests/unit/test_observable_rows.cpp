@@ -48,8 +48,8 @@ TEST(ObservableRows, WetRunConservesItsLiquidInEveryRow) {
   ASSERT_GT(total, 0.0);
   double bridges = 0.0;
   for (const auto& row : rows) {
-    ASSERT_EQ(row.size(), 16u);
-    EXPECT_EQ(row[13] + row[14] + row[15], 0.0);  // no [[spray]]
+    ASSERT_EQ(row.size(), 17u);
+    EXPECT_EQ(row[13] + row[14] + row[15] + row[16], 0.0);  // no [[spray]]
     EXPECT_NEAR(row[9] + row[10] + row[11], total, 1e-12 * total);
     EXPECT_GE(row[3], -90.0);
     EXPECT_LE(row[3], 90.0);

@@ -277,7 +277,7 @@ TEST(SceneWriter, SeedBeyondTomlIntegersIsRefusedNamingTheKey) {
 /// makes this fail to compile. Then give the field a setter in `field_setters()`, write it in
 /// engine/scene/scene_writer.cpp and raise its count here.
 constexpr int kSceneFields = 17, kDrumFields = 5, kClassFields = 8, kMaterialFields = 6,
-              kContactFields = 9, kLiquidFields = 16, kCohesionFields = 2, kSprayFields = 11,
+              kContactFields = 9, kLiquidFields = 16, kCohesionFields = 2, kSprayFields = 12,
               kFillFields = 7, kTimeFields = 5, kPerformanceFields = 2, kOutputFields = 2;
 
 [[maybe_unused]] void field_counts(const SceneConfig& s) {
@@ -298,7 +298,8 @@ constexpr int kSceneFields = 17, kDrumFields = 5, kClassFields = 8, kMaterialFie
       s.liquid;
   [[maybe_unused]] const auto& [cohesive, energy_density] = s.cohesion;
   [[maybe_unused]] const auto& [spray_name, position, direction, shape, angle_deg, fan_axis, rate,
-                                start, stop, droplet_radius, droplet_speed] = s.sprays.front();
+                                start, stop, droplet_radius, droplet_speed, at_wall] =
+      s.sprays.front();
   [[maybe_unused]] const auto& [kind, count, fraction, seed, settle, box, file] = s.fill;
   [[maybe_unused]] const auto& [dt, dt_factor, duration, revolutions, max_overlap] = s.time;
   [[maybe_unused]] const auto& [skin, sort_every] = s.performance;
@@ -471,6 +472,7 @@ std::vector<FieldSetter> field_setters(const fs::path& other_csv) {
        [](SceneConfig& s) { s.sprays[0].stop = std::numeric_limits<double>::infinity(); }},
       {"spray.droplet_radius", B::spray, [](SceneConfig& s) { s.sprays[0].droplet_radius = 5e-5; }},
       {"spray.droplet_speed", B::spray, [](SceneConfig& s) { s.sprays[0].droplet_speed = 0.0; }},
+      {"spray.at_wall", B::spray, [](SceneConfig& s) { s.sprays[0].at_wall = SprayAtWall::wet; }},
       {"liquid.enabled", B::every_key, [](SceneConfig& s) { s.liquid = LiquidConfig{}; }},
       {"liquid.surface_tension", B::every_key,
        [](SceneConfig& s) { s.liquid.surface_tension = 0.05; }},

@@ -1,8 +1,9 @@
 // [[spray]] in a scene: the keys and their one-line errors (a nozzle outside the drum, a negative
 // rate, a stop before its start, a droplet larger than the smallest particle...), and a dry
 // powder sprayed in a turning drum: the liquid accounted for at every step (films + bridges +
-// wall bridges + airborne + lost = sprayed), the same films for any thread count and search
-// method, and what a spray scene refuses (checkpoints, MPI).
+// wall bridges + airborne + lost + wall film = sprayed), the same films for any thread count and
+// search method, with a wall that loses droplets and one that they wet, and checkpoints that
+// carry the droplets and the wall's film bit for bit.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +12,7 @@
 
 #include "engine/analysis/agglomerate_table.hpp"
 #include "engine/fill/random_fill.hpp"
+#include "engine/io/checkpoint.hpp"
 #include "engine/scene/scene_config.hpp"
 #include "engine/simulation.hpp"
 #include "engine/spray/droplet_cloud.hpp"
@@ -78,6 +80,7 @@ TEST(SprayScene, KeysAreReadAndBadOnesAreOneLineNamingTheKey) {
       {with("shape", "\"flat_fan\"") + "fan_axis = [0.0, 2.0, 0.0]\n", kDryPowder,
        "spray[0].fan_axis: must be a finite vector not parallel"},
       {with("nozzle_size", "1.0"), kDryPowder, "spray[0].nozzle_size: unknown key"},
+      {with("at_wall", "\"splash\""), kDryPowder, "spray[0].at_wall: unknown value 'splash'"},
       {nozzle(), "[liquid]\nsurface_tension = 0.072\nbridge_volume = 1e-9\n",
        "spray[0]: needs [liquid] with liquid_content"},
       {nozzle(), "", "spray[0]: needs [liquid] with liquid_content"},
@@ -101,21 +104,8 @@ struct SprayRun {
   SprayTotals totals;
 };
 
-/// 600 steps of the sprayed powder, the accounting checked at every step.
-SprayRun run(const std::string& search, int threads) {
-  const int saved = max_threads();
-  set_thread_count(threads);
-  const SceneConfig scene = parse_scene(scene_text(nozzle(), kDryPowder, search), "spray.toml");
-  Simulation sim(scene, random_fill(scene));
-  for (int n = 0; n < 600; ++n) {
-    sim.step();
-    const SprayTotals t = sim.spray()->totals();
-    const LiquidTotals bed = sim.liquid();
-    // The powder starts dry: every drop of the bed's liquid came from the nozzle.
-    EXPECT_NEAR(bed.total(), t.absorbed, 1e-12 * std::max(t.sprayed, 1e-300)) << n;
-    EXPECT_NEAR(t.sprayed, t.airborne + t.absorbed + t.lost, 1e-12 * t.sprayed) << n;
-  }
-  set_thread_count(saved);
+/// The by-id films and positions and the totals of a run.
+SprayRun result_of(const Simulation& sim) {
   SprayRun r;
   const Particles& p = sim.particles();
   r.film.assign(p.size(), 0.0);
@@ -127,6 +117,33 @@ SprayRun run(const std::string& search, int threads) {
   }
   r.totals = sim.spray()->totals();
   return r;
+}
+
+/// The nozzle whose droplets wet the wall.
+std::string wetting_nozzle() {
+  return nozzle("at_wall = \"wet\"\n");
+}
+
+/// `steps` steps of the sprayed powder, the accounting checked at every step.
+SprayRun run(const std::string& search, int threads, const std::string& spray = nozzle(),
+             int steps = 600) {
+  const int saved = max_threads();
+  set_thread_count(threads);
+  const SceneConfig scene = parse_scene(scene_text(spray, kDryPowder, search), "spray.toml");
+  Simulation sim(scene, random_fill(scene));
+  for (int n = 0; n < steps; ++n) {
+    sim.step();
+    const SprayTotals t = sim.spray()->totals();
+    const LiquidTotals bed = sim.liquid();
+    // The powder starts dry: every drop of the bed's liquid came from the nozzle, directly or
+    // from the wall's film.
+    const double scale = 1e-12 * std::max(t.sprayed, 1e-300);
+    EXPECT_NEAR(bed.total(), t.absorbed + t.taken_from_wall, scale) << n;
+    EXPECT_NEAR(t.sprayed, t.airborne + t.absorbed + t.lost + t.walled, scale) << n;
+    EXPECT_NEAR(bed.total() + t.airborne + t.lost + t.on_wall, t.sprayed, scale) << n;
+  }
+  set_thread_count(saved);
+  return result_of(sim);
 }
 
 TEST(SprayScene, LiquidIsAccountedEveryStepAndTheRunIsTheSameForThreadsAndMethods) {
@@ -143,19 +160,65 @@ TEST(SprayScene, LiquidIsAccountedEveryStepAndTheRunIsTheSameForThreadsAndMethod
   }
 }
 
-TEST(SprayScene, CheckpointsAndRestartsAreRefusedWithOneLine) {
+TEST(SprayScene, AWetWallTakesWhatWouldBeLostAndGivesItToTheBedTheSameForThreadsAndMethods) {
+  const SprayRun lost = run("m5", 1);
+  const SprayRun one = run("m5", 1, wetting_nozzle());
+  EXPECT_GT(lost.totals.lost_count, 0u);
+  EXPECT_EQ(one.totals.lost_count, 0u);
+  EXPECT_GT(one.totals.walled_count, 0u);
+  EXPECT_GT(one.totals.taken_from_wall, 0.0);  // the bed touched the wet wall
+  for (const auto& [search, threads] :
+       {std::pair<std::string, int>{"m5", 2}, {"brute", 1}, {"verlet:m2", 2}}) {
+    SCOPED_TRACE(search + ", " + std::to_string(threads) + " threads");
+    const SprayRun other = run(search, threads, wetting_nozzle());
+    EXPECT_EQ(other.film, one.film);
+    EXPECT_EQ(other.position, one.position);
+    EXPECT_EQ(other.totals.on_wall, one.totals.on_wall);
+  }
+}
+
+// A checkpoint in the middle of the spray (droplets in flight, liquid on the wall) continues bit
+// for bit, through the HDF5 file, as the uninterrupted run.
+TEST(SprayScene, ACheckpointCarriesTheDropletsAndTheWallFilmBitForBit) {
+  TempDir dir("spray-checkpoint");
+  for (const std::string& spray : {nozzle(), wetting_nozzle()}) {
+    SCOPED_TRACE(spray);
+    const SceneConfig scene = parse_scene(scene_text(spray), "spray.toml");
+    Simulation whole(scene, random_fill(scene));
+    whole.advance(300);
+    ASSERT_GT(whole.spray()->droplets().size(), 0u);
+    const auto file = dir.path() / "c.h5";
+    write_checkpoint(file, whole.state(), "spray");
+    Simulation restarted(scene, read_checkpoint(file).state);
+    EXPECT_EQ(restarted.spray()->droplets().size(), whole.spray()->droplets().size());
+    whole.advance(300);
+    restarted.advance(300);
+    const SprayRun a = result_of(whole), b = result_of(restarted);
+    EXPECT_EQ(a.film, b.film);
+    EXPECT_EQ(a.position, b.position);
+    EXPECT_EQ(a.totals.emitted_count, b.totals.emitted_count);
+    EXPECT_EQ(a.totals.absorbed_count, b.totals.absorbed_count);
+    EXPECT_EQ(a.totals.on_wall, b.totals.on_wall);
+  }
+  // A scene without the spray does not take a spraying checkpoint, nor the reverse.
+  const SceneConfig dry = parse_scene(scene_text(""), "dry.toml");
+  EXPECT_THROW(Simulation(dry, read_checkpoint(dir.path() / "c.h5").state), InputError);
+  const SceneConfig wet = parse_scene(scene_text(nozzle()), "spray.toml");
+  Simulation plain(dry, random_fill(dry));
+  EXPECT_THROW(Simulation(wet, plain.state()), InputError);
+}
+
+TEST(SprayScene, TheCommandLineCheckpointsAndRestartsASprayingRun) {
   TempDir dir("spray-scene");
-  const std::string scene = dir.write("spray.toml", scene_text(nozzle())).string();
-  const auto r =
-      run_cli("run " + scene + " --steps 10 --checkpoint " + dir.path().string() + "/c.h5");
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("--checkpoint: a scene with [[spray]] cannot be checkpointed"),
-            std::string::npos)
-      << r.output;
-  EXPECT_FALSE(std::filesystem::exists(dir.path() / "c.h5"));
-  const auto ok = run_cli("run " + scene + " --steps 200");
-  ASSERT_EQ(ok.exit_code, 0) << ok.output;
-  EXPECT_NE(ok.output.find("spray             sprayed "), std::string::npos) << ok.output;
+  const std::string scene = dir.write("spray.toml", scene_text(wetting_nozzle())).string();
+  const std::string c = dir.path().string() + "/c.h5";
+  const auto r = run_cli("run " + scene + " --steps 200 --checkpoint " + c);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("spray             sprayed "), std::string::npos) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(c));
+  const auto again = run_cli("run " + scene + " --steps 100 --restart " + c);
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_NE(again.output.find("spray             sprayed "), std::string::npos) << again.output;
 }
 
 // The terms reach every output: the agglomerate table (run's and analyze's of the series, equal)
@@ -179,8 +242,8 @@ TEST(SprayScene, TablesAndSeriesCarryTheSpraysTerms) {
   ASSERT_EQ(rows.size(), 9u);
   for (const AgglomerateStats& row : rows) {
     const SprayLiquid& s = row.spray;
-    const double balance =
-        row.free_liquid + row.bridge_liquid + row.wall_liquid + s.airborne + s.lost - s.sprayed;
+    const double balance = row.free_liquid + row.bridge_liquid + row.wall_liquid + s.airborne +
+                           s.lost + s.on_wall - s.sprayed;
     EXPECT_NEAR(balance, 0.0, 1e-11 * std::max(s.sprayed, 1e-300)) << row.time;
   }
   EXPECT_GT(rows.back().spray.sprayed, 0.0);
@@ -199,7 +262,8 @@ TEST(SprayScene, TablesAndSeriesCarryTheSpraysTerms) {
   r = run_cli("analyze " + d + "s.h5");
   EXPECT_EQ(r.exit_code, 2) << r.output;
   const std::string obs = read_text(d + "obs.csv");
-  EXPECT_NE(obs.find(",sprayed_liquid,airborne_liquid,lost_liquid\n"), std::string::npos);
+  EXPECT_NE(obs.find(",sprayed_liquid,airborne_liquid,lost_liquid,wall_film_liquid\n"),
+            std::string::npos);
 }
 
 }  // namespace
