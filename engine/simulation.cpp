@@ -54,7 +54,7 @@ double smallest_radius(const SceneConfig& scene, const Particles& p) {
 /// Sums and maxima of the ranks' diagnostics (a decomposed run: every rank calls this together).
 void reduce_diagnostics(DomainHooks& domain, Diagnostics& d) {
   for (double* v : {&d.kinetic_energy, &d.rotational_energy, &d.potential_energy, &d.elastic_energy,
-                    &d.liquid_volume}) {
+                    &d.liquid_volume, &d.lab_kinetic_energy}) {
     *v = domain.sum(*v);
   }
   for (std::size_t* v : {&d.outside_drum, &d.non_finite, &d.contacts, &d.wall_contacts, &d.bridges,
@@ -164,6 +164,10 @@ Simulation::Simulation(const SceneConfig& scene, Particles particles, Simulation
   use_search(make_search(scene_.search_method, search_tuning()));
   gravity_ = drum_frame_gravity(scene_.gravity, scene_.drum.tilt);
   omega_ = scene_.drum.omega;
+  if (scene_.drum.orbit.active()) {
+    carrier_angle_ = scene_.drum.orbit.phase;
+    carrier_omega_ = scene_.drum.orbit.omega;
+  }
   validate_particles();
   choose_time_step(options);
   impl_->wall_history.assign(particles_.size(), {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
@@ -223,6 +227,15 @@ Simulation::Simulation(const SceneConfig& scene, SimulationState state)
   omega_ = state.drum_omega;
   drum_angle_ = state.drum_angle;
   steps_ = state.steps;
+  if (!scene_.drum.orbit.active() && (state.carrier_angle != 0.0 || state.carrier_omega != 0.0)) {
+    throw InputError(
+        "restart state: it carries a planetary carrier, the scene has no [drum.orbit]");
+  }
+  if (!std::isfinite(state.carrier_angle) || !std::isfinite(state.carrier_omega)) {
+    throw InputError("restart state: the carrier's angle and rate must be finite");
+  }
+  carrier_angle_ = state.carrier_angle;
+  carrier_omega_ = state.carrier_omega;
   if (!scene_.sprays.empty()) {
     make_spray();
     impl_->spray->restore(std::move(state.spray));
@@ -273,6 +286,8 @@ void Simulation::state_into(SimulationState& s) const {
   s.dt = dt_;
   s.drum_omega = omega_;
   s.drum_angle = drum_angle_;
+  s.carrier_angle = carrier_angle_;
+  s.carrier_omega = carrier_omega_;
   s.steps = steps_;
   s.search_method = scene_.search_method;
   const ContactList& c = impl_->contacts;
@@ -519,7 +534,28 @@ void Simulation::replay_bridge_events() {
                                    impl_->bridge_replay);
 }
 
-void Simulation::kick(double h) {
+Vec3 Simulation::body_acceleration_at(double angle) const {
+  const DrumOrbit& o = scene_.drum.orbit;
+  if (!o.active()) return gravity_;
+  const double w2r = carrier_omega_ * carrier_omega_ * o.radius;
+  return gravity_ + Vec3(w2r * std::cos(angle), w2r * std::sin(angle), 0.0);
+}
+
+Vec3 Simulation::carrier_offset() const {
+  const double r = scene_.drum.orbit.radius;
+  return Vec3(r * std::cos(carrier_angle_), r * std::sin(carrier_angle_), 0.0);
+}
+
+Vec3 Simulation::carrier_velocity() const {
+  const double v = carrier_omega_ * scene_.drum.orbit.radius;
+  return Vec3(-v * std::sin(carrier_angle_), v * std::cos(carrier_angle_), 0.0);
+}
+
+void Simulation::set_carrier_running(bool running) {
+  carrier_omega_ = running && scene_.drum.orbit.active() ? scene_.drum.orbit.omega : 0.0;
+}
+
+void Simulation::kick(double h, const Vec3& g) {
   Particles& p = particles_;
   const auto n = static_cast<std::int64_t>(p.size());
   const bool rotation = impl_->model.uses_rotation();
@@ -527,12 +563,12 @@ void Simulation::kick(double h) {
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < n; ++i) {
     if (ghost != nullptr && ghost[i] != 0) continue;  // integrated by its owner
-    p.velocity[i] += h * (p.inv_mass[i] * p.force[i] + gravity_);
+    p.velocity[i] += h * (p.inv_mass[i] * p.force[i] + g);
     if (rotation) p.omega[i] += (h * p.inv_inertia[i]) * p.torque[i];
   }
 }
 
-double Simulation::kick_drift(double h) {
+double Simulation::kick_drift(double h, const Vec3& g) {
   // The half kick and the drift in one pass over the particles (each particle's update reads only
   // its own data), which also clears the forces for the coming evaluation: three passes in one.
   Particles& p = particles_;
@@ -550,7 +586,7 @@ double Simulation::kick_drift(double h) {
       p.torque[i].setZero();
       continue;
     }
-    p.velocity[i] += h * (p.inv_mass[i] * p.force[i] + gravity_);
+    p.velocity[i] += h * (p.inv_mass[i] * p.force[i] + g);
     if (rotation) p.omega[i] += (h * p.inv_inertia[i]) * p.torque[i];
     p.force[i].setZero();
     p.torque[i].setZero();
@@ -625,12 +661,13 @@ void Simulation::step() {
     ++work_.reorders;
   }
   const auto t0 = Clock::now();
-  const double moved = kick_drift(0.5 * dt_);
+  // The body acceleration at the step's start and at its end (the carrier turns in between).
+  const double moved = kick_drift(0.5 * dt_, body_acceleration_at(carrier_angle_));
   if (domain_ != nullptr) domain_->refresh_ghosts(*this, moved);
   const auto t1 = Clock::now();
   compute_forces(dt_, true);
   const auto t2 = Clock::now();
-  kick(0.5 * dt_);
+  kick(0.5 * dt_, body_acceleration_at(carrier_angle_ + carrier_omega_ * dt_));
   const auto t3 = Clock::now();
   timers_.integration += seconds_between(t0, t1) + seconds_between(t2, t3);
   work_.particles += particles_.size();
@@ -644,6 +681,7 @@ void Simulation::step() {
   }
   time_ += dt_;
   drum_angle_ += omega_ * dt_;
+  carrier_angle_ += carrier_omega_ * dt_;
   ++steps_;
 }
 
@@ -698,10 +736,12 @@ Diagnostics Simulation::diagnostics() const {
   const ContactModel& model = impl_->model;
   const double tol = kOutsideTolerance * drum.radius();
   Diagnostics d;
+  const Vec3 carrier = carrier_velocity();
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (is_ghost(i)) continue;  // its owner counts it
     const Vec3& x = p.position[i];
     d.kinetic_energy += 0.5 * p.mass[i] * p.velocity[i].squaredNorm();
+    d.lab_kinetic_energy += 0.5 * p.mass[i] * (p.velocity[i] + carrier).squaredNorm();
     d.rotational_energy += 0.5 * p.omega[i].squaredNorm() / p.inv_inertia[i];
     d.potential_energy -= p.mass[i] * gravity_.dot(x);
     if (!x.allFinite() || !p.velocity[i].allFinite() || !p.omega[i].allFinite()) {

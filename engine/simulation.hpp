@@ -45,6 +45,9 @@ struct Diagnostics {
   double kinetic_energy = 0.0;     ///< translational, J
   double rotational_energy = 0.0;  ///< J
   double potential_energy = 0.0;   ///< gravitational, relative to the drum axis, J
+  /// Translational kinetic energy in the lab frame (J): with [drum.orbit] the particles' speeds
+  /// plus the drum centre's; else equal to kinetic_energy.
+  double lab_kinetic_energy = 0.0;
   double elastic_energy = 0.0;     ///< stored in normal contacts, J
   double max_overlap_ratio = 0.0;  ///< max overlap / smaller radius over all contacts
   OverlapSite max_overlap_site;    ///< the contact with that overlap (if any)
@@ -138,6 +141,16 @@ class Simulation {
   std::uint64_t steps() const { return steps_; }
   /// Gravity in the drum frame (the lab gravity rotated by the tilt).
   const Vec3& gravity() const { return gravity_; }
+  /// A planetary drum ([drum.orbit]): the carrier's angle (rad) and rate (rad/s, 0 while it
+  /// stands); the drum centre's position c and velocity relative to the central axis (m, m/s);
+  /// the acceleration every particle feels now, gravity + Omega^2 c (gravity without an orbit).
+  double carrier_angle() const { return carrier_angle_; }
+  double carrier_omega() const { return carrier_omega_; }
+  Vec3 carrier_offset() const;
+  Vec3 carrier_velocity() const;
+  Vec3 body_acceleration() const { return body_acceleration_at(carrier_angle_); }
+  /// Starts (the scene's Omega) or stops (0) the carrier, as set_drum_omega does the drum.
+  void set_carrier_running(bool running);
 
   /// Everything the next step depends on (for checkpoints); see SimulationState.
   SimulationState state() const;
@@ -197,10 +210,14 @@ class Simulation {
   void use_search(std::unique_ptr<ContactSearch> search);
   /// Applies impl_->reorder's order and new_index to the particles, histories and lists.
   void apply_reorder();
-  void kick(double h);
-  /// kick(h), then positions advanced by dt (the forces are cleared on the way); returns a bound
-  /// on how far any particle moved (over all ranks with a domain; infinite if not finite).
-  double kick_drift(double h);
+  /// v += h (F / m + g) for every owned particle, g the body acceleration of that instant.
+  void kick(double h, const Vec3& g);
+  /// kick(h, g), then positions advanced by dt (the forces are cleared on the way); returns a
+  /// bound on how far any particle moved (over all ranks with a domain; infinite if not finite).
+  double kick_drift(double h, const Vec3& g);
+  /// gravity + Omega^2 c for the carrier at angle `angle` (gravity alone without an orbit): the
+  /// frame that translates with the drum's centre is accelerated by c'' = -Omega^2 c.
+  Vec3 body_acceleration_at(double angle) const;
 
   SceneConfig scene_;
   Particles particles_;
@@ -210,6 +227,8 @@ class Simulation {
   StepTimers timers_;
   StepWork work_;
   Vec3 gravity_ = Vec3::Zero();
+  double carrier_angle_ = 0.0;  ///< rad ([drum.orbit])
+  double carrier_omega_ = 0.0;  ///< rad/s, the carrier's current rate
   double time_ = 0.0;
   double dt_ = 0.0;
   double rayleigh_time_ = 0.0;

@@ -20,6 +20,10 @@ struct SimulationState {
   double dt = 0.0;          ///< s
   double drum_omega = 0.0;  ///< rad/s
   double drum_angle = 0.0;  ///< rad
+  /// A planetary drum's carrier ([drum.orbit]): its angle (rad) and its current rate (rad/s, 0
+  /// while it stands, as in settling); both 0 without an orbit.
+  double carrier_angle = 0.0;
+  double carrier_omega = 0.0;
   std::uint64_t steps = 0;
   std::string search_method;
   /// Contact list in CSR form (see ContactList): rows = particles + 1 entries, or empty.

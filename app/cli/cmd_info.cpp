@@ -10,6 +10,7 @@
 #include "engine/contact/contact_model.hpp"
 #include "engine/contact/hertz_mindlin.hpp"
 #include "engine/contact/sjkr_cohesion.hpp"
+#include "engine/drum_orbit.hpp"
 #include "engine/fill/file_fill.hpp"
 #include "engine/fill/paper_packing.hpp"
 #include "engine/fill/random_fill.hpp"
@@ -123,7 +124,13 @@ double print_time_scales(const SceneConfig& scene, std::size_t total) {
       dt, dt / t_r, dt / limit.seconds(), limit.factor, limit.unit,
       dt > limit.seconds() ? "  (ABOVE it: refused without --unsafe-dt)" : "");
   const double fr = froude_number(scene);
-  fmt::print("Froude number     {:.4g} -> {} regime expected\n", fr, regime_for_froude(fr));
+  if (scene.drum.orbit.active()) {
+    fmt::print(
+        "Froude number     {:.4g} against gravity alone (the carrier's field: `orbit` below)\n",
+        fr);
+  } else {
+    fmt::print("Froude number     {:.4g} -> {} regime expected\n", fr, regime_for_froude(fr));
+  }
   if (scene.drum.omega != 0.0) {
     const double rev = 2.0 * std::numbers::pi / std::abs(scene.drum.omega);
     fmt::print("one revolution    {:.4g} s = {:.0f} steps = {:.3g} particle-steps\n", rev, rev / dt,
@@ -226,6 +233,31 @@ void print_sprays(const SceneConfig& scene) {
   }
 }
 
+/// A planetary drum: the carrier's field against gravity, the drum's speed ratio against the
+/// critical ratios of the largest and smallest particles, and the regime they predict.
+void print_orbit(const SceneConfig& scene) {
+  const DrumConfig& d = scene.drum;
+  const DrumOrbit& o = d.orbit;
+  if (!o.active()) return;
+  const double field = carrier_field(o);
+  const double g = scene.gravity.norm();
+  const double r = 0.5 * d.diameter, r_min = scene.min_radius(), r_max = scene.max_radius();
+  fmt::print(
+      "orbit             carrier R_o = {:g} m at Omega = {:.4g} rad/s ({:.4g} rpm): field "
+      "Omega^2 R_o = {:.4g} m/s^2 = {:.3g} g, turning with the arm\n",
+      o.radius, o.omega, o.omega * 30.0 / std::numbers::pi, field, g > 0.0 ? field / g : 0.0);
+  fmt::print(
+      "                  drum omega = {:.4g} rad/s, speed ratio k = omega / Omega - 1 = {:.4g} "
+      "(|1 + k| = {:.4g})\n",
+      d.omega, speed_ratio(d), std::abs(1.0 + speed_ratio(d)));
+  fmt::print(
+      "                  critical |1 + k| = sqrt(R_o / (R - r)): {:.4g} for the largest (r = {:g} "
+      "m), {:.4g} for the smallest (r = {:g} m)\n",
+      critical_speed_ratio(o, r - r_max), r_max, critical_speed_ratio(o, r - r_min), r_min);
+  fmt::print("                  predicted: {}{}\n", regime_text(predicted_regime(d, r_min, r_max)),
+             g > 0.1 * field ? " (gravity is not small against the field: a rough guide)" : "");
+}
+
 void print_info(const std::string& file) {
   const SceneConfig scene = load_scene(file);
   const std::size_t total = print_particles_and_drum(scene, file);
@@ -234,6 +266,7 @@ void print_info(const std::string& file) {
   print_search_method(scene, dt);
   print_cohesion(scene);
   print_sprays(scene);
+  print_orbit(scene);
   if (scene.dynamic()) print_features(scene);
   if (!scene.dynamic()) fmt::print("note              static packing: use `drumlab paper-table`\n");
 }

@@ -71,6 +71,11 @@ RunSummary run_summary(const Simulation& sim, const PhaseStats& phase, std::uint
   s.search_detail = sim.search().report();
   s.diagnostics = sim.diagnostics();
   if (const DropletCloud* spray = sim.spray()) s.spray = spray->totals();
+  if (sim.scene().drum.orbit.active()) {
+    s.carrier_field = (sim.body_acceleration() - sim.gravity()).norm();
+    const double g = sim.gravity().norm();
+    s.carrier_field_in_g = g > 0.0 ? *s.carrier_field / g : 0.0;
+  }
   return s;
 }
 
@@ -121,6 +126,12 @@ void print_summary(const RunSummary& s) {
       "energy            kinetic {:.5g} J, rotational {:.5g} J, potential {:.5g} J, elastic {:.5g} "
       "J\n",
       d.kinetic_energy, d.rotational_energy, d.potential_energy, d.elastic_energy);
+  if (s.carrier_field) {
+    fmt::print(
+        "carrier           field {:.4g} m/s^2 = {:.3g} g; kinetic energy in the lab frame {:.5g} J "
+        "(above: in the frame that moves with the drum's centre)\n",
+        *s.carrier_field, s.carrier_field_in_g, d.lab_kinetic_energy);
+  }
   fmt::print(
       "health            max overlap/radius {:.4f}, outside drum {}, non-finite {}, contacts {} + "
       "{} wall\n",

@@ -51,6 +51,10 @@ struct RunSummary {
   std::string method, method_description, search_detail;
   Diagnostics diagnostics;           ///< at the end of the phase
   std::optional<SprayTotals> spray;  ///< a scene with [[spray]]: its liquid accounting
+  /// A planetary drum ([drum.orbit]): the carrier's field now, Omega^2 R_o (m/s^2), and its ratio
+  /// to gravity.
+  std::optional<double> carrier_field;
+  double carrier_field_in_g = 0.0;
 };
 
 /// The summary of `phase` of `sim` (`particles`: of the whole run). Calls sim.diagnostics(),

@@ -249,7 +249,7 @@ DrumObservables measure_drum(const Particles& p, const DrumGeometry& drum,
 DrumObservables measure_drum(const Simulation& sim, const ObservableOptions& options) {
   const auto& d = sim.scene().drum;
   DrumGeometry g;
-  g.gravity = sim.gravity();
+  g.gravity = sim.body_acceleration();  // gravity, plus a planetary carrier's field
   g.omega = sim.drum_omega();
   g.radius = 0.5 * d.diameter;
   if (d.ends == DrumEnds::periodic) g.period_z = d.depth;

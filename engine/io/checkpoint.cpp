@@ -183,6 +183,10 @@ void write_checkpoint_datasets(hid_t f, const SimulationState& state, const std:
   h5::write_attribute(f, "dt", state.dt);
   h5::write_attribute(f, "drum_omega", state.drum_omega);
   h5::write_attribute(f, "drum_angle", state.drum_angle);
+  if (state.carrier_angle != 0.0 || state.carrier_omega != 0.0) {
+    h5::write_attribute(f, "carrier_angle", state.carrier_angle);
+    h5::write_attribute(f, "carrier_omega", state.carrier_omega);
+  }
   h5::write_attribute(f, "steps", state.steps);
   write_particles(f, state.particles, rows.particles);
   write_contacts(f, state, rows);
@@ -216,6 +220,10 @@ Checkpoint read_rows(const std::filesystem::path& file, const h5::RowRange& rang
   s.dt = h5::read_double_attribute(f.get(), "dt");
   s.drum_omega = h5::read_double_attribute(f.get(), "drum_omega");
   s.drum_angle = h5::read_double_attribute(f.get(), "drum_angle");
+  if (H5Aexists(f.get(), "carrier_angle") > 0) {
+    s.carrier_angle = h5::read_double_attribute(f.get(), "carrier_angle");
+    s.carrier_omega = h5::read_double_attribute(f.get(), "carrier_omega");
+  }
   s.steps = h5::read_u64_attribute(f.get(), "steps");
   {
     h5::Handle g = h5::open_group(f.get(), "particles");

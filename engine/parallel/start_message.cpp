@@ -50,7 +50,10 @@ Box get_box(std::span<const std::byte> in, std::size_t& pos) {
 
 std::vector<std::byte> pack_start_header(const SimulationState& full, const Decomposition& d) {
   std::vector<std::byte> out;
-  for (const double v : {full.time, full.dt, full.drum_omega, full.drum_angle}) append(out, v);
+  for (const double v : {full.time, full.dt, full.drum_omega, full.drum_angle, full.carrier_angle,
+                         full.carrier_omega}) {
+    append(out, v);
+  }
   append(out, full.steps);
   put_string(out, full.search_method);
   append(out, static_cast<std::uint64_t>(full.contact_state_size));
@@ -82,7 +85,10 @@ StartHeader unpack_start_header(std::span<const std::byte> in) {
   StartHeader h;
   std::size_t pos = 0;
   SimulationState& s = h.state;
-  for (double* v : {&s.time, &s.dt, &s.drum_omega, &s.drum_angle}) *v = get_bytes<double>(in, pos);
+  for (double* v :
+       {&s.time, &s.dt, &s.drum_omega, &s.drum_angle, &s.carrier_angle, &s.carrier_omega}) {
+    *v = get_bytes<double>(in, pos);
+  }
   s.steps = get_bytes<std::uint64_t>(in, pos);
   s.search_method = get_string(in, pos);
   s.contact_state_size = static_cast<std::size_t>(get_bytes<std::uint64_t>(in, pos));

@@ -62,6 +62,24 @@ struct ContactConfig {
 
 enum class DrumEnds { caps, periodic };
 
+/// [drum.orbit]: a planetary granulator's carrier. The drum's axis (z) orbits a central axis
+/// parallel to it at distance `radius`, at the carrier's rate `omega` (rad/s, positive about +z).
+/// The engine works in the frame that translates with the drum's centre c(t) without turning:
+/// every particle feels the uniform extra acceleration -c''(t) = omega^2 c(t) (c from the central
+/// axis to the drum's centre), and the drum's wall turns in that frame at [drum] omega, its
+/// absolute rate. `speed_ratio` k, when given, sets that rate as omega_drum = omega (1 + k): k is
+/// the drum's rate relative to the carrier arm over the arm's rate (the planetary-mill convention;
+/// k = -1: the drum does not turn in the translating frame). Inactive with radius 0.
+struct DrumOrbit {
+  double radius = 0.0;                ///< R_o, m; 0: no orbit
+  double omega = 0.0;                 ///< Omega, rad/s
+  double phase = 0.0;                 ///< the carrier's angle at t = 0, rad (c along +x at 0)
+  std::optional<double> speed_ratio;  ///< k (the scene gave [drum.orbit] speed_ratio)
+
+  bool active() const { return radius != 0.0; }
+  friend bool operator==(const DrumOrbit&, const DrumOrbit&) = default;
+};
+
 /// The drum in its own frame: axis along z, centre line through x = y = 0, ends at z = 0 and
 /// z = depth. A tilted drum is simulated in this frame with gravity rotated accordingly.
 struct DrumConfig {
@@ -70,6 +88,7 @@ struct DrumConfig {
   double omega = 1.0;     ///< angular velocity about +z, rad/s
   double tilt = 0.0;      ///< tilt of the axis from horizontal, rad (axis descends towards +z)
   DrumEnds ends = DrumEnds::caps;
+  DrumOrbit orbit;  ///< [drum.orbit] (planetary); inactive by default
 
   friend bool operator==(const DrumConfig&, const DrumConfig&) = default;
 };

@@ -173,6 +173,13 @@ SceneFeatures scene_features(const SceneConfig& scene) {
   f.list.push_back(term("end-cap contacts", f.end_caps,
                         f.end_caps ? "drum.ends = caps: mantle and both caps tested per particle"
                                    : "drum.ends = periodic: only the mantle is tested"));
+  const DrumOrbit& orbit = scene.drum.orbit;
+  f.list.push_back(term("planetary carrier field", orbit.active(),
+                        orbit.active()
+                            ? fmt::format("[drum.orbit]: Omega^2 R_o = {:.4g} m/s^2 added to "
+                                          "gravity, turning with the arm (two cosines a step)",
+                                          orbit.omega * orbit.omega * orbit.radius)
+                            : std::string("no [drum.orbit]: constant gravity")));
   f.list.push_back(grid_feature(scene, f));
   f.list.push_back({"output writers / VTK objects", FeatureUse::command_line,
                     "not in the scene: created only for --vtu/--h5/--checkpoint or render; "

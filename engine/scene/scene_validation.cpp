@@ -115,6 +115,30 @@ Problem check_classes(const SceneConfig& s) {
   return std::nullopt;
 }
 
+Problem check_orbit(const SceneConfig& s) {
+  const DrumOrbit& o = s.drum.orbit;
+  if (!o.active()) return std::nullopt;
+  if (auto p = positive("drum.orbit.radius", o.radius, " m")) return p;
+  if (!std::isfinite(o.omega) || o.omega == 0.0) {
+    return fail("drum.orbit.omega",
+                fmt::format("must be a finite, non-zero number (rad/s), got {}", o.omega));
+  }
+  if (!std::isfinite(o.phase)) return fail("drum.orbit.phase_deg", "must be a finite number");
+  if (o.speed_ratio && !std::isfinite(*o.speed_ratio)) {
+    return fail("drum.orbit.speed_ratio", "must be a finite number");
+  }
+  if (s.drum.tilt != 0.0) {
+    return fail("drum.orbit",
+                "only with an untilted drum (tilt_deg = 0; give gravity any direction instead)");
+  }
+  if (!s.sprays.empty()) {
+    return fail("drum.orbit",
+                "not with [[spray]] yet (droplets fly under a constant gravity, the carrier's "
+                "field turns)");
+  }
+  return std::nullopt;
+}
+
 Problem check_drum(const SceneConfig& s) {
   const DrumConfig& d = s.drum;
   const double rmax = s.max_radius();
@@ -135,7 +159,7 @@ Problem check_drum(const SceneConfig& s) {
     return fail("drum.tilt_deg",
                 fmt::format("must be in [0, 90) degrees, got {}", tilt_in_degrees(d.tilt)));
   }
-  return std::nullopt;
+  return check_orbit(s);
 }
 
 Problem check_material(std::string_view table, const Material& m, bool with_density) {

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -78,11 +79,19 @@ fs::path relative_path(const fs::path& file, const fs::path& folder) {
 }
 
 toml::table drum_table(const DrumConfig& d) {
-  return toml::table{{"diameter", d.diameter},
-                     {"depth", d.depth},
-                     {"omega", d.omega},
-                     {"tilt_deg", tilt_in_degrees(d.tilt)},
-                     {"ends", d.ends == DrumEnds::periodic ? "periodic" : "caps"}};
+  toml::table t{{"diameter", d.diameter},
+                {"depth", d.depth},
+                {"tilt_deg", tilt_in_degrees(d.tilt)},
+                {"ends", d.ends == DrumEnds::periodic ? "periodic" : "caps"}};
+  const DrumOrbit& o = d.orbit;
+  if (!o.speed_ratio) t.insert("omega", d.omega);
+  if (o.active() || o.speed_ratio) {
+    toml::table orbit{{"radius", o.radius}, {"omega", o.omega}};
+    if (o.phase != 0.0) orbit.insert("phase_deg", tilt_in_degrees(o.phase));
+    if (o.speed_ratio) orbit.insert("speed_ratio", *o.speed_ratio);
+    t.insert("orbit", std::move(orbit));
+  }
+  return t;
 }
 
 toml::array particles_array(const std::vector<ParticleClass>& classes) {

@@ -157,9 +157,12 @@ std::uint64_t RunSession::advance_chunked(std::uint64_t n, std::span<const std::
 void RunSession::settle(const SessionProgress& progress) {
   const std::uint64_t steps = settle_steps();
   if (steps == 0) return;
+  // The drum and a planetary carrier stand while the bed settles.
   sim_->set_drum_omega(0.0);
+  sim_->set_carrier_running(false);
   advance_chunked(steps, {}, {}, progress);
   sim_->set_drum_omega(scene_.drum.omega);
+  sim_->set_carrier_running(true);
 }
 
 std::uint64_t RunSession::advance(std::uint64_t n, const SessionProgress& progress) {

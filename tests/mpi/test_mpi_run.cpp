@@ -83,6 +83,7 @@ void expect_same_state(const SimulationState& a, const SimulationState& b, const
   ASSERT_EQ(a.wall_history.size(), b.wall_history.size());
   EXPECT_TRUE(same_bits(a.wall_history, b.wall_history));
   EXPECT_TRUE(same_bits(a.time, b.time));
+  EXPECT_TRUE(same_bits(a.carrier_angle, b.carrier_angle));
   EXPECT_EQ(a.steps, b.steps);
 }
 
@@ -123,6 +124,13 @@ TEST_F(MpiRun, PeriodicDrumIsBitIdenticalOnTwoAndThreeRanks) {
 
 TEST_F(MpiRun, TiltedDrumIsBitIdenticalOnTwoAndFourRanks) {
   same_on_ranks(scene_text("verlet:m2", "\ntilt_deg = 20.0", ""), {2, 4}, 0.0, "time");
+}
+
+// A planetary carrier ([drum.orbit], 5.4 g turning with the arm) on the ranks gives the serial
+// bits.
+TEST_F(MpiRun, PlanetaryDrumIsBitIdenticalOnTwoRanks) {
+  same_on_ranks(scene_text("verlet:m2", "\n[drum.orbit]\nradius = 0.3\nomega = 13.0", ""), {2}, 0.0,
+                "count");
 }
 
 TEST_F(MpiRun, CheckpointsRestartAcrossRankCounts) {

@@ -276,15 +276,17 @@ TEST(SceneWriter, SeedBeyondTomlIntegersIsRefusedNamingTheKey) {
 /// The number of fields of each config struct, checked by a structured binding: adding a field
 /// makes this fail to compile. Then give the field a setter in `field_setters()`, write it in
 /// engine/scene/scene_writer.cpp and raise its count here.
-constexpr int kSceneFields = 17, kDrumFields = 5, kClassFields = 8, kMaterialFields = 6,
-              kContactFields = 9, kLiquidFields = 16, kCohesionFields = 2, kSprayFields = 12,
-              kFillFields = 7, kTimeFields = 5, kPerformanceFields = 2, kOutputFields = 2;
+constexpr int kSceneFields = 17, kDrumFields = 6, kOrbitFields = 4, kClassFields = 8,
+              kMaterialFields = 6, kContactFields = 9, kLiquidFields = 16, kCohesionFields = 2,
+              kSprayFields = 12, kFillFields = 7, kTimeFields = 5, kPerformanceFields = 2,
+              kOutputFields = 2;
 
 [[maybe_unused]] void field_counts(const SceneConfig& s) {
   [[maybe_unused]] const auto& [name, source, description, gravity, drum, classes, material, wall,
                                 contact, liquid, cohesion, sprays, fill, time, search, performance,
                                 output] = s;
-  [[maybe_unused]] const auto& [diameter, depth, omega, tilt, ends] = s.drum;
+  [[maybe_unused]] const auto& [diameter, depth, omega, tilt, ends, orbit] = s.drum;
+  [[maybe_unused]] const auto& [orbit_radius, orbit_omega, phase, speed_ratio] = s.drum.orbit;
   [[maybe_unused]] const auto& [class_name, radius, class_fraction, distribution, radius_sigma,
                                 truncate, radii, shares, class_liquid] = s.classes.front();
   [[maybe_unused]] const auto& [density, youngs, poisson, restitution, friction, rolling] =
@@ -363,6 +365,29 @@ std::vector<FieldSetter> field_setters(const fs::path& other_csv) {
       {"drum.omega", B::every_key, [](SceneConfig& s) { s.drum.omega = 0.1 + 0.2; }},
       {"drum.tilt", B::every_key, [](SceneConfig& s) { s.drum.tilt = tilt_from_degrees(45.0); }},
       {"drum.ends", B::every_key, [](SceneConfig& s) { s.drum.ends = DrumEnds::caps; }},
+      {"drum.orbit.radius", B::every_key,
+       [](SceneConfig& s) {
+         s.drum.tilt = 0.0;
+         s.drum.orbit.radius = 0.4;
+         s.drum.orbit.omega = 3.0;
+       }},
+      {"drum.orbit.omega", B::every_key,
+       [](SceneConfig& s) {
+         s.drum.tilt = 0.0;
+         s.drum.orbit.radius = 0.3;
+         s.drum.orbit.omega = -2.5;
+       }},
+      {"drum.orbit.phase", B::every_key,
+       [](SceneConfig& s) {
+         s.drum.tilt = 0.0;
+         s.drum.orbit = {0.3, 3.0, tilt_from_degrees(40.0), std::nullopt};
+       }},
+      {"drum.orbit.speed_ratio", B::every_key,
+       [](SceneConfig& s) {
+         s.drum.tilt = 0.0;
+         s.drum.orbit = {0.3, 3.0, 0.0, -2.5};
+         s.drum.omega = 3.0 * (1.0 - 2.5);
+       }},
       {"classes.name", B::every_key, [](SceneConfig& s) { s.classes[0].name = "tiny"; }},
       {"classes.radius", B::every_key, [](SceneConfig& s) { s.classes[0].radius = 0.004; }},
       {"classes.distribution", B::every_key,
@@ -579,7 +604,7 @@ TEST(SceneWriter, EveryFieldChangesTheTextAndRoundTrips) {
                          [&](const FieldSetter& s) { return s.field.starts_with(prefix); });
   };
   EXPECT_EQ(count("scene."), kSceneFields - 13);  // name, description, gravity, search
-  EXPECT_EQ(count("drum."), kDrumFields);
+  EXPECT_EQ(count("drum."), kDrumFields - 1 + kOrbitFields);
   EXPECT_EQ(count("classes."), kClassFields);
   EXPECT_EQ(count("material."), kMaterialFields);
   EXPECT_EQ(count("wall."), kMaterialFields - 1);

@@ -168,6 +168,8 @@ std::unique_ptr<Simulation> MpiDomain::distribute_shares(const SceneConfig& scen
   scalars.dt = share.dt;
   scalars.drum_omega = share.drum_omega;
   scalars.drum_angle = share.drum_angle;
+  scalars.carrier_angle = share.carrier_angle;
+  scalars.carrier_omega = share.carrier_omega;
   scalars.steps = share.steps;
   scalars.search_method = share.search_method;
   scalars.contact_state_size = share.contact_state_size;
