@@ -17,9 +17,17 @@ void VtuSeriesWriter::write_frame(const Simulation& sim) {
     files.emplace_back(stem, series_.file_name(stem, ext));
     write_vtk_xml(data, directory() / files.back().second);
   };
-  write("particles", "vtu", to_vtk(paraview::particles(sim, options_.granule)));
-  write("drum", "vtp", to_vtk(paraview::drum(sim)));
-  if (options_.contacts) write("contacts", "vtp", to_vtk(paraview::contacts(sim)));
+  const paraview::FrameMotion motion = paraview::frame_motion(sim, options_.frame);
+  const auto moved = [&](paraview::DataSet d) {
+    paraview::to_frame(d, motion);
+    return d;
+  };
+  write("particles", "vtu", to_vtk(moved(paraview::particles(sim, options_.granule))));
+  write("drum", "vtp", to_vtk(moved(paraview::drum(sim))));
+  if (options_.contacts) write("contacts", "vtp", to_vtk(moved(paraview::contacts(sim))));
+  if (sim.scene().drum.orbit.active()) {
+    write("carrier", "vtp", to_vtk(paraview::carrier_arm(sim, options_.frame)));
+  }
   if (sim.spray() != nullptr) {
     write("droplets", "vtu", to_vtk(paraview::droplets(sim)));
     write("nozzles", "vtp",

@@ -7,6 +7,8 @@
 //   bonds_NNNNNN.vtp       the bond graph of an HDF5 series frame (drumlab convert)
 //   droplets_NNNNNN.vtu    the airborne binder droplets, nozzles_NNNNNN.vtp the nozzles and
 //                          their cones or fans (a scene with [[spray]])
+//   carrier_NNNNNN.vtp     a planetary drum's central axis and arm ([drum.orbit])
+// in the drum frame, or in the lab or carrier frame (VtuSeriesOptions::frame).
 // and rewrites particles.pvd, drum.pvd (, contacts.pvd, grid.pvd) so each is always a valid series
 // of the frames written so far. Every file goes through a temporary name and a rename.
 #include <cstdint>
@@ -16,6 +18,7 @@
 
 #include "engine/analysis/granule_criterion.hpp"
 #include "engine/io/paraview/pvd_series.hpp"
+#include "engine/io/paraview/view_frame.hpp"
 #include "engine/io/series_frame.hpp"
 #include "engine/simulation.hpp"
 
@@ -25,6 +28,8 @@ struct VtuSeriesOptions {
   bool contacts = false;     ///< contacts_NNNNNN.vtp + contacts.pvd
   bool grid = false;         ///< grid_NNNNNN.vti + grid.pvd
   GranuleCriterion granule;  ///< criterion of agglomerate_id (granule_options), s
+  /// The frame the datasets are written in (engine/io/paraview/view_frame.hpp; --frame).
+  paraview::ViewFrame frame = paraview::ViewFrame::drum;
 };
 
 class VtuSeriesWriter {

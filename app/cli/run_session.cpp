@@ -11,6 +11,7 @@ namespace drumlab::cli {
 void run_session(const RunOptions& opt, std::span<FrameObserver* const> extra_observers) {
   const SceneConfig scene = load_dynamic_scene(opt.scene);
   check_run_options(opt, !extra_observers.empty());
+  check_run_options_for(opt, scene);
   set_thread_count(opt.threads);
   const std::vector<std::unique_ptr<FrameObserver>> outputs = make_output_observers(opt);
   std::vector<FrameObserver*> observers(extra_observers.begin(), extra_observers.end());

@@ -159,8 +159,10 @@ class VtuWriter final : public FrameObserver {
  public:
   VtuWriter(MpiDomain& domain, const cli::RunOptions& opt, OutputTimes& times)
       : domain_(domain), times_(times) {
-    h5::on_root(root(),
-                [&] { series_.emplace(opt.vtu_dir, opt.contacts_vtk, opt.granule.criterion); });
+    h5::on_root(root(), [&] {
+      series_.emplace(opt.vtu_dir, opt.contacts_vtk, opt.granule.criterion,
+                      paraview::parse_view_frame(opt.vtu_frame, "--frame"));
+    });
   }
   void on_frame(const Simulation& sim, std::uint64_t) override {
     const Timed t(times_.frame_seconds);

@@ -169,6 +169,7 @@ void run_mpi(MPI_Comm comm, const MpiRunOptions& o) {
   SceneConfig scene;  // every rank reads the file: one that some rank cannot read stops all
   io_comm.agree([&] { scene = load_dynamic_scene(opt.scene); });
   cli::check_run_options(opt);
+  cli::check_run_options_for(opt, scene);
   const SessionOptions session_options = cli::session_options(opt);
   MpiDomain domain(comm, domain_options(scene_with_options(scene, session_options), o));
   OutputTimes written;

@@ -9,18 +9,25 @@
 namespace drumlab::cli {
 
 PlainVtuSeries::PlainVtuSeries(const std::string& directory, bool contacts,
-                               const GranuleCriterion& granule)
-    : series_(directory), contacts_(contacts), granule_(granule) {}
+                               const GranuleCriterion& granule, paraview::ViewFrame frame)
+    : series_(directory), contacts_(contacts), granule_(granule), frame_(frame) {}
 
 void PlainVtuSeries::write_frame(const Simulation& whole) {
   std::vector<std::pair<std::string, std::string>> files;
-  const auto write = [&](const char* stem, const char* ext, const paraview::DataSet& d) {
+  const paraview::FrameMotion motion = paraview::frame_motion(whole, frame_);
+  const auto write = [&](const char* stem, const char* ext, paraview::DataSet d) {
+    paraview::to_frame(d, motion);
     files.emplace_back(stem, series_.file_name(stem, ext));
     paraview::write_xml_file(d, directory() / files.back().second);
   };
   write("particles", "vtu", paraview::particles(whole, granule_));
   write("drum", "vtp", paraview::drum(whole));
   if (contacts_) write("contacts", "vtp", paraview::contacts(whole));
+  if (whole.scene().drum.orbit.active()) {
+    files.emplace_back("carrier", series_.file_name("carrier", "vtp"));
+    paraview::write_xml_file(paraview::carrier_arm(whole, frame_),
+                             directory() / files.back().second);
+  }
   if (whole.spray() != nullptr) {
     write("droplets", "vtu", paraview::droplets(whole));
     write("nozzles", "vtp", paraview::nozzles(whole.scene().sprays, whole.scene().drum.diameter));

@@ -10,6 +10,7 @@
 
 #include "engine/analysis/granule_criterion.hpp"
 #include "engine/io/paraview/pvd_series.hpp"
+#include "engine/io/paraview/view_frame.hpp"
 #include "engine/simulation.hpp"
 
 namespace drumlab::cli {
@@ -17,7 +18,8 @@ namespace drumlab::cli {
 class PlainVtuSeries {
  public:
   /// Creates `directory` if needed; throws InputError if it cannot.
-  PlainVtuSeries(const std::string& directory, bool contacts, const GranuleCriterion& granule);
+  PlainVtuSeries(const std::string& directory, bool contacts, const GranuleCriterion& granule,
+                 paraview::ViewFrame frame = paraview::ViewFrame::drum);
   /// One frame of the whole state (a serial simulation, or the state a decomposed run gathered).
   void write_frame(const Simulation& whole);
 
@@ -28,6 +30,7 @@ class PlainVtuSeries {
   paraview::PvdSeries series_;
   bool contacts_;
   GranuleCriterion granule_;
+  paraview::ViewFrame frame_;
 };
 
 }  // namespace drumlab::cli

@@ -29,11 +29,12 @@ struct RunOptions {
   std::uint64_t every = 0;       ///< steps between frames for observers (0: the run decides)
   std::uint64_t frames = 0;      ///< if > 0, spread this many frames over the turning phase
   // Outputs (app/run/output_schedule.hpp).
-  std::string vtu_dir;        ///< --vtu DIR
-  bool contacts_vtk = false;  ///< --contacts-vtk
-  bool grid_vtk = false;      ///< --grid-vtk
-  std::string h5_file;        ///< --h5 FILE
-  std::string checkpoint;     ///< --checkpoint FILE (written at the end)
+  std::string vtu_dir;             ///< --vtu DIR
+  bool contacts_vtk = false;       ///< --contacts-vtk
+  std::string vtu_frame = "drum";  ///< --frame drum|lab|carrier (view_frame.hpp)
+  bool grid_vtk = false;           ///< --grid-vtk
+  std::string h5_file;             ///< --h5 FILE
+  std::string checkpoint;          ///< --checkpoint FILE (written at the end)
   std::uint64_t checkpoint_every = 0;
   std::string agglomerates;  ///< --agglomerates FILE.csv (+ FILE.png)
   GranuleFlags granule;      ///< --granule-criterion, --granule-age, --granule-resolution
@@ -62,5 +63,7 @@ SessionOptions session_options(const RunOptions& opt);
 /// that takes frames (`frames_taken`: the command has frame observers of its own, as `render`),
 /// --contacts-vtk/--grid-vtk without --vtu, --h5 and --checkpoint naming one file.
 void check_run_options(const RunOptions& opt, bool frames_taken = false);
+/// The checks that need the scene: --frame carrier only with [drum.orbit].
+void check_run_options_for(const RunOptions& opt, const SceneConfig& scene);
 
 }  // namespace drumlab::cli
