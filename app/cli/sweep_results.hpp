@@ -19,13 +19,16 @@ struct SweptQuantity {
   const char* column;
   bool agglomerates;  ///< from agglomerates.csv (scenes with bonds), else observables.csv
 };
-inline constexpr SweptQuantity kSweptQuantities[] = {{"angle_fit_deg", "angle_fit_deg", false},
-                                                     {"angle_com_deg", "angle_com_deg", false},
-                                                     {"flowing_layer", "flowing_layer", false},
-                                                     {"bridges", "bridges", false},
-                                                     {"agglomerates", "agglomerates", true},
-                                                     {"largest", "largest", true},
-                                                     {"d50", "d50", true}};
+inline constexpr SweptQuantity kSweptQuantities[] = {
+    {"angle_fit_deg", "angle_fit_deg", false},
+    {"angle_com_deg", "angle_com_deg", false},
+    {"flowing_layer", "flowing_layer", false},
+    {"bridges", "bridges", false},
+    {"agglomerates", "agglomerates", true},
+    {"largest", "largest", true},
+    {"d50", "d50", true},
+    {"airborne_fraction", "airborne_fraction", false},
+    {"relative_speed", "relative_speed", false}};
 
 struct RunResult {
   std::string name;
