@@ -21,7 +21,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 SceneConfig bare_scene(const SceneConfig& scene, const RunSettings& s) {
   SceneConfig c = scene;
   c.gravity = Vec3::Zero();
-  c.drum = DrumConfig{1.0, 1.0, 0.0, 0.0, DrumEnds::caps};
+  c.drum = DrumConfig{1.0, 1.0, 0.0, 0.0, DrumEnds::caps, {}};
   c.material.friction = 0.0;
   c.material.rolling_friction = 0.0;
   c.wall = c.material;
@@ -97,7 +97,7 @@ double energy_drift(const SceneConfig& scene, const RunSettings& s, double durat
   c.gravity = Vec3(0.0, -9.81, 0.0);
   c.material.restitution = 1.0;
   c.wall = c.material;
-  c.drum = DrumConfig{20.0 * r, 8.0 * r, 0.0, 0.0, DrumEnds::caps};
+  c.drum = DrumConfig{20.0 * r, 8.0 * r, 0.0, 0.0, DrumEnds::caps, {}};
   Particles p;
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);

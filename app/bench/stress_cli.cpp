@@ -95,7 +95,7 @@ StressCase stability_case(const StressContext& ctx, std::string name, const Stre
                                 args),
                     dir);
     std::size_t frames = 0;
-    const Drum drum(DrumConfig{s.diameter, s.depth, 0.0, 0.0, DrumEnds::caps});
+    const Drum drum(DrumConfig{s.diameter, s.depth, 0.0, 0.0, DrumEnds::caps, {}});
     std::string problems;
     try {
       problems = check_outputs(dir, drum, s.count, &frames);

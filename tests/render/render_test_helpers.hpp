@@ -19,7 +19,7 @@ inline SceneConfig small_drum_scene(double r = 0.01) {
   s.material = Material{2500.0, 5e6, 0.3, 0.5, 0.0, 0.0};
   s.wall = s.material;
   s.contact.normal = NormalLaw::hertz;
-  s.drum = DrumConfig{0.3, 0.05, 0.0, 0.0, DrumEnds::caps};
+  s.drum = DrumConfig{0.3, 0.05, 0.0, 0.0, DrumEnds::caps, {}};
   s.output.diagnostics_every = 1000;
   return s;
 }

@@ -17,7 +17,7 @@ SceneConfig free_space_scene() {
   s.classes = {ParticleClass{"grain", 0.01, 1.0}};
   s.material = Material{2500.0, 5e6, 0.3, 1.0, 0.0, 0.0};  // e = 1: no damping; no friction
   s.wall = s.material;
-  s.drum = DrumConfig{1.0, 1.0, 0.0, 0.0, DrumEnds::caps};
+  s.drum = DrumConfig{1.0, 1.0, 0.0, 0.0, DrumEnds::caps, {}};
   return s;
 }
 

@@ -11,7 +11,7 @@ namespace drumlab {
 namespace {
 
 DrumConfig drum_config(DrumEnds ends) {
-  return DrumConfig{0.9, 0.15, 1.0, 0.0, ends};
+  return DrumConfig{0.9, 0.15, 1.0, 0.0, ends, {}};
 }
 
 TEST(Drum, CylinderOverlapIsRhoPlusRMinusR) {

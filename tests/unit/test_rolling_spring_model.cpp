@@ -31,7 +31,7 @@ SceneConfig spring_scene() {
   s.contact.collision_time = 0.1 * std::sqrt(kR / 9.8);
   s.contact.reference_radius = kR;
   s.contact.rolling = RollingLaw::spring;
-  s.drum = DrumConfig{0.08, 0.01, 0.0, 0.0, DrumEnds::caps};
+  s.drum = DrumConfig{0.08, 0.01, 0.0, 0.0, DrumEnds::caps, {}};
   return s;
 }
 

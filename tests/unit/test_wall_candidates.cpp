@@ -56,7 +56,7 @@ void expect_touching_listed(const WallCandidates& w, const Particles& p, const D
 // A drum, particles in it and their wall list, built.
 struct Bed {
   Bed(std::uint32_t seed, DrumEnds ends, std::size_t n)
-      : rng(seed), drum(DrumConfig{0.2, 0.06, 1.0, 0.0, ends}) {
+      : rng(seed), drum(DrumConfig{0.2, 0.06, 1.0, 0.0, ends, {}}) {
     p = random_particles(drum, n, rng);
     history.resize(p.size());
     w.refresh(p, drum, kReach, history);
@@ -78,7 +78,7 @@ void move_all(Particles& p, double step, std::mt19937& rng) {
 
 TEST(WallCandidates, ListIsExactlyTheParticlesWithinReachAtABuild) {
   std::mt19937 rng(7);
-  const Drum drum(DrumConfig{0.2, 0.06, 1.0, 0.0, DrumEnds::caps});
+  const Drum drum(DrumConfig{0.2, 0.06, 1.0, 0.0, DrumEnds::caps, {}});
   Particles p = random_particles(drum, 4000, rng);
   WallHistory history(p.size(), {Vec3(1, 2, 3), Vec3(1, 2, 3), Vec3(1, 2, 3)});
   WallCandidates w;
@@ -142,7 +142,7 @@ TEST(WallCandidates, AMotionBoundSkipsTheCheckWhileItProvesNoParticleCanTouch) {
 
 TEST(WallCandidates, FollowsAReorderingWithoutARebuild) {
   std::mt19937 rng(3);
-  const Drum drum(DrumConfig{0.2, 0.06, 1.0, 0.0, DrumEnds::caps});
+  const Drum drum(DrumConfig{0.2, 0.06, 1.0, 0.0, DrumEnds::caps, {}});
   Particles p = random_particles(drum, 2000, rng);
   WallHistory history(p.size());
   WallCandidates w;
@@ -164,7 +164,7 @@ TEST(WallCandidates, FollowsAReorderingWithoutARebuild) {
 
 TEST(WallCandidates, PeriodicEndsIgnoreTheAxialMotion) {
   std::mt19937 rng(5);
-  const Drum drum(DrumConfig{0.2, 0.06, 1.0, 0.0, DrumEnds::periodic});
+  const Drum drum(DrumConfig{0.2, 0.06, 1.0, 0.0, DrumEnds::periodic, {}});
   Particles p = random_particles(drum, 2000, rng);
   WallHistory history(p.size());
   WallCandidates w;

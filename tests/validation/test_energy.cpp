@@ -30,7 +30,7 @@ TEST(EnergyConservation, ElasticFrictionlessParticlesInAClosedDrum) {
   s.material.restitution = 1.0;
   s.material.friction = 0.0;
   s.wall = s.material;
-  s.drum = DrumConfig{0.2, 0.08, 0.0, 0.0, DrumEnds::caps};
+  s.drum = DrumConfig{0.2, 0.08, 0.0, 0.0, DrumEnds::caps, {}};
   s.time.dt = 0.025 * rayleigh_time(r, s.material);
   Particles p;
   std::mt19937_64 rng(7);

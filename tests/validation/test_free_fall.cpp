@@ -13,7 +13,7 @@ namespace {
 void expect_free_fall(double tilt) {
   SceneConfig s = test::make_scene(0.01);
   s.gravity = Vec3(0.0, -9.81, 0.0);
-  s.drum = DrumConfig{4.0, 4.0, 0.0, tilt, DrumEnds::caps};
+  s.drum = DrumConfig{4.0, 4.0, 0.0, tilt, DrumEnds::caps, {}};
   s.time.dt = 1e-4;
   Particles p;
   const Vec3 x0(0.1, 0.2, 1.5);

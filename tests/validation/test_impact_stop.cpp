@@ -23,7 +23,7 @@ SceneConfig cohesive_drum(double dt) {
   s.material.friction = 0.5;
   s.wall = s.material;
   s.gravity = Vec3(0.0, -9.81, 0.0);
-  s.drum = DrumConfig{0.2, 0.04, 0.0, 0.0, DrumEnds::caps};
+  s.drum = DrumConfig{0.2, 0.04, 0.0, 0.0, DrumEnds::caps, {}};
   s.cohesion = CohesionConfig{true, 1.5e5};
   s.time.dt = dt;
   s.output.diagnostics_every = 5;

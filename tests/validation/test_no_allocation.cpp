@@ -105,7 +105,7 @@ SceneConfig dry_periodic_scene() {
   s.material.friction = 0.5;
   s.material.rolling_friction = 0.02;
   s.wall = s.material;
-  s.drum = DrumConfig{0.2, 0.1, 1.0, 0.2, DrumEnds::periodic};
+  s.drum = DrumConfig{0.2, 0.1, 1.0, 0.2, DrumEnds::periodic, {}};
   return s;
 }
 

@@ -121,7 +121,7 @@ TEST(SimulationStability, RunawayOverlapIsReportedWithStepAndTime) {
 TEST(SimulationStability, UnsafeTimeStepBlowsUpIntoAnUnstableError) {
   SceneConfig s = test::make_scene(0.01);
   s.gravity = Vec3(0, -9.81, 0);
-  s.drum = DrumConfig{0.1, 0.05, 0.0, 0.0, DrumEnds::caps};
+  s.drum = DrumConfig{0.1, 0.05, 0.0, 0.0, DrumEnds::caps, {}};
   s.time.dt = 50.0 * rayleigh_time(0.01, s.material);
   SimulationOptions o;
   o.allow_unsafe_dt = true;
@@ -133,7 +133,7 @@ TEST(SimulationStability, UnsafeTimeStepBlowsUpIntoAnUnstableError) {
 // (linear law, e = 0.9: restitution within 1 %), positions stay in [0, H), and no cap acts.
 TEST(PeriodicDrum, CollisionThroughThePeriodicEnd) {
   SceneConfig s = test::make_scene(0.01);
-  s.drum = DrumConfig{1.0, 0.2, 0.0, 0.0, DrumEnds::periodic};
+  s.drum = DrumConfig{1.0, 0.2, 0.0, 0.0, DrumEnds::periodic, {}};
   s.contact.normal = NormalLaw::linear;
   s.contact.linear_stiffness = 1e4;
   s.material.restitution = 0.9;
@@ -161,7 +161,7 @@ TEST(PeriodicDrum, CollisionThroughThePeriodicEnd) {
 
 TEST(PeriodicDrum, ParticleCrossingTheEndIsWrapped) {
   SceneConfig s = test::make_scene(0.01);
-  s.drum = DrumConfig{1.0, 0.2, 0.0, 0.0, DrumEnds::periodic};
+  s.drum = DrumConfig{1.0, 0.2, 0.0, 0.0, DrumEnds::periodic, {}};
   s.time.dt = 1e-4;
   Particles p = one_particle(Vec3(0, 0, 0.19));
   p.velocity[0] = Vec3(0, 0, 1.0);
@@ -193,7 +193,7 @@ TEST(SimulationBookkeeping, SearchSwitchTimersAndCounters) {
   s.gravity = Vec3(0, -9.81, 0);
   s.material.friction = 0.5;
   s.wall.friction = 0.5;
-  s.drum = DrumConfig{0.2, 0.05, 1.0, 0.0, DrumEnds::caps};
+  s.drum = DrumConfig{0.2, 0.05, 1.0, 0.0, DrumEnds::caps, {}};
   Particles p;
   for (int k = 0; k < 5; ++k) p.add(Vec3(-0.04 + 0.02 * k, -0.075, 0.025), 0.0099, 2500.0);
   Simulation sim(s, std::move(p));

@@ -26,7 +26,7 @@ Floor floor_scene(double mu, double mu_r, const Vec3& v0, const Vec3& w0) {
   SceneConfig& s = f.scene;
   s = test::make_scene(kR);
   s.gravity = Vec3(0.0, -kG, 0.0);
-  s.drum = DrumConfig{4.0, 0.2, 0.0, 0.5 * std::numbers::pi, DrumEnds::caps};
+  s.drum = DrumConfig{4.0, 0.2, 0.0, 0.5 * std::numbers::pi, DrumEnds::caps, {}};
   s.material.friction = mu;
   s.wall.friction = mu;
   s.wall.rolling_friction = mu_r;

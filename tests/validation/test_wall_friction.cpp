@@ -22,7 +22,7 @@ Carried carry(double friction, double seconds) {
   const double r = 0.01;
   SceneConfig s = test::make_scene(r);
   s.gravity = Vec3(0.0, -9.81, 0.0);
-  s.drum = DrumConfig{0.2, 0.1, 2.0, 0.0, DrumEnds::caps};
+  s.drum = DrumConfig{0.2, 0.1, 2.0, 0.0, DrumEnds::caps, {}};
   s.wall.friction = friction;
   s.material.friction = friction;
   s.material.restitution = 0.5;
