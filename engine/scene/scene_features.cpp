@@ -7,6 +7,7 @@
 #include <limits>
 #include <numbers>
 
+#include "engine/drum_orbit.hpp"
 #include "engine/search/search_methods.hpp"
 
 namespace drumlab {
@@ -178,7 +179,7 @@ SceneFeatures scene_features(const SceneConfig& scene) {
                         orbit.active()
                             ? fmt::format("[drum.orbit]: Omega^2 R_o = {:.4g} m/s^2 added to "
                                           "gravity, turning with the arm (two cosines a step)",
-                                          orbit.omega * orbit.omega * orbit.radius)
+                                          carrier_field(orbit))
                             : std::string("no [drum.orbit]: constant gravity")));
   f.list.push_back(grid_feature(scene, f));
   f.list.push_back({"output writers / VTK objects", FeatureUse::command_line,

@@ -266,14 +266,21 @@ void read_particles(const Scope& root, SceneConfig& scene) {
 }
 
 // [drum.orbit]: the planetary carrier (scene_config.hpp, DrumOrbit).
-void read_orbit(const Scope& s, DrumOrbit& o) {
-  s.allow_only({"radius", "omega", "rpm", "phase_deg", "speed_ratio"});
-  o.radius = s.required_number("radius", "the drum axis's distance from the central axis, m");
+// An angular velocity given as `omega` (rad/s) or `rpm` (not both), in rad/s; nullopt for neither.
+std::optional<double> angular_velocity(const Scope& s) {
   const auto omega = s.number("omega");
   const auto rpm = s.number("rpm");
   if (omega && rpm) s.fail("rpm", "give either omega (rad/s) or rpm, not both");
-  if (!omega && !rpm) s.missing("omega", "the carrier's angular velocity: omega in rad/s or rpm");
-  o.omega = omega ? *omega : *rpm * 2.0 * std::numbers::pi / 60.0;
+  if (rpm) return *rpm * 2.0 * std::numbers::pi / 60.0;
+  return omega;
+}
+
+void read_orbit(const Scope& s, DrumOrbit& o) {
+  s.allow_only({"radius", "omega", "rpm", "phase_deg", "speed_ratio"});
+  o.radius = s.required_number("radius", "the drum axis's distance from the central axis, m");
+  const auto omega = angular_velocity(s);
+  if (!omega) s.missing("omega", "the carrier's angular velocity: omega in rad/s or rpm");
+  o.omega = *omega;
   o.phase = tilt_from_degrees(s.number_or("phase_deg", 0.0));
   o.speed_ratio = s.number("speed_ratio");
 }
@@ -284,19 +291,17 @@ void read_drum(const Scope& root, SceneConfig& scene) {
   DrumConfig& d = scene.drum;
   d.diameter = s.required_number("diameter", "drum diameter D, m");
   d.depth = s.required_number("depth", "drum depth H along the axis, m");
-  const auto omega = s.number("omega");
-  const auto rpm = s.number("rpm");
-  if (omega && rpm) s.fail("rpm", "give either omega (rad/s) or rpm, not both");
+  const auto omega = angular_velocity(s);
   if (const auto orbit = s.table("orbit")) read_orbit(*orbit, d.orbit);
   if (d.orbit.speed_ratio) {
-    if (omega || rpm) {
-      s.fail(omega ? "omega" : "rpm",
+    if (omega) {
+      s.fail(s.has("omega") ? "omega" : "rpm",
              "give the drum's rate either here (absolute) or as orbit.speed_ratio, not both");
     }
     d.omega = d.orbit.omega * (1.0 + *d.orbit.speed_ratio);
   } else {
-    if (!omega && !rpm) s.missing("omega", "drum angular velocity: omega in rad/s or rpm");
-    d.omega = omega ? *omega : *rpm * 2.0 * std::numbers::pi / 60.0;
+    if (!omega) s.missing("omega", "drum angular velocity: omega in rad/s or rpm");
+    d.omega = *omega;
   }
   d.tilt = tilt_from_degrees(s.number_or("tilt_deg", 0.0));
   const std::string ends = s.string("ends").value_or("caps");

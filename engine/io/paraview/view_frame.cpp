@@ -53,8 +53,7 @@ FrameMotion frame_motion(const Simulation& sim, ViewFrame frame) {
 void to_frame(DataSet& d, const FrameMotion& m) {
   if (m.identity()) return;
   const double c = std::cos(m.turn), s = std::sin(m.turn);
-  const std::vector<Vec3> original = d.points;
-  for (Vec3& x : d.points) x = turned(x + m.offset, c, s);
+  // The vectors first: a point velocity's spin term needs the point's drum-frame position.
   const auto vectors = [&](std::vector<DataArray>& arrays, bool points) {
     std::vector<double>* speed = nullptr;
     std::vector<double>* velocity = nullptr;
@@ -68,7 +67,7 @@ void to_frame(DataSet& d, const FrameMotion& m) {
         if (a.name == "velocity") {
           v += m.velocity_offset;
           if (points && m.spin != 0.0) {
-            const Vec3 r = original[k] + m.offset;
+            const Vec3 r = d.points[k] + m.offset;
             v -= m.spin * Vec3(-r.y(), r.x(), 0.0);
           }
           velocity = values;
@@ -88,6 +87,7 @@ void to_frame(DataSet& d, const FrameMotion& m) {
   };
   vectors(d.point_data, true);
   vectors(d.cell_data, false);
+  for (Vec3& x : d.points) x = turned(x + m.offset, c, s);
 }
 
 DataSet carrier_arm(const Simulation& sim, ViewFrame frame) {
