@@ -173,10 +173,7 @@ Simulation::Simulation(const SceneConfig& scene, Particles particles, Simulation
   impl_->wall_history.assign(particles_.size(), {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
   impl_->contacts.set_state_size(impl_->model.pair_state_size());
   register_liquid_arrays(true);
-  if (!scene_.sprays.empty()) {
-    // The wall film's patches: one largest particle diameter wide.
-    make_spray();
-  }
+  if (!scene_.sprays.empty()) make_spray();
   // Forces of the initial state, for the first half kick (no history increment, not counted).
   compute_forces(0.0, false);
 }
