@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "engine/drum.hpp"
+#include "engine/drum_orbit.hpp"
 #include "engine/search/contact_search.hpp"
 #include "engine/simulation.hpp"
 
@@ -199,7 +200,10 @@ DrumObservables measure_drum(const Particles& p, const DrumGeometry& drum,
     throw InputError("drum observables: gravity has no component across the drum axis");
   }
   obs.up = -g_cross.normalized();
-  obs.carry = (drum.omega < 0.0 ? -1.0 : 1.0) * Vec3::UnitZ().cross(-obs.up);
+  obs.field = g_cross.norm();
+  obs.radius = drum.radius;
+  const double drive = drum.omega - drum.field_omega;  // the wall against the field
+  obs.carry = (drive < 0.0 ? -1.0 : 1.0) * Vec3::UnitZ().cross(-obs.up);
   if (p.empty()) return obs;
 
   double mass = 0.0, ke = 0.0, re = 0.0, sb = 0.0, rel = 0.0;
@@ -227,7 +231,7 @@ DrumObservables measure_drum(const Particles& p, const DrumGeometry& drum,
       std::numbers::pi;
   obs.upper_fraction = static_cast<double>(upper) / n;
   obs.relative_speed = rel / n;
-  obs.wall_speed = std::abs(drum.omega) * drum.radius;
+  obs.wall_speed = std::abs(drive) * drum.radius;
 
   const double width = options.column_width > 0.0 ? options.column_width : 2.0 * p.max_radius();
   const double gap = options.flight_gap > 0.0 ? options.flight_gap : 0.25 * p.min_radius();
@@ -251,6 +255,12 @@ DrumObservables measure_drum(const Simulation& sim, const ObservableOptions& opt
   DrumGeometry g;
   g.gravity = sim.body_acceleration();  // gravity, plus a planetary carrier's field
   g.omega = sim.drum_omega();
+  // The carrier's field turns with the arm; where it outweighs gravity across the axis, the
+  // field turns at the carrier's rate (else gravity keeps its mean direction).
+  const Vec3& g0 = sim.gravity();
+  if (d.orbit.active() && carrier_field(d.orbit) > std::hypot(g0.x(), g0.y())) {
+    g.field_omega = sim.carrier_omega();
+  }
   g.radius = 0.5 * d.diameter;
   if (d.ends == DrumEnds::periodic) g.period_z = d.depth;
   return measure_drum(sim.particles(), g, options);

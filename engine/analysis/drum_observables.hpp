@@ -4,10 +4,13 @@
 //
 // The cross-section is described by two unit vectors perpendicular to the axis:
 //   up    = -(gravity projected onto the cross-section), normalised;
-//   carry = direction of the drum wall's velocity at the lowest point of the mantle
-//           (sign(omega) z_hat x (-up); +z_hat x (-up) when omega = 0).
-// With gravity -y and omega > 0 (counter-clockwise), up = +y and carry = +x: the drum lifts the
-// bed on the +x side.
+//   carry = direction of the drum wall's velocity at the lowest point of the mantle, relative to
+//           the field: sign(omega - field_omega) z_hat x (-up); +z_hat x (-up) when equal.
+// `field_omega` is the rate at which the body force turns about the axis: 0 for gravity, the
+// carrier's Omega for a planetary drum whose carrier field outweighs gravity across the axis
+// (there the wall drives the bed at omega - Omega relative to the field; measure_drum(sim) sets
+// it). With gravity -y and omega > 0 (counter-clockwise), up = +y and carry = +x: the drum lifts
+// the bed on the +x side.
 //
 // Definitions (all documented in the fields below):
 // * Free surface: the cross-section is cut into columns (width `column_width` along carry and
@@ -45,6 +48,7 @@ class Simulation;
 struct DrumGeometry {
   Vec3 gravity = Vec3(0.0, -9.81, 0.0);  ///< drum frame, m/s^2
   double omega = 0.0;                    ///< rad/s about +z
+  double field_omega = 0.0;              ///< rad/s: the body force turns at this rate (see top)
   double radius = 0.0;                   ///< mantle radius R, m
   std::optional<double> period_z;        ///< depth of a drum with periodic ends
 };
@@ -104,7 +108,9 @@ struct DrumObservables {
   double airborne_fraction = 0.0;  ///< share of particles in free flight
   double upper_fraction = 0.0;     ///< share of particle centres above the axis (along up)
   double relative_speed = 0.0;     ///< mean |v - omega z_hat x x| over the particles, m/s
-  double wall_speed = 0.0;         ///< |omega| R, m/s
+  double wall_speed = 0.0;  ///< |omega - field_omega| R: the wall's speed against the field, m/s
+  double field = 0.0;       ///< the body force's part across the axis, m/s^2
+  double radius = 0.0;      ///< the drum's mantle radius R, m
   /// The surface heights of all column bins (before the end exclusion), sorted by h; the bins
   /// sit at fixed positions, so profiles of several samples can be averaged bin by bin.
   std::vector<SurfaceHeight> surface_profile;

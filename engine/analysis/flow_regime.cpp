@@ -5,6 +5,8 @@
 #include <map>
 #include <vector>
 
+#include <fmt/format.h>
+
 namespace drumlab {
 namespace {
 
@@ -37,6 +39,8 @@ double smoothed_swing(const std::vector<double>& values, int width) {
 
 std::string_view regime_name(FlowRegime regime) {
   switch (regime) {
+    case FlowRegime::resting:
+      return "resting";
     case FlowRegime::slumping:
       return "slumping";
     case FlowRegime::rolling:
@@ -73,9 +77,14 @@ RegimeEvidence classify_regime(std::span<const DrumObservables> window,
                                const FlowRegimeThresholds& t) {
   RegimeEvidence e;
   e.samples = window.size();
-  std::vector<double> angles;
-  double wall = 0.0;
+  std::vector<double> angles, curvatures;
+  double wall = 0.0, field = 0.0, radius = 0.0;
+  bool profiles = false;
   for (const auto& o : window) {
+    field += o.field;
+    radius += o.radius;
+    profiles = profiles || !o.surface_profile.empty();
+    if (o.surface_found) curvatures.push_back(o.surface_curvature);
     e.airborne_fraction += o.airborne_fraction;
     e.upper_fraction += o.upper_fraction;
     e.com_offset += o.com_offset;
@@ -90,6 +99,8 @@ RegimeEvidence classify_regime(std::span<const DrumObservables> window,
   e.com_offset /= n;
   e.relative_speed /= n;
   wall /= n;
+  e.wall_speed = wall;
+  e.rest_scale = std::sqrt(std::max(0.0, field / n * radius / n));
   e.speed_ratio = wall > 0.0 ? e.relative_speed / wall : 0.0;
 
   double sum = 0.0, var = 0.0;
@@ -113,9 +124,16 @@ RegimeEvidence classify_regime(std::span<const DrumObservables> window,
     e.curvature = fit->curvature;
   } else {
     e.profile_angle_deg = e.mean_angle_deg;
+    if (!profiles) {  // samples from a table: their own curvatures
+      e.sample_curvature = true;
+      e.curvature = median(curvatures);
+    }
   }
 
-  if (e.upper_fraction >= t.upper_fraction && e.com_offset <= t.com_offset) {
+  const double rest = t.rest_speed * e.rest_scale;
+  if (e.wall_speed <= rest && e.relative_speed <= rest) {
+    e.regime = FlowRegime::resting;
+  } else if (e.upper_fraction >= t.upper_fraction && e.com_offset <= t.com_offset) {
     e.regime = FlowRegime::centrifuging;
   } else if (e.airborne_fraction >= t.airborne_fraction) {
     e.regime = FlowRegime::cataracting;
@@ -127,6 +145,33 @@ RegimeEvidence classify_regime(std::span<const DrumObservables> window,
     e.regime = FlowRegime::rolling;
   }
   return e;
+}
+
+std::string regime_reason(const RegimeEvidence& e, const FlowRegimeThresholds& t) {
+  switch (e.regime) {
+    case FlowRegime::resting:
+      return fmt::format("not driven: wall {:.2g} m/s and relative speed {:.2g} m/s <= {} x {:.3g}",
+                         e.wall_speed, e.relative_speed, t.rest_speed, e.rest_scale);
+    case FlowRegime::centrifuging:
+      return fmt::format("bed carried round (upper share {:.2f} >= {})", e.upper_fraction,
+                         t.upper_fraction);
+    case FlowRegime::cataracting:
+      return fmt::format("in flight {:.3f} >= {}", e.airborne_fraction, t.airborne_fraction);
+    case FlowRegime::slumping:
+      return fmt::format("still share {:.2f} (rule: >= {}), intermittency {:.2f} (rule: >= {})",
+                         e.still_share, t.still_share, e.intermittency, t.intermittency);
+    case FlowRegime::cascading:
+    case FlowRegime::rolling:
+      return fmt::format(
+          "in flight {:.3f} < {}, still share {:.2f} < {}, intermittency {:.2f} < {}, {}curvature "
+          "{:.3f} {} {}",
+          e.airborne_fraction, t.airborne_fraction, e.still_share, t.still_share, e.intermittency,
+          t.intermittency, e.sample_curvature ? "samples' " : "", e.curvature,
+          e.regime == FlowRegime::cascading ? ">=" : "<", t.curvature);
+    case FlowRegime::unknown:
+      break;
+  }
+  return "no surface found";
 }
 
 }  // namespace drumlab

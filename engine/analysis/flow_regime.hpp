@@ -21,6 +21,11 @@
 //   even the smoothed swing a few degrees in every regime).
 //
 // The rules, applied in this order (thresholds in FlowRegimeThresholds):
+// 0. resting: nothing drives the bed and it does not flow: the wall's speed against the field
+//    (drum_observables.hpp: |omega - field_omega| R) and the mean relative speed are both
+//    <= rest_speed (1e-3) x sqrt(field R), a drive Froude number below 1e-6. A plain drum at
+//    rest, or a planetary pot turning with its arm (k = 0), whose bed sits against the far wall
+//    and turns with it. (The slowest drum of `bench regimes`, Fr = 3e-5, drives at 5.5e-3.)
 // 1. centrifuging: the bed is carried around the whole mantle as a ring. Mean share of particle
 //    centres above the axis >= upper_fraction (0.35) and the centre of mass within
 //    com_offset (0.15) * R of the axis.
@@ -35,10 +40,13 @@
 // 4. cascading: a continuous flow with a curved (S- or kidney-shaped) surface: curvature of the
 //    window-mean surface >= curvature (0.02).
 // 5. rolling: otherwise (a continuous flow with a flat surface).
-// A window whose samples found no surface at all (e.g. an empty drum) is `unknown`.
+// A window whose samples found no surface at all (e.g. an empty drum) is `unknown`. Samples read
+// back from a table (`drumlab sweep`) carry no surface profiles: the curvature is then the median
+// of the samples' own curvatures (noisier than the window-mean surface's; flagged in evidence).
 // The thresholds are heuristics chosen for beds of ~25-50 % fill and samples spaced more finely
 // than an avalanche cycle; they are the documented definition, not a universal law.
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -46,11 +54,16 @@
 
 namespace drumlab {
 
-enum class FlowRegime { unknown, slumping, rolling, cascading, cataracting, centrifuging };
+enum class FlowRegime { unknown, resting, slumping, rolling, cascading, cataracting, centrifuging };
+/// The regimes in the order above (resting to centrifuging), for maps and legends.
+inline constexpr FlowRegime kFlowRegimes[] = {FlowRegime::resting,     FlowRegime::slumping,
+                                              FlowRegime::rolling,     FlowRegime::cascading,
+                                              FlowRegime::cataracting, FlowRegime::centrifuging};
 
 std::string_view regime_name(FlowRegime regime);
 
 struct FlowRegimeThresholds {
+  double rest_speed = 1e-3;  ///< resting: drive and relative speed <= this x sqrt(field R)
   double upper_fraction = 0.35;
   double com_offset = 0.15;
   double airborne_fraction = 0.02;
@@ -72,10 +85,13 @@ struct RegimeEvidence {
   double profile_angle_deg = 0.0;   ///< angle of the window-mean surface (dynamic angle of repose)
   double curvature = 0.0;           ///< curvature of the window-mean surface
   bool profile_found = false;       ///< the window-mean surface had >= 3 central points
+  bool sample_curvature = false;    ///< no profiles: `curvature` is the samples' median
   double still_share = 0.0;         ///< share of still samples (see the header comment)
   double intermittency = 0.0;       ///< std / mean of the samples' relative speed
   double relative_speed = 0.0;      ///< m/s
-  double speed_ratio = 0.0;         ///< relative_speed / (omega R); 0 when the drum is at rest
+  double wall_speed = 0.0;          ///< the wall's speed against the field, m/s
+  double rest_scale = 0.0;          ///< sqrt(field R), m/s (mean field)
+  double speed_ratio = 0.0;         ///< relative_speed / wall_speed; 0 when the wall is at rest
   double airborne_fraction = 0.0;
   double upper_fraction = 0.0;
   double com_offset = 0.0;
@@ -83,6 +99,9 @@ struct RegimeEvidence {
 
 RegimeEvidence classify_regime(std::span<const DrumObservables> window,
                                const FlowRegimeThresholds& thresholds = {});
+
+/// The rule that decided `e.regime`, with its figures against the thresholds, in one phrase.
+std::string regime_reason(const RegimeEvidence& e, const FlowRegimeThresholds& thresholds = {});
 
 /// The window-mean surface profile (see the header comment); empty without surfaces.
 std::vector<SurfaceHeight> mean_surface_profile(std::span<const DrumObservables> window);

@@ -194,5 +194,51 @@ TEST(FlowRegime, MeasuredSlabIsRollingAndRigidBedIsSlumping) {
   EXPECT_DOUBLE_EQ(fit->angle_deg, flowing[0].angle_of_repose_deg);
 }
 
+// A planetary pot turning with its arm (k = 0): the field turns at the wall's rate, so nothing
+// drives the bed; it sits against the far wall and turns with it: resting, not slumping.
+TEST(FlowRegime, AWallThatTurnsWithTheFieldLeavesTheBedResting) {
+  const SlabSpec s;
+  Particles rigid = tilted_slab(s);
+  for (std::size_t i = 0; i < rigid.size(); ++i) {
+    rigid.velocity[i] = 2.0 * Vec3::UnitZ().cross(rigid.position[i]);
+  }
+  DrumGeometry g = geometry(s, 2.0);
+  g.field_omega = 2.0;
+  const std::vector<DrumObservables> window(3, measure_drum(rigid, g));
+  EXPECT_EQ(window[0].wall_speed, 0.0);
+  EXPECT_LT(window[0].relative_speed, 1e-12);
+  EXPECT_DOUBLE_EQ(window[0].field, 9.81);
+  EXPECT_EQ(window[0].radius, s.radius_drum);
+  const RegimeEvidence e = classify_regime(window);
+  EXPECT_EQ(e.regime, FlowRegime::resting);
+  EXPECT_NE(regime_reason(e).find("not driven"), std::string::npos);
+  // Driven at 1e-3 sqrt(g R) against the field it is no longer at rest (a slumping solid body).
+  g.field_omega = 2.0 - 1.01e-3 * std::sqrt(9.81 / s.radius_drum);
+  const std::vector<DrumObservables> driven(3, measure_drum(rigid, g));
+  EXPECT_EQ(classify_regime(driven).regime, FlowRegime::slumping);
+  // The carry direction follows the wall against the field: a pot turning slower than its arm
+  // lifts the bed on the other side, so the same slab reads the opposite angle.
+  g.field_omega = 3.0;
+  const DrumObservables behind = measure_drum(tilted_slab(s), g);
+  EXPECT_NEAR(behind.angle_of_repose_deg,
+              -measure_drum(tilted_slab(s), geometry(s)).angle_of_repose_deg, 1e-9);
+}
+
+// Samples read back from a table carry no surface profile: the rules then take the samples' own
+// curvature (their median), and say so.
+TEST(FlowRegime, SamplesWithoutProfilesUseTheirOwnCurvature) {
+  const SlabSpec s;
+  std::vector<DrumObservables> window(3, measure_drum(tilted_slab(s), geometry(s)));
+  const RegimeEvidence with = classify_regime(window);
+  EXPECT_FALSE(with.sample_curvature);
+  window[0].surface_curvature = 0.5;  // one noisy sample does not move the median
+  for (auto& o : window) o.surface_profile.clear();
+  const RegimeEvidence without = classify_regime(window);
+  EXPECT_TRUE(without.sample_curvature);
+  EXPECT_EQ(without.curvature, window[1].surface_curvature);
+  EXPECT_EQ(without.regime, FlowRegime::rolling);
+  EXPECT_NE(regime_reason(without).find("samples' curvature"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace drumlab
