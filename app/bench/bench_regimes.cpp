@@ -104,34 +104,7 @@ RegimeRow run_froude(const RollingState& settled, double fr, const RegimeWindow&
 /// Why an observed regime differs from the predicted one: the rule that decided, and whether Fr
 /// lies within a factor of 3 of a boundary of the Mellmann map.
 std::string disagreement(const RegimeRow& r) {
-  const RegimeEvidence& e = r.evidence;
-  const FlowRegimeThresholds t;
-  std::string why;
-  switch (e.regime) {
-    case FlowRegime::centrifuging:
-      why = fmt::format("bed carried round (upper share {:.2f} >= {})", e.upper_fraction,
-                        t.upper_fraction);
-      break;
-    case FlowRegime::cataracting:
-      why = fmt::format("in flight {:.3f} >= {}", e.airborne_fraction, t.airborne_fraction);
-      break;
-    case FlowRegime::slumping:
-      why = fmt::format("still share {:.2f} (rule: >= {}), intermittency {:.2f} (rule: >= {})",
-                        e.still_share, t.still_share, e.intermittency, t.intermittency);
-      break;
-    case FlowRegime::cascading:
-    case FlowRegime::rolling:
-      why = fmt::format(
-          "in flight {:.3f} < {}, still share {:.2f} < {}, intermittency {:.2f} < {}, curvature "
-          "{:.3f} {} {}",
-          e.airborne_fraction, t.airborne_fraction, e.still_share, t.still_share, e.intermittency,
-          t.intermittency, e.curvature, e.regime == FlowRegime::cascading ? ">=" : "<",
-          t.curvature);
-      break;
-    case FlowRegime::unknown:
-      why = "no surface found";
-      break;
-  }
+  std::string why = regime_reason(r.evidence);
   for (const double b : {1e-4, 1e-3, 1e-2, 0.1, 1.0}) {
     if (r.froude >= b / 3.0 && r.froude <= 3.0 * b) {
       why += fmt::format("; Fr within x3 of the map boundary {:g}", b);

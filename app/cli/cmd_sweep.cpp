@@ -96,9 +96,12 @@ void write_table(const std::filesystem::path& file, const std::string& header,
 
 #ifdef DRUMLAB_WITH_RENDER
 /// sweep.png: each run's window mean with its spread against the first swept key (its value, or
-/// its position among the values when they are not numbers).
+/// its position among the values when they are not numbers); the regime map (each run's regime,
+/// and for a sweep over a planetary drum's speed ratio the closed form's critical ratios) with
+/// the rules' evidence; and the agglomerates for a scene with bonds.
 void write_chart(const std::filesystem::path& file, const SweepSet& first,
-                 const std::vector<RunResult>& results, bool bonds) {
+                 const std::vector<RunResult>& results, const std::vector<SweepRun>& runs,
+                 bool bonds) {
   const auto x_of = [&](const RunResult& r) {
     char* end = nullptr;
     const double v = std::strtod(r.values.front().c_str(), &end);
@@ -107,14 +110,14 @@ void write_chart(const std::filesystem::path& file, const SweepSet& first,
         std::find(first.values.begin(), first.values.end(), r.values.front()) -
         first.values.begin());
   };
-  const auto series = [&](std::size_t q, const char* name) {
+  const auto series = [&](std::size_t q, const char* name, double scale = 1.0) {
     render::XYSeries s;
     s.name = name;
     s.markers_only = true;
     for (const RunResult& r : results) {
       s.x.push_back(x_of(r));
-      s.y.push_back(r.mean[q]);
-      s.y_error.push_back(r.sd[q]);
+      s.y.push_back(scale * r.mean[q]);
+      s.y_error.push_back(scale * r.sd[q]);
     }
     return s;
   };
@@ -123,12 +126,63 @@ void write_chart(const std::filesystem::path& file, const SweepSet& first,
   panels[0].x_label = first.key;
   panels[0].y_label = "degrees";
   panels[0].series = {series(0, "surface fit"), series(1, "centre of mass")};
+
+  render::XYPanel map{"flow regime (rules: engine/analysis/flow_regime.hpp)",
+                      first.key,
+                      "0 resting 1 slumping 2 rolling 3 cascading 4 cataracting 5 centrifuging",
+                      {}};
+  double x_lo = 0.0, x_hi = 0.0;
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    x_lo = k == 0 ? x_of(results[k]) : std::min(x_lo, x_of(results[k]));
+    x_hi = k == 0 ? x_of(results[k]) : std::max(x_hi, x_of(results[k]));
+  }
+  for (std::size_t level = 0; level < std::size(kFlowRegimes); ++level) {
+    render::XYSeries s{std::string(regime_name(kFlowRegimes[level])), {}, {}, false, true};
+    for (const RunResult& r : results) {
+      if (r.regime.regime != kFlowRegimes[level]) continue;
+      s.x.push_back(x_of(r));
+      s.y.push_back(static_cast<double>(level));
+    }
+    if (!s.x.empty()) map.series.push_back(s);
+  }
+  // A planetary drum swept over k: the wall holds a particle where |1 + k| exceeds its ratio.
+  if (first.key == "drum.orbit.speed_ratio" && !runs.front().critical_ratios.empty()) {
+    const std::vector<double>& ratios = runs.front().critical_ratios;
+    const bool one_size = std::abs(ratios[1] - ratios[0]) <= 1e-9 * ratios[0];
+    for (std::size_t c = 0; c < (one_size ? 1u : 2u); ++c) {
+      for (const double sign : {1.0, -1.0}) {
+        const double k = sign * ratios[c] - 1.0;
+        if (k < x_lo || k > x_hi) continue;
+        map.series.push_back({fmt::format("k = {:.3g}: the wall holds {} above |1 + k| = {:.3g}", k,
+                                          one_size ? "a ball"
+                                          : c == 0 ? "the largest"
+                                                   : "the smallest",
+                                          ratios[c]),
+                              {k, k},
+                              {-0.5, 5.5},
+                              c == 0,
+                              false});
+      }
+    }
+  }
+  render::XYPanel evidence{"regime evidence (window mean +- sd)", first.key, "share or ratio", {}};
+  evidence.series = {series(7, "in flight x10", 10.0), series(10, "share above the axis"),
+                     series(11, "centre of mass from the axis / R")};
+  render::XYSeries slip{
+      "speed against the wall / the wall's against the field", {}, {}, false, true};
+  for (const RunResult& r : results) {
+    slip.x.push_back(x_of(r));
+    slip.y.push_back(r.regime.speed_ratio);
+  }
+  evidence.series.push_back(slip);
+  panels.push_back(map);
+  panels.push_back(evidence);
   if (bonds) {
     render::XYPanel agglomerates{"agglomerates (window mean +- sd)", first.key, "count", {}};
     agglomerates.series = {series(4, "agglomerates (size >= 2)"), series(5, "largest")};
     panels.push_back(agglomerates);
   }
-  render::write_xy_charts(panels, file, bonds ? 1600 : 900, 600);
+  render::write_xy_charts(panels, file, 700 * static_cast<int>(panels.size()), 600);
 }
 #endif
 
@@ -179,9 +233,9 @@ void sweep(const SweepOptions& o) {
     write_table(table, header, runs, rows);
     fmt::print(
         "done              {} ({:.1f} s): angle {:.1f} +- {:.1f} deg (centre of mass), "
-        "{:.1f} +- {:.1f} (fit), {} frames from revolution {:.3g}\n",
+        "{:.1f} +- {:.1f} (fit), {} frames from revolution {:.3g}; {}\n",
         r.name, seconds, result.mean[1], result.sd[1], result.mean[0], result.sd[0], result.frames,
-        result.window_from);
+        result.window_from, regime_name(result.regime.regime));
   }
   write_table(table, header, runs, rows);
   fmt::print("table             {} ({} rows)\n", table.string(), rows.size());
@@ -194,7 +248,7 @@ void sweep(const SweepOptions& o) {
     bonds = bonds || r.has_bonds;
   }
   if (!results.empty()) {
-    write_chart(out / "sweep.png", sets.front(), results, bonds);
+    write_chart(out / "sweep.png", sets.front(), results, runs, bonds);
     fmt::print("chart             {}\n", (out / "sweep.png").string());
   }
 #endif

@@ -8,6 +8,7 @@
 #include <toml++/toml.h>
 
 #include "engine/analysis/agglomerates.hpp"
+#include "engine/drum_orbit.hpp"
 #include "engine/scene/scene_config.hpp"
 #include "engine/scene/scene_writer.hpp"
 
@@ -140,7 +141,13 @@ std::vector<SweepRun> plan_sweep(const std::filesystem::path& scene,
       SweepRun run{run_name(runs.size(), sets, values, seed), values, seed,
                    with_shortest_floats(text.str()), false};
       try {
-        run.has_bonds = scene_has_bonds(parse_scene(run.scene_text, label));
+        const SceneConfig config = parse_scene(run.scene_text, label);
+        run.has_bonds = scene_has_bonds(config);
+        if (const DrumOrbit& o = config.drum.orbit; o.active()) {
+          const double r = 0.5 * config.drum.diameter;
+          run.critical_ratios = {critical_speed_ratio(o, r - config.max_radius()),
+                                 critical_speed_ratio(o, r - config.min_radius())};
+        }
       } catch (const InputError& e) {
         throw InputError(fmt::format("--set: {}", e.what()));
       }

@@ -23,6 +23,9 @@ struct SweepRun {
   std::int64_t seed = -1;           ///< fill.seed set by --seeds; -1: the scene's
   std::string scene_text;           ///< the scene with the values set (TOML)
   bool has_bonds = false;           ///< the scene forms bonds (agglomerates are measured)
+  /// A planetary drum: the critical |1 + k| of its largest and smallest particles
+  /// (engine/drum_orbit.hpp); empty without [drum.orbit].
+  std::vector<double> critical_ratios{};
 };
 
 /// Every run, in order: the first set varies slowest, the seeds fastest. Each run's scene is the

@@ -90,17 +90,21 @@ RunResult summarise_run(const SweepRun& run, const std::filesystem::path& dir, d
   const auto obs_file = dir / "observables.csv";
   const CsvTable obs = read_numeric_csv(obs_file);
   if (obs.rows.empty()) throw InputError(fmt::format("{}: no frames", obs_file.string()));
-  const std::size_t rev = obs.column("revolutions", obs_file);
-  RunResult r{run.name, run.values, run.seed, 0, window_from, {}, {}, 0.0, {}};
-  if (r.window_from < 0.0) r.window_from = 0.5 * obs.rows.back()[rev];
+  const std::size_t rev = obs.column("revolutions", obs_file), time = obs.column("time", obs_file);
+  RunResult r{run.name, run.values, run.seed, 0, window_from, {}, {}, 0.0, {}, {}};
+  // Turns counted either way (a drum may turn clockwise); the default window is the second half
+  // of the run's time, which also serves a drum that does not turn (a planetary pot at k = -1).
+  const double t_half = 0.5 * (obs.rows.front()[time] + obs.rows.back()[time]);
   std::vector<bool> in_window(obs.rows.size());
   for (std::size_t k = 0; k < obs.rows.size(); ++k) {
-    in_window[k] = obs.rows[k][rev] >= r.window_from;
-    if (in_window[k]) ++r.frames;
+    in_window[k] =
+        window_from < 0.0 ? obs.rows[k][time] >= t_half : std::abs(obs.rows[k][rev]) >= window_from;
+    if (in_window[k] && r.frames++ == 0 && window_from < 0.0)
+      r.window_from = std::abs(obs.rows[k][rev]);
   }
   if (r.frames == 0) {
     throw InputError(fmt::format("{}: no frame from revolution {:g} on (the run turned {:g})",
-                                 obs_file.string(), r.window_from, obs.rows.back()[rev]));
+                                 obs_file.string(), window_from, std::abs(obs.rows.back()[rev])));
   }
   CsvTable agg;
   const auto agg_file = dir / "agglomerates.csv";
@@ -110,6 +114,7 @@ RunResult summarise_run(const SweepRun& run, const std::filesystem::path& dir, d
                                  agg.rows.size(), obs.rows.size()));
   }
   if (run.has_bonds) r.criterion = first_text_cell(agg_file, "criterion");
+  r.regime = table_regime(obs, in_window, obs_file);
   for (const SweptQuantity& q : kSweptQuantities) {
     std::vector<double> values;
     if (!q.agglomerates || run.has_bonds) {
@@ -137,12 +142,39 @@ RunResult summarise_run(const SweepRun& run, const std::filesystem::path& dir, d
   return r;
 }
 
+RegimeEvidence table_regime(const CsvTable& t, const std::vector<bool>& in_window,
+                            const std::filesystem::path& file) {
+  const auto at = [&](const char* name) { return t.column(name, file); };
+  const std::size_t angle = at("angle_fit_deg"), curvature = at("surface_curvature"),
+                    relative = at("relative_speed"), air = at("airborne_fraction"),
+                    upper = at("upper_fraction"), com = at("com_offset"), wall = at("wall_speed"),
+                    field = at("field"), radius = at("drum_radius");
+  std::vector<DrumObservables> window;
+  for (std::size_t k = 0; k < t.rows.size(); ++k) {
+    if (!in_window[k]) continue;
+    const std::vector<double>& row = t.rows[k];
+    DrumObservables o;
+    o.surface_found = std::isfinite(row[angle]);
+    o.angle_of_repose_deg = o.surface_found ? row[angle] : 0.0;
+    o.surface_curvature = row[curvature];
+    o.relative_speed = row[relative];
+    o.airborne_fraction = row[air];
+    o.upper_fraction = row[upper];
+    o.com_offset = row[com];
+    o.wall_speed = row[wall];
+    o.field = row[field];
+    o.radius = row[radius];
+    window.push_back(o);
+  }
+  return classify_regime(window);
+}
+
 std::string sweep_header(const std::vector<SweepSet>& sets) {
   std::string h = "run";
   for (const SweepSet& s : sets) h += "," + s.key;
   h += ",seed,window_from,frames,granule_criterion";
   for (const SweptQuantity& q : kSweptQuantities) h += fmt::format(",{},{}_sd", q.name, q.name);
-  return h + ",liquid_drift";
+  return h + ",liquid_drift,regime";
 }
 
 std::string sweep_row(const RunResult& r) {
@@ -152,7 +184,7 @@ std::string sweep_row(const RunResult& r) {
   for (std::size_t k = 0; k < r.mean.size(); ++k) {
     row += fmt::format(",{:.6g},{:.6g}", r.mean[k], r.sd[k]);
   }
-  return row + fmt::format(",{:.3g}", r.liquid_drift);
+  return row + fmt::format(",{:.3g},{}", r.liquid_drift, regime_name(r.regime.regime));
 }
 
 std::map<std::string, std::string> read_sweep_rows(const std::filesystem::path& file,

@@ -14,7 +14,8 @@ namespace drumlab::cli {
 std::string observable_columns() {
   return "time,revolutions,angle_fit_deg,angle_com_deg,flowing_layer,bed_depth,"
          "surface_curvature,relative_speed,airborne_fraction,free_liquid,bridge_liquid,"
-         "wall_liquid,bridges,sprayed_liquid,airborne_liquid,lost_liquid,wall_film_liquid";
+         "wall_liquid,bridges,sprayed_liquid,airborne_liquid,lost_liquid,wall_film_liquid,"
+         "upper_fraction,com_offset,wall_speed,field,drum_radius";
 }
 
 ObservableRows::ObservableRows(std::filesystem::path file)
@@ -30,11 +31,12 @@ void ObservableRows::add(const Simulation& whole) {
   last_angle_ = o.com_angle_deg;
   table_.add(
       fmt::format("{:.9g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.17g},{:.17g},"
-                  "{:.17g},{},{:.17g},{:.17g},{:.17g},{:.17g}",
+                  "{:.17g},{},{:.17g},{:.17g},{:.17g},{:.17g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}",
                   whole.time(), whole.drum_angle() / (2.0 * std::numbers::pi), fit, o.com_angle_deg,
                   o.flowing_layer_thickness, o.bed_depth, o.surface_curvature, o.relative_speed,
                   o.airborne_fraction, liquid.films, liquid.bridges, liquid.wall_bridges,
-                  liquid.bridge_count, spray.sprayed, spray.airborne, spray.lost, spray.on_wall));
+                  liquid.bridge_count, spray.sprayed, spray.airborne, spray.lost, spray.on_wall,
+                  o.upper_fraction, o.com_offset, o.wall_speed, o.field, o.radius));
 }
 
 void ObservableRows::finish() {

@@ -9,7 +9,10 @@
 // surface_curvature, relative_speed (m/s), airborne_fraction, free_liquid, bridge_liquid,
 // wall_liquid (m^3: films, pair bridges, wall bridges), bridges (pair bridges), sprayed_liquid,
 // airborne_liquid, lost_liquid, wall_film_liquid (m^3, [[spray]]; 0 without): free + bridge + wall
-// + airborne + lost + wall_film - sprayed is the scene's initial liquid, conserved to round-off.
+// + airborne + lost + wall_film - sprayed is the scene's initial liquid, conserved to round-off;
+// then what the regime rules need (engine/analysis/flow_regime.hpp): upper_fraction, com_offset
+// (/ R), wall_speed (m/s, the wall against the field), field (m/s^2, across the axis) and
+// drum_radius (m); `drumlab sweep` classifies a window of rows by those rules.
 #include <filesystem>
 #include <string>
 

@@ -1,10 +1,11 @@
 // A planetary drum ([drum.orbit], engine/drum_orbit.hpp): the keys and their one-line errors,
 // the carrier's field in the engine against the closed form (a free particle moves on a straight
-// line in the lab frame), the critical speed ratio of a ball carried by the wall, and a restart
-// that carries the carrier's angle bit for bit.
+// line in the lab frame), the critical speed ratio of a ball carried by the wall, a restart that
+// carries the carrier's angle bit for bit, and the regime map of `sweep` over the speed ratio.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <numbers>
 
 #include "engine/drum_orbit.hpp"
@@ -193,6 +194,33 @@ TEST(DrumOrbit, InfoPrintsTheFieldTheCriticalRatiosAndTheRegime) {
   EXPECT_NE(r.output.find("speed ratio k = omega / Omega - 1 = -3"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("critical |1 + k| = sqrt(R_o / (R - r))"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("predicted: "), std::string::npos) << r.output;
+}
+
+// `sweep` over the mill's speed ratio classifies each pot (flow_regime.hpp) against the closed
+// form: at k = 0 nothing drives the bed (the pot turns with its arm): resting; at |1 + k| = 4,
+// far above the critical 1.70, the wall holds the balls as a ring: centrifuging; at |1 + k| = 1,
+// below it, the balls leave the wall: not centrifuging. 0.2 s per pot (1.3 carrier turns).
+TEST(DrumOrbit, SweepOverTheSpeedRatioMapsRestingFlowingAndHeldBeds) {
+  TempDir dir("orbit-sweep");
+  const auto r = run_cli("sweep " + std::string(DRUMLAB_SCENES_DIR) +
+                         "/planetary_mill.toml --set drum.orbit.speed_ratio=-2,0,3 --set "
+                         "time.duration=0.2 --jobs 2 --threads 1 --out " +
+                         dir.path().string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream in(dir.path() / "sweep.csv");
+  std::string header, line;
+  std::getline(in, header);
+  ASSERT_EQ(header.substr(header.rfind(',') + 1), "regime");
+  std::vector<std::string> regimes;
+  while (std::getline(in, line)) regimes.push_back(line.substr(line.rfind(',') + 1));
+  ASSERT_EQ(regimes.size(), 3u);
+  EXPECT_NE(regimes[0], "centrifuging");
+  EXPECT_NE(regimes[0], "resting");
+  EXPECT_EQ(regimes[1], "resting");
+  EXPECT_EQ(regimes[2], "centrifuging");
+  if (r.output.find("chart ") != std::string::npos) {  // a build with the render library
+    EXPECT_TRUE(std::filesystem::exists(dir.path() / "sweep.png"));
+  }
 }
 
 }  // namespace

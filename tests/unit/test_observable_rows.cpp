@@ -1,7 +1,8 @@
 // `run --observables FILE.csv`: a row per frame with the drum observables and the liquid's
 // accounting; the films, bridges and wall bridges of every row add up to the first row's liquid
 // (the scene's, conserved by every step) to 1e-12 relative; the angle columns are those of
-// measure_drum's (within their ranges); an unwritable path is one line, exit 2, before the run.
+// measure_drum's (within their ranges), the regime rules' wall speed omega R and field g; an
+// unwritable path is one line, exit 2, before the run.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -48,12 +49,20 @@ TEST(ObservableRows, WetRunConservesItsLiquidInEveryRow) {
   ASSERT_GT(total, 0.0);
   double bridges = 0.0;
   for (const auto& row : rows) {
-    ASSERT_EQ(row.size(), 17u);
+    ASSERT_EQ(row.size(), 22u);
     EXPECT_EQ(row[13] + row[14] + row[15] + row[16], 0.0);  // no [[spray]]
     EXPECT_NEAR(row[9] + row[10] + row[11], total, 1e-12 * total);
     EXPECT_GE(row[3], -90.0);
     EXPECT_LE(row[3], 90.0);
     bridges = std::max(bridges, row[12]);
+    // What the regime rules read: shares, the wall's speed omega R against gravity's field.
+    EXPECT_GE(row[17], 0.0);
+    EXPECT_LE(row[17], 1.0);
+    EXPECT_GE(row[18], 0.0);
+    EXPECT_LE(row[18], 1.0);
+    EXPECT_NEAR(row[19], row[21] * 6.0, 1e-5 * row[19]);  // the scene's omega = 6 rad/s
+    EXPECT_NEAR(row[20], 150.0, 1e-4);                    // and gravity 150 m/s^2 across
+    EXPECT_GT(row[21], 0.0);
   }
   EXPECT_GT(bridges, 0.0);                     // a wet drum: the accounting is not of films alone
   EXPECT_GT(rows.back()[1], rows.front()[1]);  // the drum turned
