@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 #include <vtkActor.h>
+#include <vtkActorCollection.h>
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
 #include <vtkCoordinate.h>
@@ -33,6 +34,7 @@
 #include <vtkTransform.h>
 #include <vtkTransformPolyDataFilter.h>
 #include <vtkVariant.h>
+#include <Eigen/Geometry>
 
 #include "engine/io/paraview/frame_datasets.hpp"
 #include "render/grid_overlay.hpp"
@@ -217,7 +219,16 @@ struct DrumView::Impl {
   void update_droplets(const FrameSnapshot& s);
   void update_overlay(const FrameSnapshot& s);
   void place_camera();
+  /// The picture's extent (x, y, z ranges): the drum, with the central axis above it (carrier
+  /// frame) or the whole orbit (lab frame) for a planetary drum.
+  std::array<double, 6> picture_bounds() const;
+  void reset_clipping();
   void show_parts();  // the walls, legend and text toggles
+  /// A planetary drum: the central axis and the arm (drum-frame points at this snapshot), and
+  /// every 3D actor moved into the picture's frame (ViewOptions::frame).
+  void update_carrier(const FrameSnapshot& s);
+  Vec3 to_picture(const Vec3& x) const;    // drum frame -> the picture's frame
+  Vec3 from_picture(const Vec3& y) const;  // and back
   bool compact_overlay() const { return options.height < kFullOverlayHeight; }
 
   ViewOptions options;
@@ -237,6 +248,11 @@ struct DrumView::Impl {
   vtkNew<vtkPolyData> droplets;
   vtkNew<vtkActor> droplet_actor;
   std::unique_ptr<GridOverlay> grid;
+  vtkNew<vtkPolyData> arm_lines;  // the central axis and the arm ([drum.orbit])
+  vtkSmartPointer<vtkActor> arm, central_axis;
+  vtkNew<vtkTransform> picture;  // drum frame -> the picture's frame, on every 3D actor
+  paraview::FrameMotion motion;  // the same motion
+  double orbit_radius = 0.0;
   bool drum_built = false;
   bool camera_placed = false;
   bool focus_drawn = false;
@@ -384,7 +400,74 @@ void DrumView::Impl::build_drum(const FrameSnapshot& s) {
     droplet_actor->GetProperty()->RenderPointsAsSpheresOn();
     renderer->AddActor(droplet_actor);
   }
+  orbit_radius = s.orbit_radius;
+  if (orbit_radius != 0.0) {
+    arm = actor_for(arm_lines);
+    arm->GetProperty()->SetColor(1.0, 0.6, 0.2);
+    arm->GetProperty()->SetLineWidth(3.0);
+    arm->GetProperty()->LightingOff();
+    renderer->AddActor(arm);
+    vtkNew<vtkRegularPolygonSource> hub;  // the central axis, seen end on: a small disk
+    hub->SetNumberOfSides(24);
+    hub->SetRadius(0.08 * radius);
+    hub->Update();
+    central_axis = actor_for(hub->GetOutput());
+    central_axis->GetProperty()->SetColor(1.0, 0.6, 0.2);
+    central_axis->GetProperty()->LightingOff();
+    renderer->AddActor(central_axis);
+  }
   drum_built = true;
+}
+
+void DrumView::Impl::update_carrier(const FrameSnapshot& s) {
+  motion = picture_motion(s, options.frame);
+  picture->Identity();
+  picture->PostMultiply();
+  picture->Translate(motion.offset.x(), motion.offset.y(), motion.offset.z());
+  picture->RotateZ(motion.turn * 180.0 / std::numbers::pi);
+  for (vtkRenderer* r : {renderer.Get(), top.Get()}) {
+    vtkActorCollection* actors = r->GetActors();
+    actors->InitTraversal();
+    while (vtkActor* a = actors->GetNextActor()) a->SetUserTransform(picture);
+  }
+  if (!arm) return;
+  // In the drum frame the central axis stands at -c; the arm joins it to the drum's axis.
+  const Vec3 c = s.carrier_offset;
+  const double h = s.drum_depth;
+  vtkNew<vtkPoints> points;
+  for (const Vec3& x : {Vec3(-c), Vec3(-c.x(), -c.y(), h), Vec3(Vec3::Zero()), Vec3(0.0, 0.0, h)}) {
+    points->InsertNextPoint(x.x(), x.y(), x.z());
+  }
+  vtkNew<vtkCellArray> lines;
+  for (const auto& [a, b] : {std::pair<vtkIdType, vtkIdType>{0, 1}, {0, 2}, {1, 3}}) {
+    const vtkIdType ends[2] = {a, b};
+    lines->InsertNextCell(2, ends);
+  }
+  central_axis->SetPosition(-c.x(), -c.y(), h);
+  arm_lines->SetPoints(points);
+  arm_lines->SetLines(lines);
+  arm_lines->Modified();
+}
+
+Vec3 DrumView::Impl::to_picture(const Vec3& x) const {
+  const Eigen::AngleAxisd turn(motion.turn, Vec3::UnitZ());
+  return turn * (x + motion.offset);
+}
+
+Vec3 DrumView::Impl::from_picture(const Vec3& y) const {
+  const Eigen::AngleAxisd turn(-motion.turn, Vec3::UnitZ());
+  return turn * y - motion.offset;
+}
+
+paraview::FrameMotion picture_motion(const FrameSnapshot& s, paraview::ViewFrame frame) {
+  paraview::FrameMotion m;
+  if (s.orbit_radius == 0.0) return m;
+  if (frame == paraview::ViewFrame::carrier) {
+    m.turn = -0.5 * std::numbers::pi - s.carrier_angle;  // c, the field's direction, points down
+  } else if (frame == paraview::ViewFrame::lab) {
+    m.offset = s.carrier_offset;  // the central axis at the origin
+  }
+  return m;
 }
 
 void DrumView::Impl::update_droplets(const FrameSnapshot& s) {
@@ -455,41 +538,63 @@ void DrumView::Impl::update_overlay(const FrameSnapshot& sim) {
     text->SetInput(options.title.c_str());
     return;
   }
-  text->SetInput(
-      overlay_text(sim, grid ? grid_text(*grid, focus_drawn) : "", compact_overlay()).c_str());
+  std::string extra = grid ? grid_text(*grid, focus_drawn) : "";
+  if (sim.orbit_radius != 0.0 && !compact_overlay()) {
+    const char* view = options.frame == paraview::ViewFrame::carrier ? "the arm's frame, field down"
+                       : options.frame == paraview::ViewFrame::lab   ? "the lab frame"
+                                                                     : "the drum's frame";
+    if (!extra.empty()) extra += "\n\n";
+    extra += fmt::format("carrier R_o = {:g} m\n  arm at {:.0f} deg\n  view: {}", sim.orbit_radius,
+                         std::fmod(sim.carrier_angle * 180.0 / std::numbers::pi, 360.0), view);
+  }
+  text->SetInput(overlay_text(sim, extra, compact_overlay()).c_str());
 }
 
 void DrumView::Impl::show_parts() {
-  for (vtkActor* a : {mantle.Get(), front_cap.Get(), back_cap.Get(), back_lines.Get()}) {
+  for (vtkActor* a : {mantle.Get(), front_cap.Get(), back_cap.Get(), back_lines.Get(), arm.Get(),
+                      central_axis.Get()}) {
     if (a != nullptr) a->SetVisibility(options.walls);
   }
   legend->SetVisibility(options.legend);
   text->SetVisibility(options.text);
 }
 
+std::array<double, 6> DrumView::Impl::picture_bounds() const {
+  const double r = drum_radius, d = drum_depth, ro = std::abs(orbit_radius);
+  if (ro > 0.0 && options.frame == paraview::ViewFrame::carrier) {
+    return {-r, r, -r, std::max(r, ro + 0.1 * r), -0.1 * d, 1.1 * d};  // the axis above the drum
+  }
+  if (ro > 0.0 && options.frame == paraview::ViewFrame::lab) {
+    return {-(ro + r), ro + r, -(ro + r), ro + r, -0.1 * d, 1.1 * d};  // the whole orbit
+  }
+  return {-r, r, -r, r, -0.1 * d, 1.1 * d};
+}
+
 void DrumView::Impl::place_camera() {
-  const double radius = drum_radius;
   const double depth = drum_depth;
+  const std::array<double, 6> b = picture_bounds();
+  const double cx = 0.5 * (b[0] + b[1]), cy = 0.5 * (b[2] + b[3]);
+  const double hx = 0.5 * (b[1] - b[0]), hy = 0.5 * (b[3] - b[2]);
   vtkCamera* cam = renderer->GetActiveCamera();
-  const double far = 4.0 * (radius + depth);
-  cam->SetFocalPoint(0.0, 0.0, 0.5 * depth);
+  const double far = 4.0 * (std::max(hx, hy) + depth);
+  cam->SetFocalPoint(cx, cy, 0.5 * depth);
   cam->SetViewUp(0.0, 1.0, 0.0);
   if (options.camera == CameraMode::axis) {
     cam->ParallelProjectionOn();
-    cam->SetPosition(0.0, 0.0, 0.5 * depth + far);
-    // The disk fits the narrower side: a portrait view is framed by its width.
-    const double portrait = static_cast<double>(options.height) / options.width;
-    cam->SetParallelScale(1.08 * radius * std::max(1.0, portrait));
+    cam->SetPosition(cx, cy, 0.5 * depth + far);
+    // The picture fits the frame: a portrait view of the drum is framed by its width.
+    const double aspect = static_cast<double>(options.height) / options.width;
+    cam->SetParallelScale(1.08 * std::max(hy, hx * aspect));
   } else {
     cam->ParallelProjectionOff();
-    cam->SetPosition(0.9 * far, 0.5 * far, 0.5 * depth + 1.4 * far);
+    cam->SetPosition(cx + 0.9 * far, cy + 0.5 * far, 0.5 * depth + 1.4 * far);
     cam->SetViewAngle(30.0);
-    renderer->ResetCamera(-radius, radius, -radius, radius, 0.0, depth);
+    renderer->ResetCamera(b[0], b[1], b[2], b[3], 0.0, depth);
     cam->Zoom(1.25);
   }
   if (options.zoom_to_focus && grid) {
     if (const auto box = grid->focus_box()) {
-      const Vec3 c = 0.5 * (box->lo + box->hi);
+      const Vec3 c = to_picture(0.5 * (box->lo + box->hi));
       const double h = 0.5 * std::max(box->hi.y() - box->lo.y(),
                                       (box->hi.x() - box->lo.x()) * options.height / options.width);
       cam->SetFocalPoint(c.x(), c.y(), 0.5 * depth);
@@ -497,8 +602,13 @@ void DrumView::Impl::place_camera() {
       cam->SetParallelScale(1.1 * h);
     }
   }
-  renderer->ResetCameraClippingRange(-radius, radius, -radius, radius, -0.1 * depth, 1.1 * depth);
+  reset_clipping();
   camera_placed = true;
+}
+
+void DrumView::Impl::reset_clipping() {
+  const std::array<double, 6> b = picture_bounds();
+  renderer->ResetCameraClippingRange(b[0], b[1], b[2], b[3], b[4], b[5]);
 }
 
 DrumView::DrumView(const ViewOptions& options, RenderTarget& target)
@@ -539,6 +649,7 @@ void DrumView::draw(const FrameSnapshot& snapshot) {
   m.update_particles(snapshot);
   m.update_droplets(snapshot);
   m.update_overlay(snapshot);
+  m.update_carrier(snapshot);
   m.show_parts();
   if (!m.camera_placed) m.place_camera();
   m.window->Render();
@@ -547,7 +658,8 @@ void DrumView::draw(const FrameSnapshot& snapshot) {
 std::array<double, 2> DrumView::project(const Vec3& x) {
   vtkNew<vtkCoordinate> c;
   c->SetCoordinateSystemToWorld();
-  c->SetValue(x.x(), x.y(), x.z());
+  const Vec3 y = impl_->to_picture(x);
+  c->SetValue(y.x(), y.y(), y.z());
   const double* d = c->GetComputedDoubleDisplayValue(impl_->renderer);
   return {d[0], static_cast<double>(impl_->options.height) - d[1]};
 }
@@ -559,7 +671,8 @@ std::array<Vec3, 2> DrumView::sight_line(double x, double y) {
     r->SetDisplayPoint(x, static_cast<double>(impl_->options.height) - y, k);
     r->DisplayToWorld();
     const double* w = r->GetWorldPoint();
-    ends[static_cast<std::size_t>(k)] = Vec3(w[0] / w[3], w[1] / w[3], w[2] / w[3]);
+    ends[static_cast<std::size_t>(k)] =
+        impl_->from_picture(Vec3(w[0] / w[3], w[1] / w[3], w[2] / w[3]));
   }
   return ends;
 }
@@ -606,8 +719,9 @@ void DrumView::set_options(const ViewOptions& options) {
   if (options.title.empty() != m.options.title.empty() || options.overlay != m.options.overlay) {
     throw std::logic_error("DrumView::set_options: title and overlay are set at construction");
   }
-  const bool camera_changed =
-      options.camera != m.options.camera || options.zoom_to_focus != m.options.zoom_to_focus;
+  const bool camera_changed = options.camera != m.options.camera ||
+                              options.zoom_to_focus != m.options.zoom_to_focus ||
+                              options.frame != m.options.frame;
   const bool shade_changed = options.neutral_particles != m.options.neutral_particles;
   const int width = m.options.width, height = m.options.height;
   m.options = options;
@@ -642,14 +756,12 @@ void DrumView::orbit(double azimuth_deg, double elevation_deg) {
   cam->Azimuth(azimuth_deg);
   cam->Elevation(elevation_deg);
   cam->OrthogonalizeViewUp();
-  const double r = impl_->drum_radius, d = impl_->drum_depth;
-  impl_->renderer->ResetCameraClippingRange(-r, r, -r, r, -0.1 * d, 1.1 * d);
+  impl_->reset_clipping();
 }
 
 void DrumView::zoom(double factor) {
   impl_->renderer->GetActiveCamera()->Zoom(factor);
-  const double r = impl_->drum_radius, d = impl_->drum_depth;
-  impl_->renderer->ResetCameraClippingRange(-r, r, -r, r, -0.1 * d, 1.1 * d);
+  impl_->reset_clipping();
 }
 
 void DrumView::set_title(std::string title) {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "engine/analysis/granule_criterion.hpp"
+#include "engine/io/paraview/view_frame.hpp"
 #include "engine/search/cell_grid.hpp"
 #include "engine/session/frame_snapshot.hpp"
 #include "engine/simulation.hpp"
@@ -51,7 +52,18 @@ struct ViewOptions {
   bool legend = true;              ///< with overlay: the legend
   bool text = true;                ///< with overlay: the text
   std::string title;               ///< replaces the overlay text when not empty
+  /// A planetary drum ([drum.orbit]) is drawn in this frame, with the central axis and the arm:
+  /// carrier (default): turning with the arm, the drum's centre still, the arm pointing up from
+  /// it to the central axis and the carrier's field pointing down, so a steady bed looks steady;
+  /// lab: the central axis still at the centre of the picture, the drum orbiting it; drum: the
+  /// engine's frame (the drum's centre still, not turning). A drum without an orbit is always
+  /// drawn in its own frame.
+  paraview::ViewFrame frame = paraview::ViewFrame::carrier;
 };
+
+/// The rigid motion (x -> R(turn) (x + offset), about z) from the drum frame into the picture's
+/// frame for a snapshot: identity without an orbit or for `drum` (see ViewOptions::frame).
+paraview::FrameMotion picture_motion(const FrameSnapshot& snapshot, paraview::ViewFrame frame);
 
 class DrumView {
  public:

@@ -1,6 +1,6 @@
 // drumlab render SCENE --out DIR [--frames N] [--every K] [--movie FILE] [--size WxH]
 //   [--color-by size|speed|omega|id|coordination|agglomerate] [--grid] [--focus ID|auto] [--camera
-//   axis|iso]
+//   axis|iso] [--frame carrier|lab|drum] (a planetary drum's pictures: the arm's frame by default)
 #include <chrono>
 #include <cstdio>
 #include <regex>
@@ -167,6 +167,7 @@ void add_render_command(CLI::App& app) {
   cmd->callback([opt, args] {
     RenderOutput out = make_output(*args);
     out.view.granule = opt->granule.criterion;
+    if (!opt->frame.empty()) out.view.frame = paraview::parse_view_frame(opt->frame, "--frame");
     if (args->grid) {  // fail now, not after settling; --focus shows every method's search
       const std::string method =
           opt->method.empty() ? load_dynamic_scene(opt->scene).search_method : opt->method;

@@ -36,7 +36,7 @@ class PlainVtuObserver final : public FrameObserver {
  public:
   explicit PlainVtuObserver(const RunOptions& opt)
       : series_(opt.vtu_dir, opt.contacts_vtk, opt.granule.criterion,
-                paraview::parse_view_frame(opt.vtu_frame, "--frame")) {}
+                paraview::parse_view_frame(opt.vtu_frame(), "--frame")) {}
   void on_frame(const Simulation& sim, std::uint64_t) override { series_.write_frame(sim); }
   void on_finish(const Simulation&) override {
     print_vtu_written(series_.frames(), series_.directory());
@@ -107,7 +107,7 @@ std::vector<std::unique_ptr<FrameObserver>> make_output_observers(const RunOptio
     v.contacts = opt.contacts_vtk;
     v.grid = opt.grid_vtk;
     v.granule = opt.granule.criterion;
-    v.frame = paraview::parse_view_frame(opt.vtu_frame, "--frame");
+    v.frame = paraview::parse_view_frame(opt.vtu_frame(), "--frame");
     out.push_back(std::make_unique<VtuObserver>(opt.vtu_dir, v));
 #else
     if (opt.grid_vtk) {

@@ -93,6 +93,18 @@ bool GuiApp::view_switches(render::ViewOptions& o, const FrameSnapshot* s) {
   ImGui::SameLine();
   changed |= ImGui::Checkbox("text", &o.text);
   changed |= ImGui::Checkbox("grey particles (the focus colours stand out)", &o.neutral_particles);
+  if (s != nullptr && s->orbit_radius != 0.0) {  // a planetary drum: the frame of the picture
+    int frame = static_cast<int>(o.frame);
+    ImGui::TextUnformatted("frame");
+    ImGui::SameLine();
+    changed |= ImGui::RadioButton("drum", &frame, static_cast<int>(paraview::ViewFrame::drum));
+    ImGui::SameLine();
+    changed |= ImGui::RadioButton("arm (field down)", &frame,
+                                  static_cast<int>(paraview::ViewFrame::carrier));
+    ImGui::SameLine();
+    changed |= ImGui::RadioButton("lab", &frame, static_cast<int>(paraview::ViewFrame::lab));
+    o.frame = static_cast<paraview::ViewFrame>(frame);
+  }
   return changed;
 }
 

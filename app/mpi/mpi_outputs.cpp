@@ -161,7 +161,7 @@ class VtuWriter final : public FrameObserver {
       : domain_(domain), times_(times) {
     h5::on_root(root(), [&] {
       series_.emplace(opt.vtu_dir, opt.contacts_vtk, opt.granule.criterion,
-                      paraview::parse_view_frame(opt.vtu_frame, "--frame"));
+                      paraview::parse_view_frame(opt.vtu_frame(), "--frame"));
     });
   }
   void on_frame(const Simulation& sim, std::uint64_t) override {

@@ -39,9 +39,10 @@ void add_run_options(CLI::App* cmd, RunOptions& opt) {
       ->check(CLI::Range(1e-6, 10.0));
   cmd->add_option("--vtu", opt.vtu_dir, "write a VTU/PVD series for ParaView into DIR");
   cmd->add_flag("--contacts-vtk", opt.contacts_vtk, "with --vtu: contacts as lines (.vtp)");
-  cmd->add_option("--frame", opt.vtu_frame,
-                  "with --vtu: the frame of the series: drum (the engine's, default), lab or "
-                  "carrier (a planetary drum: turning with the arm)")
+  cmd->add_option(
+         "--frame", opt.frame,
+         "a planetary drum's frame for --vtu (default: drum, the engine's) and for "
+         "render's pictures (default: carrier, turning with the arm): drum, lab or carrier")
       ->check(CLI::IsMember({"drum", "lab", "carrier"}));
   cmd->add_flag("--grid-vtk", opt.grid_vtk, "with --vtu: search grid occupancy (.vti)");
   cmd->add_option("--h5", opt.h5_file, "write an HDF5 time series (+ XDMF sidecar) to FILE");
@@ -111,8 +112,9 @@ void check_run_options(const RunOptions& opt, bool frames_taken) {
   if (opt.vtu_dir.empty() && (opt.contacts_vtk || opt.grid_vtk)) {
     throw InputError("--contacts-vtk and --grid-vtk add to the VTU series: give --vtu DIR");
   }
-  if (opt.vtu_dir.empty() && opt.vtu_frame != "drum") {
-    throw InputError("--frame: the frame of the VTU series: give --vtu DIR");
+  if (!opt.frame.empty() && opt.vtu_dir.empty() && !frames_taken) {
+    throw InputError(
+        "--frame: the frame of the VTU series (or of render's pictures): give --vtu DIR");
   }
   if (opt.checkpoint.empty() && opt.checkpoint_every > 0) {
     throw InputError("--checkpoint-every needs --checkpoint FILE");
@@ -129,7 +131,7 @@ void check_run_options(const RunOptions& opt, bool frames_taken) {
 }
 
 void check_run_options_for(const RunOptions& opt, const SceneConfig& scene) {
-  if (opt.vtu_frame == "carrier" && !scene.drum.orbit.active()) {
+  if (opt.frame == "carrier" && !scene.drum.orbit.active()) {
     throw InputError(fmt::format("{}: --frame carrier: the scene has no [drum.orbit]", opt.scene));
   }
 }

@@ -29,18 +29,21 @@ struct RunOptions {
   std::uint64_t every = 0;       ///< steps between frames for observers (0: the run decides)
   std::uint64_t frames = 0;      ///< if > 0, spread this many frames over the turning phase
   // Outputs (app/run/output_schedule.hpp).
-  std::string vtu_dir;             ///< --vtu DIR
-  bool contacts_vtk = false;       ///< --contacts-vtk
-  std::string vtu_frame = "drum";  ///< --frame drum|lab|carrier (view_frame.hpp)
-  bool grid_vtk = false;           ///< --grid-vtk
-  std::string h5_file;             ///< --h5 FILE
-  std::string checkpoint;          ///< --checkpoint FILE (written at the end)
+  std::string vtu_dir;        ///< --vtu DIR
+  bool contacts_vtk = false;  ///< --contacts-vtk
+  /// --frame drum|lab|carrier (view_frame.hpp); "": the default of each output (vtu_frame()).
+  std::string frame;
+  bool grid_vtk = false;   ///< --grid-vtk
+  std::string h5_file;     ///< --h5 FILE
+  std::string checkpoint;  ///< --checkpoint FILE (written at the end)
   std::uint64_t checkpoint_every = 0;
   std::string agglomerates;  ///< --agglomerates FILE.csv (+ FILE.png)
   GranuleFlags granule;      ///< --granule-criterion, --granule-age, --granule-resolution
   std::string observables;   ///< --observables FILE.csv (observable_rows.hpp)
   std::string restart;       ///< --restart FILE: skip fill and settling, continue from the file
 
+  /// The VTU series' frame: --frame, by default the drum's (the engine's).
+  std::string vtu_frame() const { return frame.empty() ? "drum" : frame; }
   /// Whether an output takes frames (--h5, --vtu, --agglomerates, --observables).
   bool frame_outputs() const {
     return !h5_file.empty() || !vtu_dir.empty() || !agglomerates.empty() || !observables.empty();

@@ -82,6 +82,9 @@ FrameSnapshot take_snapshot(const Simulation& sim, const SnapshotRequest& reques
   s.dt = sim.dt();
   s.drum_angle = sim.drum_angle();
   s.drum_omega = sim.drum_omega();
+  s.orbit_radius = sim.scene().drum.orbit.radius;
+  s.carrier_angle = sim.carrier_angle();
+  s.carrier_offset = sim.carrier_offset();
   s.steps = sim.steps();
 
   s.search_name = search.name();

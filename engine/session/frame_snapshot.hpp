@@ -68,6 +68,11 @@ struct FrameSnapshot {
   double dt = 0.0;          ///< s
   double drum_angle = 0.0;  ///< rad
   double drum_omega = 0.0;  ///< rad/s, now (0 while settling)
+  /// A planetary drum's carrier ([drum.orbit]): R_o (0 without an orbit), the arm's angle and
+  /// the drum centre's offset c from the central axis (Simulation::carrier_offset).
+  double orbit_radius = 0.0;           ///< m
+  double carrier_angle = 0.0;          ///< rad
+  Vec3 carrier_offset = Vec3::Zero();  ///< m
   std::uint64_t steps = 0;
 
   // The search of the last step.

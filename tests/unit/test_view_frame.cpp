@@ -99,7 +99,8 @@ TEST(ViewFrame, RunWritesTheSeriesInTheFrameAndRefusesWhatItCannot) {
   EXPECT_FALSE(std::filesystem::exists(out + "2/particles.pvd"));
   r = run_cli("run " + orbit + " --steps 20 --frame lab");
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("--frame: the frame of the VTU series: give --vtu DIR"),
+  EXPECT_NE(r.output.find(
+                "--frame: the frame of the VTU series (or of render's pictures): give --vtu DIR"),
             std::string::npos)
       << r.output;
 }
