@@ -10,6 +10,7 @@
 #include "engine/analysis/agglomerates.hpp"
 #include "engine/drum_orbit.hpp"
 #include "engine/scene/scene_config.hpp"
+#include "engine/scene/scene_keys.hpp"
 #include "engine/scene/scene_writer.hpp"
 
 namespace drumlab::cli {
@@ -20,56 +21,6 @@ std::vector<std::string> split(const std::string& text, char by) {
   std::stringstream in(text);
   for (std::string part; std::getline(in, part, by);) out.push_back(part);
   return out;
-}
-
-template <class T>
-bool parse_number(const std::string& text, T& value) {
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  return ec == std::errc() && ptr == end;
-}
-
-/// Sets `key` (dotted) in `root` to `text`, typed as the existing value is (else as the text
-/// reads: integer, float, true/false, string). Throws InputError naming the set.
-void set_key(toml::table& root, const std::string& key, const std::string& text,
-             const std::string& set) {
-  toml::table* table = &root;
-  const std::vector<std::string> path = split(key, '.');
-  for (std::size_t k = 0; k + 1 < path.size(); ++k) {
-    toml::node* next = table->get(path[k]);
-    if (next == nullptr) next = &table->insert(path[k], toml::table{}).first->second;
-    table = next->as_table();
-    if (table == nullptr) {
-      throw InputError(fmt::format("--set {}: '{}' is not a table in the scene", set, path[k]));
-    }
-  }
-  const std::string& leaf = path.back();
-  const toml::node* old = table->get(leaf);
-  std::int64_t i = 0;
-  double d = 0.0;
-  const auto bad = [&](const char* what) {
-    return InputError(fmt::format("--set {}: '{}' is not {}", set, text, what));
-  };
-  if (old != nullptr && old->is_integer()) {
-    if (!parse_number(text, i)) throw bad("a whole number");
-    table->insert_or_assign(leaf, i);
-  } else if (old != nullptr && old->is_floating_point()) {
-    if (!parse_number(text, d)) throw bad("a number");
-    table->insert_or_assign(leaf, d);
-  } else if (old != nullptr && old->is_boolean()) {
-    if (text != "true" && text != "false") throw bad("true or false");
-    table->insert_or_assign(leaf, text == "true");
-  } else if (old != nullptr && !old->is_string()) {
-    throw InputError(fmt::format("--set {}: {} is an array or table, not a value", set, key));
-  } else if (old == nullptr && parse_number(text, i)) {
-    table->insert_or_assign(leaf, i);
-  } else if (old == nullptr && parse_number(text, d)) {
-    table->insert_or_assign(leaf, d);
-  } else if (old == nullptr && (text == "true" || text == "false")) {
-    table->insert_or_assign(leaf, text == "true");
-  } else {
-    table->insert_or_assign(leaf, text);
-  }
 }
 
 std::string run_name(std::size_t index, const std::vector<SweepSet>& sets,
@@ -132,10 +83,10 @@ std::vector<SweepRun> plan_sweep(const std::filesystem::path& scene,
       std::string label = scene.string();
       for (std::size_t k = 0; k < sets.size(); ++k) {
         const std::string set = sets[k].key + "=" + values[k];
-        set_key(t, sets[k].key, values[k], set);
+        set_scene_key(t, sets[k].key, values[k], "--set " + set);
         label += " --set " + set;
       }
-      if (seed >= 0) set_key(t, "fill.seed", std::to_string(seed), "(--seeds)");
+      if (seed >= 0) set_scene_key(t, "fill.seed", std::to_string(seed), "--set (--seeds)");
       std::ostringstream text;
       text << t << '\n';
       SweepRun run{run_name(runs.size(), sets, values, seed), values, seed,

@@ -262,7 +262,7 @@ TEST(SprayScene, TablesAndSeriesCarryTheSpraysTerms) {
   r = run_cli("analyze " + d + "s.h5");
   EXPECT_EQ(r.exit_code, 2) << r.output;
   const std::string obs = read_text(d + "obs.csv");
-  EXPECT_NE(obs.find(",sprayed_liquid,airborne_liquid,lost_liquid,wall_film_liquid\n"),
+  EXPECT_NE(obs.find(",sprayed_liquid,airborne_liquid,lost_liquid,wall_film_liquid,"),
             std::string::npos);
 }
 
