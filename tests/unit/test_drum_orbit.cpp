@@ -196,6 +196,25 @@ TEST(DrumOrbit, InfoPrintsTheFieldTheCriticalRatiosAndTheRegime) {
   EXPECT_NE(r.output.find("predicted: "), std::string::npos) << r.output;
 }
 
+// R_o = 0: an arm of no length is the plain drum, bit for bit (the carrier adds exactly nothing,
+// whatever its rate), and the speed ratio still sets the drum's rate Omega (1 + k).
+TEST(DrumOrbit, AnArmOfNoLengthIsThePlainDrumBitForBit) {
+  const SceneConfig orbit = parse_scene(
+      scene_text("radius = 0.0\nomega = 16.0\nspeed_ratio = -1.5\n", ""), "zero.toml");
+  const SceneConfig plain = parse_scene(scene_text("", "omega = -8.0\n"), "plain.toml");
+  EXPECT_EQ(orbit.drum.omega, plain.drum.omega);
+  Simulation a(orbit, random_fill(orbit));
+  Simulation b(plain, random_fill(plain));
+  a.advance(400);
+  b.advance(400);
+  EXPECT_EQ(a.particles().position, b.particles().position);
+  EXPECT_EQ(a.particles().velocity, b.particles().velocity);
+  EXPECT_EQ(a.particles().omega, b.particles().omega);
+  EXPECT_EQ(a.carrier_offset(), Vec3::Zero());
+  EXPECT_EQ(a.body_acceleration(), b.body_acceleration());
+  EXPECT_EQ(a.diagnostics().lab_kinetic_energy, b.diagnostics().kinetic_energy);
+}
+
 // `sweep` over the mill's speed ratio classifies each pot (flow_regime.hpp) against the closed
 // form: at k = 0 nothing drives the bed (the pot turns with its arm): resting; at |1 + k| = 4,
 // far above the critical 1.70, the wall holds the balls as a ring: centrifuging; at |1 + k| = 1,
