@@ -199,8 +199,8 @@ TEST(DrumOrbit, InfoPrintsTheFieldTheCriticalRatiosAndTheRegime) {
 // R_o = 0: an arm of no length is the plain drum, bit for bit (the carrier adds exactly nothing,
 // whatever its rate), and the speed ratio still sets the drum's rate Omega (1 + k).
 TEST(DrumOrbit, AnArmOfNoLengthIsThePlainDrumBitForBit) {
-  const SceneConfig orbit = parse_scene(
-      scene_text("radius = 0.0\nomega = 16.0\nspeed_ratio = -1.5\n", ""), "zero.toml");
+  const SceneConfig orbit =
+      parse_scene(scene_text("radius = 0.0\nomega = 16.0\nspeed_ratio = -1.5\n", ""), "zero.toml");
   const SceneConfig plain = parse_scene(scene_text("", "omega = -8.0\n"), "plain.toml");
   EXPECT_EQ(orbit.drum.omega, plain.drum.omega);
   Simulation a(orbit, random_fill(orbit));
