@@ -89,3 +89,20 @@ def test_setters_keep_the_invariants_and_analysis_reads_the_state(small_scene):
     assert np.all(contacts["bridge_volume"] >= 0.0)
     with pytest.raises(ValueError, match="criterion"):
         sim.agglomerates(criterion="clumps")
+
+
+def test_law_curve_is_the_clis_law(small_scene, tmp_path):
+    scene = drumlab.Scene.load(str(small_scene))
+    curve = drumlab.law_curve(scene)
+    assert curve["gap"].shape == curve["normal_force"].shape
+    assert curve["normal_force"].min() < 0.0 < curve["normal_force"].max()  # bridge, then Hertz
+    # The bridge breaks where the law says (within one probe position).
+    step = np.max(np.abs(np.diff(curve["gap"])))
+    assert abs(curve["rupture_gap"] - curve["predicted_rupture"]) <= 2 * step
+    code, out = run_cli("law", small_scene, "--out", tmp_path / "law")
+    assert code == 0, out
+    rows = np.genfromtxt(tmp_path / "law" / "law.csv", delimiter=",", names=True, dtype=None,
+                         encoding="utf-8")
+    assert len(rows) == len(curve["gap"])
+    assert np.allclose(rows["gap_or_overlap_m"], curve["gap"], rtol=1e-12, atol=0.0)
+    assert np.allclose(rows["normal_force_N"], curve["normal_force"], rtol=1e-9, atol=1e-15)

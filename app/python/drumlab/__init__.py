@@ -12,8 +12,8 @@
 The engine is the one `drumlab run` runs: a run driven from here gives the same bits. See
 app/python/README.md.
 """
-from ._drumlab import InputError, Scene, read_checkpoint, read_series
+from ._drumlab import InputError, Scene, law_curve, read_checkpoint, read_series
 from ._simulation import Arrays, Simulation, View
 
-__all__ = ["Scene", "Simulation", "Arrays", "View", "InputError", "read_checkpoint",
-           "read_series"]
+__all__ = ["Scene", "Simulation", "Arrays", "View", "InputError", "law_curve",
+           "read_checkpoint", "read_series"]

@@ -7,6 +7,7 @@
 
 #include "app/python/src/py_scene.hpp"
 #include "app/python/src/py_simulation.hpp"
+#include "engine/contact/law_probe.hpp"
 #include "engine/io/checkpoint.hpp"
 #include "engine/io/h5_series.hpp"
 #include "engine/io/paraview/frame_datasets.hpp"
@@ -91,6 +92,49 @@ PYBIND11_MODULE(_drumlab, m) {
         "A checkpoint's particle arrays (copies) and its scene name, time and steps.");
   m.def("read_series", &read_series_frames, py::arg("path"),
         "The frames of an HDF5 time series (run --h5): a list of dicts of numpy arrays.");
+  m.def(
+      "law_curve",
+      [](const python::PyScene& scene, int class_a, int class_b, bool wall, double overlap,
+         double start_gap, double end_gap, std::size_t steps) {
+        if (class_a < 0 || class_a > 255 || class_b < 0 || class_b > 255) {
+          throw InputError("law_curve: class indices are 0..255");
+        }
+        LawProbeOptions o;
+        o.class_a = static_cast<std::uint8_t>(class_a);
+        o.class_b = static_cast<std::uint8_t>(class_b);
+        o.wall = wall;
+        o.overlap = overlap;
+        o.start_gap = start_gap;
+        o.end_gap = end_gap;
+        o.steps = steps;
+        const LawCurve c = probe_law(scene.config(), o);
+        const auto n = static_cast<py::ssize_t>(c.samples.size());
+        py::array_t<double> gap(n), force(n), volume(n);
+        py::array_t<bool> retreat(n);
+        for (py::ssize_t k = 0; k < n; ++k) {
+          const LawSample& s = c.samples[static_cast<std::size_t>(k)];
+          gap.mutable_at(k) = s.gap;
+          force.mutable_at(k) = s.normal_force;
+          volume.mutable_at(k) = s.bridge_volume;
+          retreat.mutable_at(k) = s.retreat;
+        }
+        py::dict d;
+        d["label"] = c.label;
+        d["gap"] = gap;
+        d["normal_force"] = force;
+        d["bridge_volume"] = volume;
+        d["retreat"] = retreat;
+        d["rupture_gap"] = c.rupture_gap;
+        d["predicted_rupture"] = c.predicted_rupture;
+        return d;
+      },
+      py::arg("scene"), py::arg("class_a") = 0, py::arg("class_b") = 0, py::arg("wall") = false,
+      py::arg("overlap") = -1.0, py::arg("start_gap") = -1.0, py::arg("end_gap") = -1.0,
+      py::arg("steps") = 400,
+      "`drumlab law`: the normal force of the scene's contact law between two particles of "
+      "classes a and b (or a and the wall) on approach and retreat, read from the engine's own "
+      "code path; a dict of numpy arrays (gap, normal_force, bridge_volume, retreat) and the "
+      "rupture gap against the law's prediction.");
   m.def(
       "_write_vtu",
       [](const python::PySimulation& s, const std::string& path) {
