@@ -16,13 +16,6 @@
 namespace drumlab::cli {
 namespace {
 
-std::vector<std::string> split(const std::string& text, char by) {
-  std::vector<std::string> out;
-  std::stringstream in(text);
-  for (std::string part; std::getline(in, part, by);) out.push_back(part);
-  return out;
-}
-
 std::string run_name(std::size_t index, const std::vector<SweepSet>& sets,
                      const std::vector<std::string>& values, std::int64_t seed) {
   std::string name = fmt::format("r{:03d}", index);
@@ -44,7 +37,7 @@ SweepSet parse_sweep_set(const std::string& spec) {
                     "liquid.surface_tension)",
                     spec));
   }
-  SweepSet s{spec.substr(0, eq), split(spec.substr(eq + 1), ',')};
+  SweepSet s{spec.substr(0, eq), split_text(spec.substr(eq + 1), ',')};
   for (const std::string& v : s.values) {
     if (v.empty()) throw InputError(fmt::format("--set '{}': an empty value", spec));
   }

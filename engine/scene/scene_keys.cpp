@@ -10,14 +10,14 @@
 #include "engine/types.hpp"
 
 namespace drumlab {
-namespace {
-
-std::vector<std::string> split(const std::string& text, char by) {
+std::vector<std::string> split_text(const std::string& text, char by) {
   std::vector<std::string> out;
   std::stringstream in(text);
   for (std::string part; std::getline(in, part, by);) out.push_back(part);
   return out;
 }
+
+namespace {
 
 template <class T>
 bool parse_number(const std::string& text, T& value) {
@@ -31,7 +31,7 @@ bool parse_number(const std::string& text, T& value) {
 void set_scene_key(toml::table& root, const std::string& key, const std::string& text,
                    const std::string& context) {
   toml::table* table = &root;
-  const std::vector<std::string> path = split(key, '.');
+  const std::vector<std::string> path = split_text(key, '.');
   for (std::size_t k = 0; k + 1 < path.size(); ++k) {
     toml::node* next = table->get(path[k]);
     if (next == nullptr) next = &table->insert(path[k], toml::table{}).first->second;
@@ -71,7 +71,7 @@ void set_scene_key(toml::table& root, const std::string& key, const std::string&
 
 const toml::node* find_scene_key(const toml::table& root, const std::string& key) {
   const toml::node* node = &root;
-  for (const std::string& part : split(key, '.')) {
+  for (const std::string& part : split_text(key, '.')) {
     const toml::table* table = node->as_table();
     if (table == nullptr) return nullptr;
     node = table->get(part);
