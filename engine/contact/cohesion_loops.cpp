@@ -393,11 +393,14 @@ void cohesion_wall_loop(const CohesiveParts& parts, Particles& p, std::span<cons
   const std::size_t n_parts = drum.periodic() ? 1 : kWallParts;
   // Each registered part that acts at the wall (else nullptr), with the view of its per-particle
   // wall state.
-  auto [law, wall] = []<std::size_t... K>(std::index_sequence<K...>) {
+  // (References, not a structured binding: clang 14 cannot capture those in the lambdas below.)
+  auto law_and_wall = []<std::size_t... K>(std::index_sequence<K...>) {
     return std::pair{std::tuple<const LawOf<K>*...>{},
                      std::tuple<typename LawOf<K>::WallState...>{}};
   }
   (std::make_index_sequence<kParts>{});
+  auto& law = law_and_wall.first;
+  auto& wall = law_and_wall.second;
   bool any = false;
   CohesiveParts::for_each_law([&]<std::size_t K, class Law>() {
     const Law* part = parts.at<K>();

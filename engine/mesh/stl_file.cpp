@@ -14,7 +14,7 @@
 namespace drumlab {
 namespace {
 
-std::vector<std::array<Vec3, 3>> read_binary(const std::string& bytes, const std::string& name) {
+std::vector<std::array<Vec3, 3>> read_binary(std::string_view bytes, const std::string& name) {
   std::uint32_t n = 0;
   std::memcpy(&n, bytes.data() + 80, 4);
   std::vector<std::array<Vec3, 3>> out(n);
@@ -80,22 +80,22 @@ std::vector<std::array<Vec3, 3>> read_ascii(const std::string& text, const std::
 }  // namespace
 
 std::vector<std::array<Vec3, 3>> read_stl(const std::filesystem::path& file) {
-  const std::string name = file.string();
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot open the STL file", name));
+  if (!in) throw InputError(fmt::format("{}: cannot open the STL file", file.string()));
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return parse_stl(bytes, file.string());
+}
+
+std::vector<std::array<Vec3, 3>> parse_stl(std::string_view bytes, const std::string& name) {
+  std::uint32_t n = 0;
+  if (bytes.size() >= 84) std::memcpy(&n, bytes.data() + 80, 4);
+  const std::uint64_t binary_size = 84 + 50 * static_cast<std::uint64_t>(n);
+  if (bytes.size() >= 84 && bytes.size() == binary_size) return read_binary(bytes, name);
+  if (bytes.substr(0, 5) == "solid") return read_ascii(std::string(bytes), name);
   if (bytes.size() >= 84) {
-    std::uint32_t n = 0;
-    std::memcpy(&n, bytes.data() + 80, 4);
-    if (bytes.size() == 84 + 50 * static_cast<std::uint64_t>(n)) return read_binary(bytes, name);
-  }
-  if (bytes.compare(0, 5, "solid") == 0) return read_ascii(bytes, name);
-  if (bytes.size() >= 84) {
-    std::uint32_t n = 0;
-    std::memcpy(&n, bytes.data() + 80, 4);
     throw InputError(fmt::format(
         "{}: a binary STL of {} triangles needs {} bytes, the file has {} (truncated or damaged)",
-        name, n, 84 + 50 * static_cast<std::uint64_t>(n), bytes.size()));
+        name, n, binary_size, bytes.size()));
   }
   throw InputError(fmt::format("{}: {} bytes: too short for an STL file", name, bytes.size()));
 }

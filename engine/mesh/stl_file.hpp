@@ -5,6 +5,8 @@
 // a file without triangles. (Non-finite and degenerate triangles are make_mesh's to refuse.)
 #include <array>
 #include <filesystem>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "engine/mesh/triangle_mesh.hpp"
@@ -15,6 +17,8 @@ namespace drumlab {
 /// from ASCII ones by their size (84 + 50 n bytes for n triangles), as most readers do, since
 /// binary headers may begin with "solid" too.
 std::vector<std::array<Vec3, 3>> read_stl(const std::filesystem::path& file);
+/// The same for a file's bytes; `name` names it in errors.
+std::vector<std::array<Vec3, 3>> parse_stl(std::string_view bytes, const std::string& name);
 
 /// Writes `mesh` as a binary STL (float coordinates), atomically (FILE.tmp, then renamed).
 void write_stl(const TriangleMesh& mesh, const std::filesystem::path& file);

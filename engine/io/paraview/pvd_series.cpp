@@ -38,7 +38,9 @@ std::string PvdSeries::file_name(const std::string& stem, const char* ext) const
 }
 
 void PvdSeries::commit(const std::vector<std::pair<std::string, std::string>>& files, double time) {
-  for (const auto& [stem, file] : files) {
+  for (const auto& entry : files) {  // (not a structured binding: clang 14 cannot capture it)
+    const std::string& stem = entry.first;
+    const std::string& file = entry.second;
     auto it = std::find_if(series_.begin(), series_.end(),
                            [&](const auto& s) { return s.first == stem; });
     if (it == series_.end()) it = series_.insert(series_.end(), {stem, {}});

@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# tests/fuzz/run.sh SECONDS [READER...]: fuzzes each reader's harness (default: all) for SECONDS
+# with libFuzzer under ASan and UBSan, in a clang build of its own (build-fuzz/, or
+# $DRUMLAB_FUZZ_BUILD). The working corpus grows in build-fuzz/corpus/READER, seeded from
+# tests/data/fuzz/READER (and scenes/ for the scene reader); a crash, hang or abort is written
+# to build-fuzz/artifacts/READER/. Once fixed, copy the input into tests/data/fuzz/READER/: ctest
+# replays that folder on every build (fuzz.replay_READER). Needs clang and libfuzzer-14-dev.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+seconds="${1:?usage: tests/fuzz/run.sh SECONDS [READER...]}"
+shift
+build="${DRUMLAB_FUZZ_BUILD:-$root/build-fuzz}"
+readers=("$@")
+if [ ${#readers[@]} -eq 0 ]; then
+  for f in "$root"/tests/fuzz/fuzz_*.cpp; do
+    name="$(basename "$f" .cpp)"
+    readers+=("${name#fuzz_}")
+  done
+fi
+cmake -S "$root" -B "$build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDRUMLAB_FUZZ=ON >/dev/null
+cmake --build "$build" -j "$(nproc)" >"$build/build.log" 2>&1 || {
+  tail -n 40 "$build/build.log"
+  exit 1
+}
+status=0
+for reader in "${readers[@]}"; do
+  corpus="$build/corpus/$reader"
+  mkdir -p "$corpus" "$build/artifacts/$reader"
+  seeds=("$root/tests/data/fuzz/$reader")
+  if [ "$reader" = scene ]; then seeds+=("$root/scenes"); fi
+  echo "== $reader: ${seconds} s"
+  if ! "$build/bin/fuzz_$reader" "$corpus" "${seeds[@]}" -max_total_time="$seconds" \
+      -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 \
+      -artifact_prefix="$build/artifacts/$reader/" >"$build/fuzz_$reader.log" 2>&1; then
+    status=1
+    echo "   FINDING: see $build/fuzz_$reader.log and $build/artifacts/$reader/"
+  fi
+  grep -E "^#[0-9]+.*DONE|stat::number_of_executed_units|stat::peak_rss|cov:" \
+    "$build/fuzz_$reader.log" | tail -n 3
+done
+exit "$status"
