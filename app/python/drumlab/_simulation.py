@@ -92,7 +92,9 @@ class Arrays:
 
     def __exit__(self, *exc):
         self._open = False
-        self._views.clear()  # drop the engine's memory: the Views keep no array once closed
+        for view in self._views.values():
+            view._array = None  # the Views keep no pointer into the engine once closed
+        self._views.clear()
         self._native._exit()
         return False
 
