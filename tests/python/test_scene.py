@@ -57,3 +57,18 @@ def test_a_bad_file_raises_the_clis_line_with_the_files_own_line_number(small_sc
     assert code == 2
     assert "drumlab: error: " + str(err.value) in out.splitlines()
     assert "(line" in str(err.value)
+
+
+def test_keys_as_attributes(small_scene):
+    scene = drumlab.Scene.load(str(small_scene))
+    assert scene.liquid.surface_tension == pytest.approx(0.072)
+    assert scene.name == "py_small"  # the property, not a key lookup
+    scene.liquid.surface_tension = 0.04
+    scene.fill.count = 250
+    assert scene["liquid.surface_tension"] == 0.04
+    assert scene["fill.count"] == 250
+    with pytest.raises(ValueError, match="liquid.surface_tension"):
+        scene.liquid.surface_tension = -2.0
+    assert scene.liquid.surface_tension == 0.04
+    with pytest.raises(AttributeError):
+        scene.liquid.no_such_key
