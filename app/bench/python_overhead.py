@@ -3,9 +3,9 @@
 1. the callback's cost: one Simulation turning alternately `--steps` steps without a callback
    and `--steps` steps with a callback every 100 steps (the same arrays in the same memory, so
    only the module's chunking, GIL hand-overs and the callback differ);
-2. against `drumlab run --steps N` (its "stepping" seconds): here the engine's arrays lie
-   elsewhere in memory in each process, which moves the step time by itself (see the note the
-   script prints).
+2. against `drumlab run --steps N` (its "stepping" seconds) in alternating rounds, a fresh
+   Simulation each round. Run it on a quiet machine: anything else running (a test suite) moves
+   either side by tens of per cent.
 
     ./drumlab python app/bench/python_overhead.py [SCENE] [--steps N] [--rounds R]
 """
@@ -57,5 +57,5 @@ for k in range(args.rounds):
 print(f"drumlab run: {' '.join(f'{x:.3f}' for x in cli)} s; a fresh Simulation each round "
       f"(callback every 100 steps): {' '.join(f'{x:.3f}' for x in fresh)} s")
 print(f"medians: Python / CLI = {statistics.median(fresh) / statistics.median(cli):.4f} "
-      "(note: each Simulation's arrays land elsewhere in the heap, which alone moves a small "
-      "scene's step time by up to ~30 %; the first figure isolates the module)")
+      "(each process and each Simulation has its arrays elsewhere in memory; the first figure "
+      "isolates the module's own cost)")
