@@ -34,7 +34,7 @@ std::vector<std::array<Vec3, 3>> read_ascii(const std::string& text, const std::
   std::istringstream in(text);
   std::vector<std::array<Vec3, 3>> out;
   std::string word;
-  std::size_t line = 1, corners = 0;
+  std::size_t corners = 0;
   std::array<Vec3, 3> facet;
   bool solid = false;
   while (in >> word) {
@@ -64,7 +64,6 @@ std::vector<std::array<Vec3, 3>> read_ascii(const std::string& text, const std::
       corners = 0;
     }
   }
-  (void)line;
   if (!solid) throw InputError(fmt::format("{}: neither a binary nor an ASCII STL file", name));
   if (corners != 0) {
     throw InputError(

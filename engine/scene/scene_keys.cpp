@@ -80,4 +80,14 @@ const toml::node* find_scene_key(const toml::table& root, const std::string& key
   return node;
 }
 
+toml::node* find_scene_key(toml::table& root, const std::string& key) {
+  toml::table* table = &root;
+  toml::node* node = nullptr;
+  for (const std::string& part : split_text(key, '.')) {
+    if (table == nullptr || (node = table->get(part)) == nullptr) return nullptr;
+    table = node->as_table();
+  }
+  return node;
+}
+
 }  // namespace drumlab

@@ -20,5 +20,6 @@ std::vector<std::string> split_text(const std::string& text, char by);
 
 /// The node at `key` (dotted) in `root`, or nullptr.
 const toml::node* find_scene_key(const toml::table& root, const std::string& key);
+toml::node* find_scene_key(toml::table& root, const std::string& key);
 
 }  // namespace drumlab

@@ -83,12 +83,12 @@ void PyScene::set(const std::string& key, const py::object& value) {
       const auto dot = key.rfind('.');
       toml::table* table = &table_;
       if (dot != std::string::npos) {
-        const toml::node* parent = find_scene_key(table_, key.substr(0, dot));
+        toml::node* parent = find_scene_key(table_, key.substr(0, dot));
         if (parent == nullptr || !parent->is_table()) {
           throw InputError(
               fmt::format("{}: '{}' is not a table in the scene", context, key.substr(0, dot)));
         }
-        table = const_cast<toml::node*>(parent)->as_table();
+        table = parent->as_table();
       }
       table->insert_or_assign(dot == std::string::npos ? key : key.substr(dot + 1), a);
     } else {

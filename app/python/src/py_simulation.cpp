@@ -215,7 +215,7 @@ void PySimulation::set_velocity(const std::vector<std::int64_t>& ids,
   if (ids.size() != velocity.size()) {
     throw InputError("set_velocity: as many velocities as ids");
   }
-  Particles& p = const_cast<Particles&>(session_->simulation().particles());
+  Particles& p = session_->simulation().local_particles();  // between steps
   std::vector<std::size_t> slot(p.size(), p.size());
   for (std::size_t i = 0; i < p.size(); ++i) slot[p.id[i]] = i;
   for (std::size_t k = 0; k < ids.size(); ++k) {
