@@ -20,6 +20,7 @@
 #include "engine/contact/wall_candidates.hpp"
 #include "engine/drum.hpp"
 #include "engine/io/restart_check.hpp"
+#include "engine/mesh/mesh_wall_set.hpp"
 #include "engine/periodic.hpp"
 #include "engine/search/verlet_list.hpp"
 #include "engine/spatial_order.hpp"
@@ -153,6 +154,8 @@ struct Simulation::Impl {
   std::vector<double> liquid_reserve;
   /// A decomposed run's replay of this step's bridge events (replay_bridge_events).
   BridgeEventFilms bridge_replay;
+  /// The triangle walls ([[wall.mesh]], [[wall.lifters]]); empty without: nothing to pay.
+  MeshWallSet meshes;
   /// The binder droplets of a scene with [[spray]] (engine/spray/droplet_cloud.hpp); null
   /// without: a scene without spray pays nothing.
   std::unique_ptr<DropletCloud> spray;
@@ -168,6 +171,7 @@ Simulation::Simulation(const SceneConfig& scene, Particles particles, Simulation
     carrier_angle_ = scene_.drum.orbit.phase;
     carrier_omega_ = scene_.drum.orbit.omega;
   }
+  make_meshes();
   validate_particles();
   choose_time_step(options);
   impl_->wall_history.assign(particles_.size(), {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
@@ -195,6 +199,7 @@ Simulation::Simulation(const SceneConfig& scene, SimulationState state)
       particles_.id.size() != n) {
     throw InputError("restart state: particle arrays of different lengths");
   }
+  make_meshes();
   validate_particles();
   check_restart_particles(scene_, particles_, "restart state");
   if (!(state.dt > 0.0) || !std::isfinite(state.dt) || !std::isfinite(state.time) ||
@@ -242,6 +247,17 @@ Simulation::Simulation(const SceneConfig& scene, SimulationState state)
 }
 
 Simulation::~Simulation() = default;
+
+void Simulation::make_meshes() {
+  if (!scene_.has_meshes()) return;
+  // The grids' cells: two largest diameters; their reach: the largest radius.
+  const double r_max = particles_.empty() ? scene_.max_radius() : particles_.max_radius();
+  impl_->meshes = MeshWallSet(build_wall_meshes(scene_), 4.0 * r_max, r_max);
+}
+
+const MeshWallSet& Simulation::meshes() const {
+  return impl_->meshes;
+}
 
 void Simulation::make_spray() {
   // The wall film's patches: one largest particle diameter wide.
@@ -496,8 +512,13 @@ void Simulation::compute_forces(double history_dt, bool count) {
   impl_->walls.refresh(particles_, impl_->drum, impl_->wall_reach, impl_->wall_history,
                        impl_->moved);
   impl_->moved = 0.0;
-  const std::size_t wall_contacts = impl_->model.add_wall_forces(
+  std::size_t wall_contacts = impl_->model.add_wall_forces(
       particles_, impl_->walls.list(), impl_->drum, omega_, impl_->wall_history, dt_, history_dt);
+  if (!impl_->meshes.empty()) {
+    // The drum's angle where the particles now stand: a step's forces come after its drift.
+    wall_contacts += impl_->model.add_mesh_forces(
+        particles_, impl_->meshes, drum_angle_ + omega_ * history_dt, omega_, dt_, history_dt);
+  }
   const auto t3 = Clock::now();
   if (count) {
     const SearchCounters& c = search_->counters();
@@ -757,6 +778,7 @@ Diagnostics Simulation::diagnostics() const {
       }
     }
   }
+  if (!impl_->meshes.empty()) add_mesh_diagnostics(d);
   const ContactList& contacts = impl_->contacts;
   const auto row = contacts.row_start();
   const auto col = contacts.col();
@@ -783,6 +805,28 @@ Diagnostics Simulation::diagnostics() const {
   d.liquid_volume = liquid.total();
   if (domain_ != nullptr) reduce_diagnostics(*domain_, d);
   return d;
+}
+
+void Simulation::add_mesh_diagnostics(Diagnostics& d) const {
+  const Particles& p = particles_;
+  const MeshWallSet& meshes = impl_->meshes;
+  const double c = std::cos(drum_angle_), s = std::sin(drum_angle_);
+  MeshWallSet::Scratch scratch;
+  std::vector<MeshContact> hits;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (is_ghost(i) || !p.position[i].allFinite()) continue;
+    meshes.contacts(p.position[i], p.radius[i], c, s, scratch, hits);
+    for (const MeshContact& h : hits) {
+      ++d.wall_contacts;
+      d.elastic_energy += impl_->model.mesh_elastic_energy(h.wall, h.overlap, p.radius[i]);
+      if (h.overlap / p.radius[i] > d.max_overlap_ratio) {
+        d.max_overlap_ratio = h.overlap / p.radius[i];
+        const bool turns = meshes.wall(h.wall).attach == MeshAttach::drum;
+        d.max_overlap_site = mesh_site(p, i, h.wall, h.normal, h.overlap,
+                                       turns ? Drum::wall_velocity(h.point, omega_) : Vec3::Zero());
+      }
+    }
+  }
 }
 
 void Simulation::check_stability() const {

@@ -66,6 +66,7 @@ struct SimulationOptions {
 };
 
 class DropletCloud;
+class MeshWallSet;
 
 class Simulation {
  public:
@@ -169,6 +170,8 @@ class Simulation {
   /// Liquid in films, bridges and wall bridges (m^3), with the live bridge counts; zeros for a
   /// dry scene. Films + bridges + wall bridges is conserved by every step (round-off).
   LiquidTotals liquid() const;
+  /// The triangle walls ([[wall.mesh]], [[wall.lifters]]); empty without.
+  const MeshWallSet& meshes() const;
   /// The binder droplets and their liquid accounting of a scene with [[spray]]; null without.
   /// Films + bridges + wall bridges + airborne + lost = the scene's liquid + the sprayed.
   const DropletCloud* spray() const;
@@ -191,6 +194,10 @@ class Simulation {
   void register_liquid_arrays(bool fresh);
   /// Creates the droplet cloud of a scene with [[spray]] (after the particles are in place).
   void make_spray();
+  /// Builds the triangle walls of a scene with [[wall.mesh]] or [[wall.lifters]].
+  void make_meshes();
+  /// Adds the triangle walls' contacts to `d` (count, elastic energy, largest overlap).
+  void add_mesh_diagnostics(Diagnostics& d) const;
   void choose_time_step(const SimulationOptions& options);
   /// The found pairs the force loop computes: all of them serially; on a rank of a decomposed
   /// run all but those of two ghosts, whose forces would be discarded and whose state no owner

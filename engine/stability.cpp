@@ -12,7 +12,7 @@ namespace drumlab {
 
 namespace {
 
-constexpr std::size_t kSiteValues = 10;
+constexpr std::size_t kSiteValues = 11;
 
 /// An overlap reached in fewer than about 10 steps of the bodies' relative motion (travel a step
 /// above this share of the limit) is blamed on the time step; a slower one on the impact.
@@ -28,7 +28,8 @@ std::array<double, kSiteValues> pack(const OverlapSite& s) {
           s.point.y(),
           s.point.z(),
           s.relative_speed,
-          s.closing_speed};
+          s.closing_speed,
+          static_cast<double>(s.mesh)};
 }
 
 OverlapSite unpack(const std::array<double, kSiteValues>& v) {
@@ -41,6 +42,7 @@ OverlapSite unpack(const std::array<double, kSiteValues>& v) {
   s.point = Vec3(v[5], v[6], v[7]);
   s.relative_speed = v[8];
   s.closing_speed = v[9];
+  s.mesh = static_cast<std::int64_t>(v[10]);
   return s;
 }
 
@@ -57,6 +59,12 @@ std::string_view wall_name(WallPart part) {
 }
 
 std::string bodies(const OverlapSite& s) {
+  if (s.is_wall() && s.mesh >= 0) {
+    return fmt::format(
+        "particle {} (radius {:.3g} mm) and triangle wall {} (counting [[wall.mesh]], then "
+        "[[wall.lifters]], from 0)",
+        s.id_a, 1e3 * s.radius_a, s.mesh);
+  }
   if (s.is_wall()) {
     return fmt::format("particle {} (radius {:.3g} mm) and {}", s.id_a, 1e3 * s.radius_a,
                        wall_name(s.wall));
@@ -77,6 +85,19 @@ OverlapSite wall_site(const Particles& p, std::size_t i, WallPart part, const Wa
   const Vec3 dv = p.velocity[i] - Drum::wall_velocity(s.point, omega);
   s.relative_speed = dv.norm();
   s.closing_speed = -dv.dot(c.normal);  // the normal points into the particle
+  return s;
+}
+
+OverlapSite mesh_site(const Particles& p, std::size_t i, std::size_t mesh, const Vec3& normal,
+                      double overlap, const Vec3& wall_velocity) {
+  OverlapSite s;
+  s.id_a = p.id[i];
+  s.mesh = static_cast<std::int64_t>(mesh);
+  s.radius_a = p.radius[i];
+  s.point = p.position[i] - (p.radius[i] - 0.5 * overlap) * normal;
+  const Vec3 dv = p.velocity[i] - wall_velocity;
+  s.relative_speed = dv.norm();
+  s.closing_speed = -dv.dot(normal);
   return s;
 }
 

@@ -19,6 +19,7 @@ struct OverlapSite {
   Index id_a = 0;                      ///< stable id of the particle
   std::int64_t id_b = -1;              ///< stable id of the other particle; -1 for a wall
   WallPart wall = WallPart::cylinder;  ///< the wall part when id_b < 0
+  std::int64_t mesh = -1;              ///< a triangle wall's number when id_b < 0 (else -1)
   double radius_a = 0.0;               ///< m
   double radius_b = 0.0;               ///< m (0 for a wall)
   Vec3 point = Vec3::Zero();           ///< contact point (middle of the overlap), m
@@ -32,6 +33,10 @@ struct OverlapSite {
 /// (rad/s).
 OverlapSite wall_site(const Particles& p, std::size_t i, WallPart part, const WallContact& c,
                       double omega);
+/// The overlap site of particle i on triangle wall `mesh`: the contact's point on the wall,
+/// `normal` into the particle, the wall's surface velocity there `wall_velocity`.
+OverlapSite mesh_site(const Particles& p, std::size_t i, std::size_t mesh, const Vec3& normal,
+                      double overlap, const Vec3& wall_velocity);
 /// The overlap site of particles i and j, dx = x_i - x_j (nearest image).
 OverlapSite pair_site(const Particles& p, std::size_t i, std::size_t j, const Vec3& dx);
 

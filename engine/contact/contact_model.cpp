@@ -8,6 +8,8 @@
 #include <stdexcept>
 
 #include "engine/contact/contact_kernel.hpp"
+#include "engine/contact/law_dispatch.hpp"
+#include "engine/contact/mesh_wall_history.hpp"
 #include "engine/periodic.hpp"
 #include "engine/scene/scene_validation.hpp"
 #ifdef _OPENMP
@@ -400,12 +402,6 @@ std::size_t wall_loop(const ContactLaw<Normal>& law, Particles& p,
   return contacts;
 }
 
-template <class Normal>
-ContactLaw<Normal> make_law(const Normal& n, const MindlinTangential& t, const RollingResistance& r,
-                            const RollingSpring& spring) {
-  return {n, t, r, spring};
-}
-
 // The rolling spring of a linear viscoelastic normal law (RollingLaw::spring): k_r, gamma_r the
 // scene's ratios of the law's k, gamma (the validation requires that normal law).
 RollingSpring make_rolling_spring(const SceneConfig& s, const NormalVariant& normal,
@@ -432,41 +428,6 @@ NormalVariant make_normal(const SceneConfig& s, const Material& other, double re
                      effective_shear_modulus(s.material, other), restitution);
 }
 
-// Calls loop.template operator()<Normal, Tangential, Rolling>(law) with the scene's runtime
-// choices turned into template arguments, so the chosen law inlines into the loop.
-// The spring is compiled for the linear viscoelastic law only (the one it needs).
-template <class Loop>
-void with_law(const ContactLaw<NormalVariant>& parts, bool tangential, RollingKind rolling,
-              Loop&& loop) {
-  std::visit(
-      [&](const auto& normal) {
-        const auto law = make_law(normal, parts.tangential, parts.rolling, parts.rolling_spring);
-        using N = std::decay_t<decltype(normal)>;
-        const auto with_rolling = [&]<RollingKind R>() {
-          if (tangential) {
-            loop.template operator()<N, true, R>(law);
-          } else {
-            loop.template operator()<N, false, R>(law);
-          }
-        };
-        if (rolling == RollingKind::torque) {
-          with_rolling.template operator()<RollingKind::torque>();
-        } else if (rolling == RollingKind::none) {
-          with_rolling.template operator()<RollingKind::none>();
-        } else if constexpr (std::is_same_v<N, LinearViscoelastic>) {
-          with_rolling.template operator()<RollingKind::spring>();
-        } else {
-          throw std::logic_error("rolling spring without the linear viscoelastic law");
-        }
-      },
-      parts.normal);
-}
-
-RollingKind rolling_kind(bool rolling, bool spring) {
-  if (!rolling) return RollingKind::none;
-  return spring ? RollingKind::spring : RollingKind::torque;
-}
-
 }  // namespace
 
 ContactModel::ContactModel(const SceneConfig& scene) {
@@ -488,6 +449,27 @@ ContactModel::ContactModel(const SceneConfig& scene) {
   wall_rolling_ = scene.wall.rolling_friction > 0.0;
   cohesive_ = CohesiveParts(scene);
   pair_range_ = cohesive_.range();
+  const auto add_mesh_law = [&](const MeshMaterial& m) {
+    const Material material{scene.wall.density, m.youngs_modulus, m.poisson_ratio,
+                            m.restitution,      m.friction,       m.rolling_friction};
+    MeshLaw law;
+    law.law = {make_normal(scene, material, m.restitution),
+               MindlinTangential{m.friction},
+               RollingResistance{m.rolling_friction},
+               {}};
+    law.law.rolling_spring = make_rolling_spring(scene, law.law.normal, m.rolling_friction);
+    law.tangential = m.friction > 0.0;
+    law.rolling = m.rolling_friction > 0.0;
+    mesh_torque_ = mesh_torque_ || law.tangential || law.rolling;
+    mesh_laws_.push_back(law);
+  };
+  for (const MeshWallConfig& c : scene.meshes) add_mesh_law(c.material);
+  for (const LifterWallConfig& c : scene.lifters) add_mesh_law(c.material);
+}
+
+double ContactModel::mesh_elastic_energy(std::size_t wall, double delta, double r) const {
+  return std::visit([&](const auto& n) { return n.elastic_energy(delta, r); },
+                    mesh_laws_[wall].law.normal);
 }
 
 std::vector<std::string_view> ContactModel::particle_arrays(std::size_t wall_parts) const {
@@ -495,6 +477,17 @@ std::vector<std::string_view> ContactModel::particle_arrays(std::size_t wall_par
   if (wall_rolling_spring()) {
     for (std::size_t w = 0; w < wall_parts; ++w) {
       names.insert(names.end(), kWallRollingArrays[w].begin(), kWallRollingArrays[w].end());
+    }
+  }
+  if (!mesh_laws_.empty()) {
+    const bool rolling = spring_ && std::any_of(mesh_laws_.begin(), mesh_laws_.end(),
+                                                [](const MeshLaw& l) { return l.rolling; });
+    for (std::size_t k = 0; k < kMeshSlots; ++k) {
+      names.push_back(kMeshPatchArrays[k]);
+      names.insert(names.end(), kMeshSpringArrays[k].begin(), kMeshSpringArrays[k].end());
+      if (rolling) {
+        names.insert(names.end(), kMeshRollingArrays[k].begin(), kMeshRollingArrays[k].end());
+      }
     }
   }
   return names;

@@ -48,6 +48,16 @@ constexpr bool rolls(RollingKind r) {
 
 using NormalVariant = std::variant<HertzNormal, LinearSpringDashpot, LinearViscoelastic>;
 
+/// The law of a triangle wall ([[wall.mesh]], [[wall.lifters]]): the wall law with the mesh's
+/// own material, and which parts it has.
+struct MeshLaw {
+  ContactLaw<NormalVariant> law;
+  bool tangential = false;
+  bool rolling = false;
+};
+
+class MeshWallSet;
+
 /// A particle-particle contact (i < j) with the force on i (N).
 struct ContactForce {
   Index i;
@@ -119,7 +129,7 @@ class ContactModel {
   const CohesiveParts& cohesive_parts() const { return cohesive_; }
   /// True if any contact can apply a torque (else rotation need not be integrated).
   bool uses_rotation() const {
-    return pair_tangential_ || pair_rolling_ || wall_tangential_ || wall_rolling_;
+    return pair_tangential_ || pair_rolling_ || wall_tangential_ || wall_rolling_ || mesh_torque_;
   }
 
   /// Adds the forces (and torques) of every contact in `contacts` to p.force / p.torque and
@@ -152,6 +162,18 @@ class ContactModel {
   std::size_t add_wall_forces(Particles& p, std::span<const Index> candidates, const Drum& drum,
                               double omega, WallHistory& history, double dt,
                               double history_dt) const;
+
+  /// The laws of the scene's triangle walls, in the order of engine/mesh/wall_meshes.hpp
+  /// ([[wall.mesh]], then [[wall.lifters]]); empty without.
+  const std::vector<MeshLaw>& mesh_laws() const { return mesh_laws_; }
+  /// Adds the forces of the triangle walls `walls` (mesh_wall_set.hpp; laws as mesh_laws()) on
+  /// every particle, the drum turned by `angle` (rad) at `omega` (rad/s), and advances each
+  /// particle's mesh history (mesh_wall_history.hpp). Independent of the thread count: each
+  /// particle adds its mesh contacts in the order of their patches. Returns the contacts.
+  std::size_t add_mesh_forces(Particles& p, const MeshWallSet& walls, double angle, double omega,
+                              double dt, double history_dt) const;
+  /// The mesh contacts' elastic energy (J) of an overlap delta with the mesh `wall`'s law.
+  double mesh_elastic_energy(std::size_t wall, double delta, double r) const;
 
   /// Force on i of every overlapping contact in `contacts` at the current state, without changing
   /// anything: the tangential history is used as stored (not advanced). Replaces `out` (i, j,
@@ -186,6 +208,8 @@ class ContactModel {
   bool spring_ = false;  ///< RollingLaw::spring
   CohesiveParts cohesive_;
   double pair_range_ = 0.0;
+  std::vector<MeshLaw> mesh_laws_;
+  bool mesh_torque_ = false;  ///< some mesh law has a tangential or rolling part
 };
 
 }  // namespace drumlab

@@ -10,6 +10,8 @@
 
 #include <fmt/format.h>
 
+#include "engine/mesh/mesh_wall_set.hpp"
+
 namespace drumlab {
 namespace {
 
@@ -228,12 +230,21 @@ Particles random_fill(const SceneConfig& scene) {
   p.reserve(total);
   OverlapGrid grid(drum.R, drum.H, 2.0 * scene.max_radius(), total);
   std::mt19937_64 rng(scene.fill.seed);
+  // Triangle walls (lifters, inserts): no particle on or inside one. Without, nothing changes.
+  std::optional<MeshWallSet> meshes;
+  if (scene.has_meshes()) {
+    meshes.emplace(build_wall_meshes(scene), 2.0 * scene.max_radius(), scene.max_radius());
+  }
+  MeshWallSet::Scratch scratch;
+  std::vector<MeshContact> hits;
   for (const auto& [r, c] : plan) {
     for (;;) {
       std::optional<Vec3> x;
       for (int attempt = 0; attempt < kAttemptsPerLevel && !x; ++attempt) {
         x = drum.sample_centre(r, level, rng);
-        if (grid.overlaps(*x, r, p)) x.reset();
+        if (grid.overlaps(*x, r, p) || (meshes && meshes->blocks(*x, r, scratch, hits))) {
+          x.reset();
+        }
       }
       if (x) {
         grid.insert(p.size(), *x);

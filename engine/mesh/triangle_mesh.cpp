@@ -149,4 +149,16 @@ std::vector<std::array<Vec3, 3>> transformed_corners(const TriangleMesh& m, doub
   return out;
 }
 
+double winding_number(const TriangleMesh& m, const Vec3& p) {
+  double sum = 0.0;
+  for (std::size_t t = 0; t < m.size(); ++t) {
+    const Vec3 a = m.corner(t, 0) - p, b = m.corner(t, 1) - p, c = m.corner(t, 2) - p;
+    const double la = a.norm(), lb = b.norm(), lc = c.norm();
+    const double num = a.dot(b.cross(c));
+    const double den = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
+    sum += 2.0 * std::atan2(num, den);
+  }
+  return sum / (4.0 * std::numbers::pi);
+}
+
 }  // namespace drumlab

@@ -40,6 +40,11 @@ void assign_patches(TriangleMesh& mesh, double smooth_angle);
 /// (a closed, consistently oriented surface); `why` gets the first offending edge if not.
 bool is_closed(const TriangleMesh& mesh, std::string* why = nullptr);
 
+/// The winding number of a closed mesh about p (the solid angles of its triangles seen from p,
+/// over 4 pi; Van Oosterom and Strackee's formula): 1 inside an outward-oriented closed mesh, 0
+/// outside (p off the surface).
+double winding_number(const TriangleMesh& mesh, const Vec3& p);
+
 /// The triangle corners of `mesh` moved by x -> R x + t (scale first: x -> s x).
 std::vector<std::array<Vec3, 3>> transformed_corners(const TriangleMesh& mesh, double scale,
                                                      const Eigen::Matrix3d& rotation,

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "engine/scene/mesh_wall_config.hpp"
 #include "engine/scene/size_distribution.hpp"
 #include "engine/search/verlet_skin.hpp"
 #include "engine/spray/spray_config.hpp"
@@ -223,7 +224,9 @@ struct SceneConfig {
   DrumConfig drum;
   std::vector<ParticleClass> classes;
   Material material;
-  Material wall;  ///< particle-wall contact (density unused)
+  Material wall;                          ///< particle-wall contact (density unused)
+  std::vector<MeshWallConfig> meshes;     ///< [[wall.mesh]]: triangle walls from STL files
+  std::vector<LifterWallConfig> lifters;  ///< [[wall.lifters]]: generated flights
   ContactConfig contact;
   LiquidConfig liquid;
   CohesionConfig cohesion;
@@ -239,6 +242,8 @@ struct SceneConfig {
   double max_radius() const;
   /// True for the fills that start a dynamic run (random, file); false for the static packing.
   bool dynamic() const { return fill.kind != FillKind::paper_packing; }
+  /// True if the scene has triangle walls ([[wall.mesh]] or [[wall.lifters]]).
+  bool has_meshes() const { return !meshes.empty() || !lifters.empty(); }
   /// Field by field, every field including `source` (engine/scene/scene_writer.hpp writes every
   /// field but `source`; a written scene parsed under the same source name compares equal).
   friend bool operator==(const SceneConfig&, const SceneConfig&) = default;

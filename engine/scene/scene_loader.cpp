@@ -14,6 +14,7 @@
 #include <fmt/ranges.h>
 #include <toml++/toml.h>
 
+#include "engine/mesh/wall_meshes.hpp"
 #include "engine/scene/scene_config.hpp"
 #include "engine/scene/scene_validation.hpp"
 #include "engine/search/contact_search.hpp"
@@ -572,6 +573,96 @@ void read_sprays(const Scope& root, SceneConfig& scene) {
   }
 }
 
+/// A mesh's wall material: [wall]'s, with any of its keys set in the mesh's own table.
+MeshMaterial read_mesh_material(const Scope& s, const Material& wall) {
+  return {s.number_or("youngs_modulus", wall.youngs_modulus),
+          s.number_or("poisson_ratio", wall.poisson_ratio),
+          s.number_or("restitution", wall.restitution), s.number_or("friction", wall.friction),
+          s.number_or("rolling_friction", wall.rolling_friction)};
+}
+
+/// The tables of the array `key` in `wall` ([[wall.KEY]]), each with its path "wall.KEY[i]".
+std::vector<Scope> wall_tables(const Scope& wall, std::string_view key) {
+  std::vector<Scope> out;
+  const toml::node* node = wall.raw().get(key);
+  if (!node) return out;
+  const toml::array* array = node->as_array();
+  if (!array || !array->is_array_of_tables()) {
+    wall.fail(
+        key, fmt::format("expected an array of tables [[wall.{}]], got {}", key, type_name(*node)));
+  }
+  for (std::size_t i = 0; i < array->size(); ++i) {
+    out.emplace_back(*(*array)[i].as_table(), fmt::format("wall.{}[{}]", key, i), wall.source());
+  }
+  return out;
+}
+
+/// [[wall.mesh]]: the STL path relative to the scene file's folder (read by engine/mesh when the
+/// scene is checked); the validation checks the numbers.
+void read_wall_meshes(const Scope& wall, SceneConfig& scene) {
+  for (const Scope& s : wall_tables(wall, "mesh")) {
+    s.allow_only({"file", "scale", "offset", "rotation_deg", "attach", "smooth_angle_deg", "closed",
+                  "youngs_modulus", "poisson_ratio", "restitution", "friction",
+                  "rolling_friction"});
+    MeshWallConfig c;
+    const auto file = s.string("file");
+    if (!file) s.missing("file", "an STL file (binary or ASCII), relative to the scene");
+    if (file->empty()) s.fail("file", "must not be empty");
+    std::filesystem::path path(*file);
+    if (path.is_relative()) path = std::filesystem::path(scene.source).parent_path() / path;
+    c.file = path;
+    c.scale = s.number_or("scale", c.scale);
+    c.offset = s.vec3("offset").value_or(c.offset);
+    c.rotation_deg = s.vec3("rotation_deg").value_or(c.rotation_deg);
+    const std::string attach = s.string("attach").value_or("drum");
+    if (attach == "lab") {
+      c.attach = MeshAttach::lab;
+    } else if (attach != "drum") {
+      s.fail("attach", fmt::format("unknown value '{}' (valid: drum, lab)", attach));
+    }
+    c.smooth_angle_deg = s.number_or("smooth_angle_deg", c.smooth_angle_deg);
+    if (const toml::node* closed = s.raw().get("closed")) {
+      if (!closed->as_boolean()) s.fail("closed", "expected true or false");
+      c.closed = closed->as_boolean()->get();
+    }
+    c.material = read_mesh_material(s, scene.wall);
+    scene.meshes.push_back(std::move(c));
+  }
+}
+
+/// [[wall.lifters]]: generated flights; the validation checks the numbers.
+void read_wall_lifters(const Scope& wall, SceneConfig& scene) {
+  for (const Scope& s : wall_tables(wall, "lifters")) {
+    s.allow_only({"count", "height", "length", "thickness", "shape", "angle_deg", "tip",
+                  "phase_deg", "youngs_modulus", "poisson_ratio", "restitution", "friction",
+                  "rolling_friction"});
+    LifterWallConfig c;
+    const std::int64_t count = s.integer("count").value_or(c.count);
+    if (count < 1 || count > 1000) {
+      s.fail("count", fmt::format("must be in [1, 1000], got {}", count));
+    }
+    c.count = static_cast<int>(count);
+    c.height = s.required_number("height", "the flights' radial height, m");
+    c.length = s.number_or("length", c.length);
+    c.thickness = s.number_or("thickness", c.thickness);
+    const std::string shape = s.string("shape").value_or("straight");
+    if (shape == "angled") {
+      c.shape = LifterKind::angled;
+    } else if (shape == "straight") {
+      for (const std::string_view key : {"angle_deg", "tip"}) {
+        if (s.has(key)) s.fail(key, "only with shape = \"angled\"");
+      }
+    } else {
+      s.fail("shape", fmt::format("unknown value '{}' (valid: straight, angled)", shape));
+    }
+    c.angle_deg = s.number_or("angle_deg", c.angle_deg);
+    c.tip = s.number_or("tip", c.tip);
+    c.phase_deg = s.number_or("phase_deg", c.phase_deg);
+    c.material = read_mesh_material(s, scene.wall);
+    scene.lifters.push_back(std::move(c));
+  }
+}
+
 void read_performance(const Scope& root, SceneConfig& scene) {
   const auto s = root.table("performance");
   if (!s) return;
@@ -645,9 +736,11 @@ SceneConfig build_scene(const toml::table& table, std::string_view source) {
   scene.material = read_material(material, Material{}, false);
   scene.wall = scene.material;
   if (const auto wall = root.table("wall")) {
-    wall->allow_only(
-        {"youngs_modulus", "poisson_ratio", "restitution", "friction", "rolling_friction"});
+    wall->allow_only({"youngs_modulus", "poisson_ratio", "restitution", "friction",
+                      "rolling_friction", "mesh", "lifters"});
     scene.wall = read_material(*wall, scene.material, true);
+    read_wall_meshes(*wall, scene);
+    read_wall_lifters(*wall, scene);
   }
   read_contact(root, scene);
   read_liquid(root, scene);
@@ -658,6 +751,13 @@ SceneConfig build_scene(const toml::table& table, std::string_view source) {
   read_performance(root, scene);
   read_output(root, scene);
   if (const auto problem = scene_problem(scene)) fail_at(table, scene.source, *problem);
+  if (scene.has_meshes()) {  // the files: read now, so a bad one stops the scene at loading
+    try {
+      build_wall_meshes(scene);
+    } catch (const MeshWallError& e) {
+      fail_at(table, scene.source, SceneProblem{e.key(), e.reason()});
+    }
+  }
   return scene;
 }
 

@@ -9,6 +9,7 @@
 
 #include "engine/contact/liquid_bridge.hpp"
 #include "engine/scene/material_check.hpp"
+#include "engine/scene/mesh_wall_check.hpp"
 #include "engine/search/contact_search.hpp"
 
 namespace drumlab {
@@ -451,6 +452,7 @@ std::optional<SceneProblem> scene_problem(const SceneConfig& scene) {
     if (auto p = check(scene)) return p;
   }
   if (auto p = law_problem(scene)) return p;
+  if (auto p = mesh_wall_problem(scene)) return p;
   for (auto check : {check_sprays, check_fill, check_time, check_performance, check_output}) {
     if (auto p = check(scene)) return p;
   }

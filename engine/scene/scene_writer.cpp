@@ -142,6 +142,53 @@ toml::table wall_table(const Material& wall, const Material& m) {
   return t;
 }
 
+/// A mesh's material keys that differ from [wall]'s (each defaults to it).
+void insert_mesh_material(toml::table& t, const MeshMaterial& m, const Material& wall) {
+  auto differing = [&](std::string_view key, double value, double wall_value) {
+    if (value != wall_value) t.insert(key, value);
+  };
+  differing("youngs_modulus", m.youngs_modulus, wall.youngs_modulus);
+  differing("poisson_ratio", m.poisson_ratio, wall.poisson_ratio);
+  differing("restitution", m.restitution, wall.restitution);
+  differing("friction", m.friction, wall.friction);
+  differing("rolling_friction", m.rolling_friction, wall.rolling_friction);
+}
+
+toml::array mesh_array(const SceneConfig& s, const fs::path& folder) {
+  toml::array out;
+  for (const MeshWallConfig& c : s.meshes) {
+    toml::table t{{"file", relative_path(c.file, folder).generic_string()},
+                  {"scale", c.scale},
+                  {"offset", vec3(c.offset)},
+                  {"rotation_deg", vec3(c.rotation_deg)},
+                  {"attach", c.attach == MeshAttach::lab ? "lab" : "drum"},
+                  {"smooth_angle_deg", c.smooth_angle_deg},
+                  {"closed", c.closed}};
+    insert_mesh_material(t, c.material, s.wall);
+    out.push_back(std::move(t));
+  }
+  return out;
+}
+
+toml::array lifter_array(const SceneConfig& s) {
+  toml::array out;
+  for (const LifterWallConfig& c : s.lifters) {
+    toml::table t{{"count", c.count},
+                  {"height", c.height},
+                  {"length", c.length},
+                  {"thickness", c.thickness},
+                  {"shape", c.shape == LifterKind::angled ? "angled" : "straight"},
+                  {"phase_deg", c.phase_deg}};
+    if (c.shape == LifterKind::angled) {
+      t.insert("angle_deg", c.angle_deg);
+      t.insert("tip", c.tip);
+    }
+    insert_mesh_material(t, c.material, s.wall);
+    out.push_back(std::move(t));
+  }
+  return out;
+}
+
 toml::table contact_normal_table(const ContactConfig& c) {
   if (c.normal == NormalLaw::linear) {
     return toml::table{{"normal", "linear"}, {"linear_stiffness", c.linear_stiffness}};
@@ -265,9 +312,10 @@ toml::table scene_table(const SceneConfig& s, const fs::path& folder) {
        toml::table{{"verlet_skin", s.performance.verlet_skin},
                    {"sort_every", integer(s.performance.sort_every, "performance.sort_every")}}},
       {"output", output_table(s)}};
-  if (toml::table wall = wall_table(s.wall, s.material); !wall.empty()) {
-    t.insert("wall", std::move(wall));
-  }
+  toml::table wall = wall_table(s.wall, s.material);
+  if (!s.meshes.empty()) wall.insert("mesh", mesh_array(s, folder));
+  if (!s.lifters.empty()) wall.insert("lifters", lifter_array(s));
+  if (!wall.empty()) t.insert("wall", std::move(wall));
   if (s.liquid.enabled) t.insert("liquid", liquid_table(s.liquid));
   if (!s.sprays.empty()) t.insert("spray", spray_array(s.sprays));
   if (s.cohesion.enabled) {

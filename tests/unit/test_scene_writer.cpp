@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "engine/mesh/lifters.hpp"
+#include "engine/mesh/stl_file.hpp"
 #include "engine/scene/scene_config.hpp"
 #include "engine/scene/scene_writer.hpp"
 #include "tests/unit/cli_runner.hpp"
@@ -276,15 +278,21 @@ TEST(SceneWriter, SeedBeyondTomlIntegersIsRefusedNamingTheKey) {
 /// The number of fields of each config struct, checked by a structured binding: adding a field
 /// makes this fail to compile. Then give the field a setter in `field_setters()`, write it in
 /// engine/scene/scene_writer.cpp and raise its count here.
-constexpr int kSceneFields = 17, kDrumFields = 6, kOrbitFields = 4, kClassFields = 8,
-              kMaterialFields = 6, kContactFields = 9, kLiquidFields = 16, kCohesionFields = 2,
-              kSprayFields = 12, kFillFields = 7, kTimeFields = 5, kPerformanceFields = 2,
-              kOutputFields = 2;
+constexpr int kSceneFields = 19, kMeshFields = 8, kLifterFields = 9, kMeshMaterialFields = 5,
+              kDrumFields = 6, kOrbitFields = 4, kClassFields = 8, kMaterialFields = 6,
+              kContactFields = 9, kLiquidFields = 16, kCohesionFields = 2, kSprayFields = 12,
+              kFillFields = 7, kTimeFields = 5, kPerformanceFields = 2, kOutputFields = 2;
 
 [[maybe_unused]] void field_counts(const SceneConfig& s) {
   [[maybe_unused]] const auto& [name, source, description, gravity, drum, classes, material, wall,
-                                contact, liquid, cohesion, sprays, fill, time, search, performance,
-                                output] = s;
+                                meshes, lifters, contact, liquid, cohesion, sprays, fill, time,
+                                search, performance, output] = s;
+  [[maybe_unused]] const auto& [mesh_file, scale, offset, rotation, attach, smooth, closed,
+                                mesh_material] = s.meshes.front();
+  [[maybe_unused]] const auto& [lifter_count, height, length, thickness, lifter_shape, lifter_angle,
+                                tip, phase_deg, lifter_material] = s.lifters.front();
+  [[maybe_unused]] const auto& [mesh_youngs, mesh_poisson, mesh_restitution, mesh_friction,
+                                mesh_rolling] = s.meshes.front().material;
   [[maybe_unused]] const auto& [diameter, depth, omega, tilt, ends, orbit] = s.drum;
   [[maybe_unused]] const auto& [orbit_radius, orbit_omega, phase, speed_ratio] = s.drum.orbit;
   [[maybe_unused]] const auto& [class_name, radius, class_fraction, distribution, radius_sigma,
@@ -308,7 +316,7 @@ constexpr int kSceneFields = 17, kDrumFields = 6, kOrbitFields = 4, kClassFields
   [[maybe_unused]] const auto& [directory, diagnostics] = s.output;
 }
 
-enum class Base { every_key, paper_packing, file_fill, spray };
+enum class Base { every_key, paper_packing, file_fill, spray, meshes };
 
 struct FieldSetter {
   std::string field;  ///< "struct.field" (the struct's scene table, or "scene" for the top level)
@@ -352,7 +360,40 @@ void linear_viscoelastic(SceneConfig& s, double collision_time, double reference
   s.contact.reference_radius = reference_radius;
 }
 
-std::vector<FieldSetter> field_setters(const fs::path& other_csv) {
+/// A small drum with a box from an STL file and generated lifters, in `dir` (box.stl there).
+SceneConfig mesh_scene(const fs::path& dir) {
+  write_stl(make_mesh(box_triangles(Vec3(0.0, -0.05, 0.025), Vec3::UnitX(), Vec3::UnitY(),
+                                    Vec3(0.01, 0.01, 0.01)),
+                      0.3, "box"),
+            dir / "box.stl");
+  return parse_scene(R"(
+[drum]
+diameter = 0.2
+depth = 0.05
+omega = 2.0
+[[particles]]
+radius = 0.004
+volume_fraction = 1.0
+[material]
+density = 2500.0
+youngs_modulus = 5e6
+poisson_ratio = 0.3
+restitution = 0.5
+friction = 0.5
+[[wall.mesh]]
+file = "box.stl"
+[[wall.lifters]]
+count = 4
+height = 0.02
+[fill]
+count = 100
+[time]
+duration = 0.1
+)",
+                     (dir / "meshes.toml").string());
+}
+
+std::vector<FieldSetter> field_setters(const fs::path& other_csv, const fs::path& other_stl) {
   using B = Base;
   return {
       {"scene.name", B::every_key, [](SceneConfig& s) { s.name = "renamed"; }},
@@ -498,6 +539,50 @@ std::vector<FieldSetter> field_setters(const fs::path& other_csv) {
       {"spray.droplet_radius", B::spray, [](SceneConfig& s) { s.sprays[0].droplet_radius = 5e-5; }},
       {"spray.droplet_speed", B::spray, [](SceneConfig& s) { s.sprays[0].droplet_speed = 0.0; }},
       {"spray.at_wall", B::spray, [](SceneConfig& s) { s.sprays[0].at_wall = SprayAtWall::wet; }},
+      {"mesh.file", B::meshes, [other_stl](SceneConfig& s) { s.meshes[0].file = other_stl; }},
+      {"mesh.scale", B::meshes, [](SceneConfig& s) { s.meshes[0].scale = 0.5; }},
+      {"mesh.offset", B::meshes, [](SceneConfig& s) { s.meshes[0].offset.z() = 0.005; }},
+      {"mesh.rotation_deg", B::meshes, [](SceneConfig& s) { s.meshes[0].rotation_deg.y() = 12.5; }},
+      {"mesh.attach", B::meshes, [](SceneConfig& s) { s.meshes[0].attach = MeshAttach::lab; }},
+      {"mesh.smooth_angle_deg", B::meshes,
+       [](SceneConfig& s) { s.meshes[0].smooth_angle_deg = 45.0; }},
+      {"mesh.closed", B::meshes, [](SceneConfig& s) { s.meshes[0].closed = true; }},
+      {"mesh.material.youngs_modulus", B::meshes,
+       [](SceneConfig& s) { s.meshes[0].material.youngs_modulus = 7e7; }},
+      {"mesh.material.poisson_ratio", B::meshes,
+       [](SceneConfig& s) { s.meshes[0].material.poisson_ratio = 0.2; }},
+      {"mesh.material.restitution", B::meshes,
+       [](SceneConfig& s) { s.meshes[0].material.restitution = 0.8; }},
+      {"mesh.material.friction", B::meshes,
+       [](SceneConfig& s) { s.meshes[0].material.friction = 0.25; }},
+      {"mesh.material.rolling_friction", B::meshes,
+       [](SceneConfig& s) { s.meshes[0].material.rolling_friction = 0.01; }},
+      {"lifters.count", B::meshes, [](SceneConfig& s) { s.lifters[0].count = 6; }},
+      {"lifters.height", B::meshes, [](SceneConfig& s) { s.lifters[0].height = 0.015; }},
+      {"lifters.length", B::meshes, [](SceneConfig& s) { s.lifters[0].length = 0.04; }},
+      {"lifters.thickness", B::meshes, [](SceneConfig& s) { s.lifters[0].thickness = 0.003; }},
+      {"lifters.shape", B::meshes, [](SceneConfig& s) { s.lifters[0].shape = LifterKind::angled; }},
+      {"lifters.angle_deg", B::meshes,
+       [](SceneConfig& s) {
+         s.lifters[0].shape = LifterKind::angled;
+         s.lifters[0].angle_deg = 60.0;
+       }},
+      {"lifters.tip", B::meshes,
+       [](SceneConfig& s) {
+         s.lifters[0].shape = LifterKind::angled;
+         s.lifters[0].tip = 0.008;
+       }},
+      {"lifters.phase_deg", B::meshes, [](SceneConfig& s) { s.lifters[0].phase_deg = 22.5; }},
+      {"lifters.material.youngs_modulus", B::meshes,
+       [](SceneConfig& s) { s.lifters[0].material.youngs_modulus = 7e7; }},
+      {"lifters.material.poisson_ratio", B::meshes,
+       [](SceneConfig& s) { s.lifters[0].material.poisson_ratio = 0.2; }},
+      {"lifters.material.restitution", B::meshes,
+       [](SceneConfig& s) { s.lifters[0].material.restitution = 0.8; }},
+      {"lifters.material.friction", B::meshes,
+       [](SceneConfig& s) { s.lifters[0].material.friction = 0.25; }},
+      {"lifters.material.rolling_friction", B::meshes,
+       [](SceneConfig& s) { s.lifters[0].material.rolling_friction = 0.01; }},
       {"liquid.enabled", B::every_key, [](SceneConfig& s) { s.liquid = LiquidConfig{}; }},
       {"liquid.surface_tension", B::every_key,
        [](SceneConfig& s) { s.liquid.surface_tension = 0.05; }},
@@ -584,10 +669,12 @@ TEST(SceneWriter, EveryFieldChangesTheTextAndRoundTrips) {
   TempDir dir("scene-writer-fields");
   dir.write("packing.csv", kCsv);
   const fs::path other_csv = dir.write("other.csv", kCsv);
-  const SceneConfig bases[] = {
-      parse_scene(kEveryKey, "every_key.toml"), parse_scene(kPaperPacking, "packing.toml"),
-      parse_scene(kFileFill, (dir.path() / "from_file.toml").string()), spray_scene()};
-  const auto setters = field_setters(other_csv);
+  const SceneConfig bases[] = {parse_scene(kEveryKey, "every_key.toml"),
+                               parse_scene(kPaperPacking, "packing.toml"),
+                               parse_scene(kFileFill, (dir.path() / "from_file.toml").string()),
+                               spray_scene(), mesh_scene(dir.path())};
+  fs::copy_file(dir.path() / "box.stl", dir.path() / "other.stl");
+  const auto setters = field_setters(other_csv, dir.path() / "other.stl");
   for (const FieldSetter& setter : setters) {
     SCOPED_TRACE(setter.field);
     const SceneConfig& base = bases[static_cast<int>(setter.base)];
@@ -603,7 +690,9 @@ TEST(SceneWriter, EveryFieldChangesTheTextAndRoundTrips) {
     return std::count_if(setters.begin(), setters.end(),
                          [&](const FieldSetter& s) { return s.field.starts_with(prefix); });
   };
-  EXPECT_EQ(count("scene."), kSceneFields - 13);  // name, description, gravity, search
+  EXPECT_EQ(count("scene."), kSceneFields - 15);  // name, description, gravity, search
+  EXPECT_EQ(count("mesh."), kMeshFields - 1 + kMeshMaterialFields);
+  EXPECT_EQ(count("lifters."), kLifterFields - 1 + kMeshMaterialFields);
   EXPECT_EQ(count("drum."), kDrumFields - 1 + kOrbitFields);
   EXPECT_EQ(count("classes."), kClassFields);
   EXPECT_EQ(count("material."), kMaterialFields);
