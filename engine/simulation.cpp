@@ -250,9 +250,9 @@ Simulation::~Simulation() = default;
 
 void Simulation::make_meshes() {
   if (!scene_.has_meshes()) return;
-  // The grids' cells: two largest diameters; their reach: the largest radius.
+  // The grids' cells: one largest diameter; their reach: the largest radius.
   const double r_max = particles_.empty() ? scene_.max_radius() : particles_.max_radius();
-  impl_->meshes = MeshWallSet(build_wall_meshes(scene_), 4.0 * r_max, r_max);
+  impl_->meshes = MeshWallSet(build_wall_meshes(scene_), 2.0 * r_max, r_max);
 }
 
 const MeshWallSet& Simulation::meshes() const {

@@ -3,9 +3,10 @@
 // patch it touches (numbered across all meshes, + 1; 0: a free slot), the tangential spring xi
 // and, with the rolling spring, xi_r. Kept in per-particle arrays (Particles::extra), so
 // re-ordering, checkpoints and MPI migration carry them like every other array; only a scene
-// with [[wall.mesh]] or [[wall.lifters]] registers them. A contact keeps its slot while it lasts
-// on the same patch, whichever triangle of the patch holds it (the history follows the contact
-// across the patch's edges); a slot whose patch is no longer touched is freed and zeroed.
+// with [[wall.mesh]] or [[wall.lifters]] registers them. A contact keeps its history while it
+// lasts on the same patch, whichever triangle of the patch holds it (the history follows the
+// contact across the patch's edges); a patch no longer touched loses it. Slot k holds the
+// particle's k-th contact by patch number (packed: a free slot 0 means no history at all).
 #include <array>
 #include <string_view>
 

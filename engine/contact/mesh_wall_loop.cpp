@@ -1,7 +1,7 @@
-// The forces of the triangle walls (ContactModel::add_mesh_forces): three passes over fixed
-// blocks of particles, so that the bits do not depend on the thread count nor on which particles
-// share a block. (1) Each particle's contacts with every mesh (mesh_wall_set.hpp) and their
-// history slots (mesh_wall_history.hpp). (2) Per mesh, its law's kernel on its contacts, in
+// The forces of the triangle walls (ContactModel::add_mesh_forces): three passes over each of
+// fixed blocks of particles, so that the bits do not depend on the thread count nor on which
+// particles share a block. (1) Each particle's contacts with every mesh (mesh_wall_set.hpp) and
+// their history slots (mesh_wall_history.hpp). (2) Per mesh, its law's kernel on its contacts, in
 // batches as the analytic wall's loop runs them. (3) Each particle adds its contacts' forces in
 // the order of their patches and keeps their advanced history.
 #include <algorithm>
@@ -63,8 +63,10 @@ struct Record {
   Vec3 torque = Vec3::Zero();
 };
 
-/// Pass (1) for the particles [begin, end): their contacts, each with its slot; the slots of the
-/// contacts that ended are freed.
+/// Pass (1) for the particles [begin, end): their contacts, each with the history its patch had
+/// (zero for a new contact). A particle's slots are kept packed in the order of its contacts'
+/// patches (slot k: its k-th contact), so a particle whose slot 0 is free has no history at all
+/// and one touching no mesh costs one load.
 void find_contacts(Particles& p, const MeshWallSet& walls, const SlotArrays& slots, double c,
                    double s, std::size_t begin, std::size_t end, MeshWallSet::Scratch& scratch,
                    std::vector<MeshContact>& hits, std::vector<Record>& out) {
@@ -72,39 +74,30 @@ void find_contacts(Particles& p, const MeshWallSet& walls, const SlotArrays& slo
   for (std::size_t q = begin; q < end; ++q) {
     const auto i = static_cast<Index>(q);
     walls.contacts(p.position[i], p.radius[i], c, s, scratch, hits);
-    std::array<bool, kMeshSlots> kept{};
-    const std::size_t first = out.size();
-    for (const MeshContact& h : hits) {
+    if (hits.empty()) {
+      for (std::size_t k = 0; k < kMeshSlots && slots.patch[k][i] != 0.0; ++k) slots.clear(k, i);
+      continue;
+    }
+    for (std::size_t n = 0; n < hits.size(); ++n) {
       Record r;
       r.i = i;
-      r.contact = h;
-      const double key = static_cast<double>(h.patch) + 1.0;
-      for (std::size_t k = 0; k < kMeshSlots; ++k) {
-        if (slots.patch[k][i] == key) {
-          r.slot = static_cast<int>(k);
-          kept[k] = true;
-        }
+      r.slot = n < kMeshSlots ? static_cast<int>(n) : kNoSlot;
+      r.contact = hits[n];
+      const double key = static_cast<double>(hits[n].patch) + 1.0;
+      for (std::size_t k = 0; k < kMeshSlots && slots.patch[k][i] != 0.0; ++k) {
+        if (slots.patch[k][i] != key) continue;
+        r.xi = SlotArrays::get(slots.xi[k], i);
+        if (slots.rolling) r.xi_r = SlotArrays::get(slots.roll[k], i);
       }
       out.push_back(r);
     }
+    // The new keys, packed; the advanced springs follow in pass (3).
     for (std::size_t k = 0; k < kMeshSlots; ++k) {
-      if (!kept[k] && slots.patch[k][i] != 0.0) slots.clear(k, i);
-    }
-    for (std::size_t n = first; n < out.size(); ++n) {
-      Record& r = out[n];
-      if (r.slot == kNoSlot) {  // a new contact: the first free slot, zeroed
-        for (std::size_t k = 0; k < kMeshSlots && r.slot == kNoSlot; ++k) {
-          if (!kept[k]) {
-            kept[k] = true;
-            r.slot = static_cast<int>(k);
-            slots.patch[k][i] = static_cast<double>(r.contact.patch) + 1.0;
-          }
-        }
-        continue;
+      if (k < hits.size()) {
+        slots.patch[k][i] = static_cast<double>(hits[k].patch) + 1.0;
+      } else if (slots.patch[k][i] != 0.0) {
+        slots.clear(k, i);
       }
-      const auto k = static_cast<std::size_t>(r.slot);
-      r.xi = SlotArrays::get(slots.xi[k], i);
-      if (slots.rolling) r.xi_r = SlotArrays::get(slots.roll[k], i);
     }
   }
 }

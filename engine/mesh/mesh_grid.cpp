@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "engine/mesh/patch_contact.hpp"
+
 namespace drumlab {
 
 MeshGrid::MeshGrid(const TriangleMesh& mesh, double cell, double reach) {
@@ -39,9 +41,19 @@ MeshGrid::MeshGrid(const TriangleMesh& mesh, double cell, double reach) {
     }
     a -= Vec3::Constant(reach);
     b += Vec3::Constant(reach);
+    // Of the cells the grown box overlaps, those whose centre lies within reach + half the
+    // cell's diagonal of the triangle itself (a blade set at an angle fills few cells of its box).
+    const double near = reach + 0.5 * std::sqrt(3.0) * side;
     for (long i = cell_of(a.x(), 0); i <= cell_of(b.x(), 0); ++i) {
       for (long j = cell_of(a.y(), 1); j <= cell_of(b.y(), 1); ++j) {
         for (long k = cell_of(a.z(), 2); k <= cell_of(b.z(), 2); ++k) {
+          const Vec3 centre =
+              lo_ + side * Vec3(static_cast<double>(i) + 0.5, static_cast<double>(j) + 0.5,
+                                static_cast<double>(k) + 0.5);
+          const Vec3 q =
+              nearest_on_triangle(centre, mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2))
+                  .point;
+          if ((q - centre).squaredNorm() > near * near) continue;
           lists[static_cast<std::size_t>((i * n_[1] + j) * n_[2] + k)].push_back(
               static_cast<Index>(t));
         }
@@ -51,7 +63,11 @@ MeshGrid::MeshGrid(const TriangleMesh& mesh, double cell, double reach) {
   start_.assign(lists.size() + 1, 0);
   for (std::size_t c = 0; c < lists.size(); ++c) start_[c + 1] = start_[c] + lists[c].size();
   items_.reserve(start_.back());
-  for (const auto& l : lists) items_.insert(items_.end(), l.begin(), l.end());
+  occupied_.assign((lists.size() + 63) / 64, 0);
+  for (std::size_t c = 0; c < lists.size(); ++c) {
+    items_.insert(items_.end(), lists[c].begin(), lists[c].end());
+    if (!lists[c].empty()) occupied_[c / 64] |= std::uint64_t{1} << (c % 64);
+  }
 }
 
 std::span<const Index> MeshGrid::candidates(const Vec3& x) const {
@@ -62,6 +78,7 @@ std::span<const Index> MeshGrid::candidates(const Vec3& x) const {
     c[k] = static_cast<long>(f);
   }
   const auto cell = static_cast<std::size_t>((c[0] * n_[1] + c[1]) * n_[2] + c[2]);
+  if ((occupied_[cell / 64] >> (cell % 64) & 1) == 0) return {};
   return {items_.data() + start_[cell], items_.data() + start_[cell + 1]};
 }
 

@@ -4,6 +4,7 @@
 // sphere of radius <= reach whose centre lies in a cell can touch only the triangles listed
 // there. Built once in the mesh's own frame (a mesh that turns with the drum is queried with
 // the particle's position in the drum's frame), so it is never rebuilt while the mesh moves.
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -25,6 +26,9 @@ class MeshGrid {
   std::array<long, 3> n_{};
   std::vector<std::size_t> start_;  ///< CSR rows per cell
   std::vector<Index> items_;
+  /// One bit per cell: whether it lists any triangle. Most particles stand in empty cells; the
+  /// bits fit a core's first-level cache where the rows do not.
+  std::vector<std::uint64_t> occupied_;
 };
 
 }  // namespace drumlab

@@ -66,6 +66,9 @@ void patch_contacts(const TriangleMesh& mesh, std::span<const Index> candidates,
   out.clear();
   const double r2 = r * r;
   for (const Index t : candidates) {
+    // Farther from the triangle's plane than r: no contact (most candidates end here).
+    const double plane = mesh.normals[t].dot(x - mesh.corner(t, 0));
+    if (!(plane * plane < r2)) continue;
     const NearestOnTriangle q =
         nearest_on_triangle(x, mesh.corner(t, 0), mesh.corner(t, 1), mesh.corner(t, 2));
     const double d2 = (x - q.point).squaredNorm();

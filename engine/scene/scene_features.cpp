@@ -174,6 +174,13 @@ SceneFeatures scene_features(const SceneConfig& scene) {
   f.list.push_back(term("end-cap contacts", f.end_caps,
                         f.end_caps ? "drum.ends = caps: mantle and both caps tested per particle"
                                    : "drum.ends = periodic: only the mantle is tested"));
+  f.list.push_back(term(
+      "triangle walls", scene.has_meshes(),
+      scene.has_meshes()
+          ? fmt::format("{} [[wall.mesh]], {} [[wall.lifters]]: every particle looked up in each "
+                        "mesh's grid (drum frame), one contact per smooth patch with history",
+                        scene.meshes.size(), scene.lifters.size())
+          : std::string("no [[wall.mesh]] or [[wall.lifters]]: no mesh grid, no mesh pass")));
   const DrumOrbit& orbit = scene.drum.orbit;
   f.list.push_back(term("planetary carrier field", orbit.active(),
                         orbit.active()

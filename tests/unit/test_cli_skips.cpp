@@ -52,6 +52,7 @@ TEST(CliInfo, PrintsNeedsAndSkipsWithReasons) {
            "skipped         rolling resistance (particle-particle)",
            "skipped         cohesion",
            "skipped         end-cap contacts",
+           "skipped         triangle walls",
            "available       3D search grid",
            "command line    output writers / VTK objects",
        }) {
@@ -63,6 +64,10 @@ TEST(CliInfo, PrintsNeedsAndSkipsWithReasons) {
             std::string::npos)
       << demo.output;
   EXPECT_NE(demo.output.find("needed          end-cap contacts"), std::string::npos);
+  const auto lifters = run_cli("info " + std::string(DRUMLAB_SCENES_DIR) + "/lifter_drum.toml");
+  ASSERT_EQ(lifters.exit_code, 0) << lifters.output;
+  EXPECT_NE(lifters.output.find("needed          triangle walls"), std::string::npos)
+      << lifters.output;
 }
 
 TEST(CliBench, SkipsWritesOneRowPerSkipAndSamePhysicsAgrees) {
