@@ -34,3 +34,13 @@ def test_series_psd(tmp_path, small_scene):
                       cwd=tmp_path)
     assert "granules" in out
     assert (tmp_path / "p.png").stat().st_size > 1000
+
+
+def test_lifter_holdup(tmp_path):
+    out = run_example("lifter_holdup.py", "--quick", "--omega", "3", "--out", tmp_path / "h",
+                      cwd=tmp_path)
+    assert "Fr_tip" in out and "empty from" in out
+    rows = (tmp_path / "h" / "holdup_omega3.csv").read_text().splitlines()
+    assert rows[0].startswith("theta_deg,dem_kg")
+    assert len(rows) > 20
+    assert (tmp_path / "h" / "holdup.png").stat().st_size > 1000
