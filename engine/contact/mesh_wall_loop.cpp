@@ -11,6 +11,7 @@
 #include "engine/contact/contact_model.hpp"
 #include "engine/contact/law_dispatch.hpp"
 #include "engine/contact/mesh_wall_history.hpp"
+#include "engine/contact/sjkr_cohesion.hpp"
 #include "engine/mesh/mesh_wall_set.hpp"
 
 namespace drumlab {
@@ -143,6 +144,9 @@ std::size_t ContactModel::add_mesh_forces(Particles& p, const MeshWallSet& walls
   const std::size_t n = p.size();
   const auto blocks = static_cast<std::int64_t>((n + kBlock - 1) / kBlock);
   const bool torque = uses_rotation();
+  // Dry adhesion ([cohesion], sjkr) pulls a particle onto a mesh as onto the analytic wall:
+  // k_c times the overlap's lens area, along the normal, while they overlap.
+  const SjkrCohesion* sjkr = part<SjkrCohesion>();
   std::size_t contacts = 0;
 #pragma omp parallel reduction(+ : contacts)
   {
@@ -167,6 +171,11 @@ std::size_t ContactModel::add_mesh_forces(Particles& p, const MeshWallSet& walls
       }
       for (const Record& r : records) {  // pass (3)
         p.force[r.i] += r.force;
+        if (sjkr != nullptr) {
+          p.force[r.i] -=
+              sjkr->force(SjkrCohesion::wall_lens_area(r.contact.overlap, p.radius[r.i])) *
+              r.contact.normal;
+        }
         if (torque) p.torque[r.i] += r.torque;
         if (r.slot == kNoSlot) continue;
         const auto k = static_cast<std::size_t>(r.slot);

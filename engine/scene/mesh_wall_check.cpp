@@ -76,12 +76,9 @@ std::optional<SceneProblem> mesh_wall_problem(const SceneConfig& s) {
     if (auto p = check_lifters(s, s.lifters[i], fmt::format("wall.lifters[{}]", i))) return p;
   }
   const std::string key = s.meshes.empty() ? "wall.lifters" : "wall.mesh";
-  if (s.cohesion.enabled) {
-    return fail(key, "not with [cohesion] yet (the triangle walls carry the dry law parts only)");
-  }
   if (s.liquid.enabled && s.liquid.wall_bridges) {
     return fail(key,
-                "not with wall bridges yet (the triangle walls carry the dry law parts only; set "
+                "not with wall bridges yet (liquid bridges do not form on triangle walls; set "
                 "liquid.wall_bridges = false)");
   }
   if (!s.sprays.empty()) {

@@ -59,12 +59,14 @@ std::vector<Pose> square_poses(double r, double half) {
   return out;
 }
 
-SceneConfig flat_scene() {
+/// `cohesion`: with dry adhesion (sjkr), which pulls onto a mesh as onto the plane.
+SceneConfig flat_scene(bool cohesion) {
   SmallDrumText t;
   t.omega = "0.0";
   t.rolling_friction = "0.05";
   t.wall = "friction = 0.4\nrolling_friction = 0.05";
-  SceneConfig s = parse_scene(t.text(), "flat.toml");
+  const std::string adhesion = cohesion ? "[cohesion]\nenergy_density = 3e4\n" : "";
+  SceneConfig s = parse_scene(t.text() + adhesion, "flat.toml");
   // The mesh's law: the wall's material (the model builds it from the mesh's keys).
   MeshWallConfig m;
   m.material = {s.wall.youngs_modulus, s.wall.poisson_ratio, s.wall.restitution, s.wall.friction,
@@ -81,47 +83,49 @@ Particles one_sphere(const ContactModel& model, double r) {
 }
 
 TEST(MeshWalls, AFlatSquareOfAnyTrianglesPushesAndTurnsASphereAsThePlaneDoes) {
-  const SceneConfig scene = flat_scene();
-  const ContactModel model(scene);
-  const Drum drum(scene.drum);
-  const double r = 0.008, half = 0.04, dt = 2e-6;
-  const std::vector<Pose> poses = square_poses(r, half);
-  for (const int cells : {1, 2, 10}) {
-    WallMesh wall{make_mesh(grid_square(cells, Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), half),
-                            0.01, "square"),
-                  MeshAttach::lab, scene.meshes[0].material, "wall.mesh[0]"};
-    ASSERT_EQ(wall.mesh.patches, 1u);
-    const std::size_t triangles = wall.mesh.size();
-    const MeshWallSet walls({wall}, 2.0 * r, r);
-    Particles plane = one_sphere(model, r), mesh = one_sphere(model, r);
-    WallHistory history(1, {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
-    WallHistory unused = history;
-    const std::vector<Index> candidate = {0};
-    double worst_force = 0.0, worst_torque = 0.0, largest_torque = 0.0;
-    for (std::size_t k = 0; k < poses.size(); ++k) {
-      for (Particles* p : {&plane, &mesh}) {
-        p->position[0] = poses[k].x;
-        p->velocity[0] = poses[k].v;
-        p->omega[0] = poses[k].w;
-        p->clear_forces();
+  for (const bool cohesion : {false, true}) {
+    const SceneConfig scene = flat_scene(cohesion);
+    const ContactModel model(scene);
+    const Drum drum(scene.drum);
+    const double r = 0.008, half = 0.04, dt = 2e-6;
+    const std::vector<Pose> poses = square_poses(r, half);
+    for (const int cells : {1, 2, 10}) {
+      WallMesh wall{make_mesh(grid_square(cells, Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), half),
+                              0.01, "square"),
+                    MeshAttach::lab, scene.meshes[0].material, "wall.mesh[0]"};
+      ASSERT_EQ(wall.mesh.patches, 1u);
+      const std::size_t triangles = wall.mesh.size();
+      const MeshWallSet walls({wall}, 2.0 * r, r);
+      Particles plane = one_sphere(model, r), mesh = one_sphere(model, r);
+      WallHistory history(1, {Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
+      const std::vector<Index> candidate = {0};
+      double worst_force = 0.0, worst_torque = 0.0, largest_torque = 0.0;
+      for (std::size_t k = 0; k < poses.size(); ++k) {
+        for (Particles* p : {&plane, &mesh}) {
+          p->position[0] = poses[k].x;
+          p->velocity[0] = poses[k].v;
+          p->omega[0] = poses[k].w;
+          p->clear_forces();
+        }
+        const double h = k == 0 ? 0.0 : dt;
+        model.add_wall_forces(plane, candidate, drum, 0.0, history, dt, h);
+        ASSERT_EQ(model.add_mesh_forces(mesh, walls, 0.0, 0.0, dt, h), 1u) << "step " << k;
+        const Vec3& f = plane.force[0];
+        const Vec3& t = plane.torque[0];
+        ASSERT_GT(f.norm(), 0.0);
+        worst_force = std::max(worst_force, (mesh.force[0] - f).norm() / f.norm());
+        worst_torque = std::max(worst_torque, (mesh.torque[0] - t).norm() / (f.norm() * r));
+        largest_torque = std::max(largest_torque, t.norm() / (f.norm() * r));
       }
-      const double h = k == 0 ? 0.0 : dt;
-      model.add_wall_forces(plane, candidate, drum, 0.0, history, dt, h);
-      ASSERT_EQ(model.add_mesh_forces(mesh, walls, 0.0, 0.0, dt, h), 1u) << "step " << k;
-      const Vec3& f = plane.force[0];
-      const Vec3& t = plane.torque[0];
-      ASSERT_GT(f.norm(), 0.0);
-      worst_force = std::max(worst_force, (mesh.force[0] - f).norm() / f.norm());
-      worst_torque = std::max(worst_torque, (mesh.torque[0] - t).norm() / (f.norm() * r));
-      largest_torque = std::max(largest_torque, t.norm() / (f.norm() * r));
+      std::printf(
+          "flat square of %zu triangles%s, %zu steps: worst |dF|/|F| = %.2e, worst "
+          "|dT|/(|F| r) = %.2e (torques up to %.2f |F| r)\n",
+          triangles, cohesion ? " with sjkr adhesion" : "", poses.size(), worst_force, worst_torque,
+          largest_torque);
+      EXPECT_LT(worst_force, 1e-12) << triangles << " triangles";
+      EXPECT_LT(worst_torque, 1e-12) << triangles << " triangles";
+      EXPECT_GT(largest_torque, 0.1);  // the paths did slide and roll
     }
-    std::printf(
-        "flat square of %zu triangles, %zu steps: worst |dF|/|F| = %.2e, worst "
-        "|dT|/(|F| r) = %.2e (torques up to %.2f |F| r)\n",
-        triangles, poses.size(), worst_force, worst_torque, largest_torque);
-    EXPECT_LT(worst_force, 1e-12) << triangles << " triangles";
-    EXPECT_LT(worst_torque, 1e-12) << triangles << " triangles";
-    EXPECT_GT(largest_torque, 0.1);  // the paths did slide and roll
   }
 }
 
