@@ -17,6 +17,7 @@
 #include "engine/contact/contact_history.hpp"
 #include "engine/contact/contact_model.hpp"
 #include "engine/contact/liquid_start.hpp"
+#include "engine/contact/mesh_wall_history.hpp"
 #include "engine/contact/wall_candidates.hpp"
 #include "engine/drum.hpp"
 #include "engine/io/restart_check.hpp"
@@ -219,6 +220,7 @@ Simulation::Simulation(const SceneConfig& scene, SimulationState state)
         state.contact_state_size, impl_->model.pair_state_size()));
   }
   register_liquid_arrays(false);
+  check_mesh_history();
   impl_->contacts.set_state_size(state.contact_state_size);
   impl_->contacts.assign(state.contact_row_start, state.contact_col, state.contact_history,
                          state.contact_state);
@@ -253,6 +255,22 @@ void Simulation::make_meshes() {
   // The grids' cells: one largest diameter; their reach: the largest radius.
   const double r_max = particles_.empty() ? scene_.max_radius() : particles_.max_radius();
   impl_->meshes = MeshWallSet(build_wall_meshes(scene_), 2.0 * r_max, r_max);
+}
+
+void Simulation::check_mesh_history() const {
+  const auto patches = static_cast<double>(impl_->meshes.patches());
+  for (const std::string_view name : kMeshPatchArrays) {
+    const std::vector<double>* keys = particles_.find_array(name);
+    if (keys == nullptr) continue;
+    for (const double key : *keys) {
+      if (!(key >= 0.0 && key <= patches && key == std::floor(key))) {
+        throw InputError(fmt::format(
+            "restart state: {} holds {}, the scene's triangle walls have {} patches (a checkpoint "
+            "of other meshes?)",
+            name, key, impl_->meshes.patches()));
+      }
+    }
+  }
 }
 
 const MeshWallSet& Simulation::meshes() const {

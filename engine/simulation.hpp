@@ -196,6 +196,8 @@ class Simulation {
   void make_spray();
   /// Builds the triangle walls of a scene with [[wall.mesh]] or [[wall.lifters]].
   void make_meshes();
+  /// Throws InputError if the mesh history names a patch the scene's meshes do not have.
+  void check_mesh_history() const;
   /// Adds the triangle walls' contacts to `d` (count, elastic energy, largest overlap).
   void add_mesh_diagnostics(Diagnostics& d) const;
   void choose_time_step(const SimulationOptions& options);

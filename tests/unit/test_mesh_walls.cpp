@@ -178,6 +178,15 @@ TEST(MeshWalls, ALifterDrumRestartsBitForBitFromItsCheckpoint) {
   forgetful.advance(300);
   remembering.advance(300);
   EXPECT_FALSE(same_bits(forgetful.particles().position, remembering.particles().position));
+  // A checkpoint of other meshes (more patches than these) does not restart this scene.
+  SimulationState other = whole.state();
+  other.particles.find_array(kMeshPatchArrays[0])->front() = 1e6;
+  try {
+    Simulation wrong(scene, other);
+    ADD_FAILURE() << "restarted from another mesh's history";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("patches"), std::string::npos) << e.what();
+  }
 }
 
 TEST(MeshWalls, ALifterDrumGivesTheSameBitsForAnyThreadCountAndMethod) {
