@@ -157,6 +157,8 @@ struct Simulation::Impl {
   BridgeEventFilms bridge_replay;
   /// The triangle walls ([[wall.mesh]], [[wall.lifters]]); empty without: nothing to pay.
   MeshWallSet meshes;
+  /// The meshes' triangles for pictures and files (wall_meshes()); null without.
+  std::shared_ptr<const std::vector<WallMesh>> wall_meshes;
   /// The binder droplets of a scene with [[spray]] (engine/spray/droplet_cloud.hpp); null
   /// without: a scene without spray pays nothing.
   std::unique_ptr<DropletCloud> spray;
@@ -254,7 +256,9 @@ void Simulation::make_meshes() {
   if (!scene_.has_meshes()) return;
   // The grids' cells: one largest diameter; their reach: the largest radius.
   const double r_max = particles_.empty() ? scene_.max_radius() : particles_.max_radius();
-  impl_->meshes = MeshWallSet(build_wall_meshes(scene_), 2.0 * r_max, r_max);
+  std::vector<WallMesh> built = build_wall_meshes(scene_);
+  impl_->wall_meshes = std::make_shared<const std::vector<WallMesh>>(built);
+  impl_->meshes = MeshWallSet(std::move(built), 2.0 * r_max, r_max);
 }
 
 void Simulation::check_mesh_history() const {
@@ -275,6 +279,10 @@ void Simulation::check_mesh_history() const {
 
 const MeshWallSet& Simulation::meshes() const {
   return impl_->meshes;
+}
+
+std::shared_ptr<const std::vector<WallMesh>> Simulation::wall_meshes() const {
+  return impl_->wall_meshes;
 }
 
 void Simulation::make_spray() {

@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string_view>
+#include <vector>
 
 #include "engine/contact/bond.hpp"
 #include "engine/contact/cohesion_loops.hpp"
@@ -67,6 +68,7 @@ struct SimulationOptions {
 
 class DropletCloud;
 class MeshWallSet;
+struct WallMesh;
 
 class Simulation {
  public:
@@ -172,6 +174,9 @@ class Simulation {
   LiquidTotals liquid() const;
   /// The triangle walls ([[wall.mesh]], [[wall.lifters]]); empty without.
   const MeshWallSet& meshes() const;
+  /// The same meshes (in the drum's frame at angle 0) as one immutable list that a snapshot can
+  /// share with another thread (FrameSnapshot::meshes); null without.
+  std::shared_ptr<const std::vector<WallMesh>> wall_meshes() const;
   /// The binder droplets and their liquid accounting of a scene with [[spray]]; null without.
   /// Films + bridges + wall bridges + airborne + lost = the scene's liquid + the sprayed.
   const DropletCloud* spray() const;

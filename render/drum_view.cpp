@@ -39,6 +39,7 @@
 #include "engine/io/paraview/frame_datasets.hpp"
 #include "render/grid_overlay.hpp"
 #include "render/vtk_datasets.hpp"
+#include "render/wall_mesh_actors.hpp"
 
 namespace drumlab::render {
 
@@ -244,7 +245,8 @@ struct DrumView::Impl {
   vtkNew<vtkTextActor> text;
   vtkSmartPointer<vtkActor> front_cap, back_cap, back_lines;  // the caps' lines turn with the drum
   vtkSmartPointer<vtkActor> mantle;
-  vtkSmartPointer<vtkActor> nozzles;  // the [[spray]] nozzles' cones and fans (lines)
+  vtkSmartPointer<vtkActor> nozzles;       // the [[spray]] nozzles' cones and fans (lines)
+  std::unique_ptr<WallMeshActors> meshes;  // [[wall.mesh]], [[wall.lifters]]; none without
   vtkNew<vtkPolyData> droplets;
   vtkNew<vtkActor> droplet_actor;
   std::unique_ptr<GridOverlay> grid;
@@ -555,6 +557,7 @@ void DrumView::Impl::show_parts() {
                       central_axis.Get()}) {
     if (a != nullptr) a->SetVisibility(options.walls);
   }
+  if (meshes) meshes->set_visibility(options.walls);
   legend->SetVisibility(options.legend);
   text->SetVisibility(options.text);
 }
@@ -648,6 +651,8 @@ void DrumView::draw(const FrameSnapshot& snapshot) {
   if (m.grid) m.grid->update(snapshot, m.options.grid);
   m.update_particles(snapshot);
   m.update_droplets(snapshot);
+  if (snapshot.meshes && !m.meshes) m.meshes = std::make_unique<WallMeshActors>(m.renderer);
+  if (m.meshes) m.meshes->update(snapshot);
   m.update_overlay(snapshot);
   m.update_carrier(snapshot);
   m.show_parts();

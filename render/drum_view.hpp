@@ -1,6 +1,7 @@
 #pragma once
 // The drum as a picture: particles as shaded sphere impostors coloured by one quantity with a
-// legend, the drum mantle and end caps (with spokes that turn with the drum), a text overlay, and
+// legend, the drum mantle and end caps (with spokes that turn with the drum), the triangle walls
+// (lifters, inserts: turning with the drum or standing in the lab), a text overlay, and
 // optionally the active search grid and one particle's search. Reads a const Simulation; draws
 // into an OpenGL context it is given (a RenderTarget: OSMesa for the CLI and the tests, the GUI's
 // own context). No VTK type appears in this interface.
@@ -48,7 +49,7 @@ struct ViewOptions {
   bool zoom_to_focus = false;      ///< frame the focus particle's stencil instead of the drum
   bool neutral_particles = false;  ///< grey particles, so the focus picture's colours stand out
   bool overlay = true;             ///< text overlay and legend
-  bool walls = true;               ///< the mantle and the end caps
+  bool walls = true;               ///< the mantle, the end caps and the triangle walls
   bool legend = true;              ///< with overlay: the legend
   bool text = true;                ///< with overlay: the text
   std::string title;               ///< replaces the overlay text when not empty

@@ -35,6 +35,10 @@ inline constexpr double kBackground[3] = {0.11, 0.12, 0.15};
 /// (slow particles) stands out against it.
 inline constexpr double kBackCapColor[3] = {0.32, 0.33, 0.37};
 
+/// Colour of the triangle walls ([[wall.mesh]], [[wall.lifters]]): a light, warm steel, apart
+/// from the mantle's blue-grey, the back cap and the neutral grey of plain particles.
+inline constexpr double kMeshWallColor[3] = {0.80, 0.78, 0.72};
+
 /// The focus picture (render/grid_overlay.hpp): the focus particle (white), its own cell (crimson),
 /// the forward half-stencil cells it visits (lime), the backward half it skips (dark red), method
 /// 2's extra backward ring (blue-violet), the candidates it tests (cyan markers), the contacts it

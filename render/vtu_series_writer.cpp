@@ -3,6 +3,7 @@
 #include <vtkDataSet.h>
 #include <vtkImageData.h>
 
+#include "engine/io/paraview/wall_datasets.hpp"
 #include "render/vtk_datasets.hpp"
 #include "render/vtk_files.hpp"
 
@@ -24,6 +25,7 @@ void VtuSeriesWriter::write_frame(const Simulation& sim) {
   };
   write("particles", "vtu", to_vtk(moved(paraview::particles(sim, options_.granule))));
   write("drum", "vtp", to_vtk(moved(paraview::drum(sim))));
+  if (sim.wall_meshes()) write("walls", "vtp", to_vtk(moved(paraview::walls(sim))));
   if (options_.contacts) write("contacts", "vtp", to_vtk(moved(paraview::contacts(sim))));
   if (sim.scene().drum.orbit.active()) {
     write("carrier", "vtp", to_vtk(paraview::carrier_arm(sim, options_.frame)));

@@ -2,6 +2,8 @@
 // The VTU/PVD time series for ParaView. Each frame writes, into one directory,
 //   particles_NNNNNN.vtu   particles with their arrays (engine/io/paraview/frame_datasets.hpp)
 //   drum_NNNNNN.vtp        the analytic drum wall, turned by the drum angle
+//   walls_NNNNNN.vtp       the triangle walls ([[wall.mesh]], [[wall.lifters]]), those attached
+//                          to the drum turned by its angle (engine/io/paraview/wall_datasets.hpp)
 //   contacts_NNNNNN.vtp    contacts as lines with force magnitude (on request)
 //   grid_NNNNNN.vti        contact-search grid occupancy (on request; grid methods only)
 //   bonds_NNNNNN.vtp       the bond graph of an HDF5 series frame (drumlab convert)
@@ -9,8 +11,9 @@
 //                          their cones or fans (a scene with [[spray]])
 //   carrier_NNNNNN.vtp     a planetary drum's central axis and arm ([drum.orbit])
 // in the drum frame, or in the lab or carrier frame (VtuSeriesOptions::frame).
-// and rewrites particles.pvd, drum.pvd (, contacts.pvd, grid.pvd) so each is always a valid series
-// of the frames written so far. Every file goes through a temporary name and a rename.
+// and rewrites particles.pvd, drum.pvd (, walls.pvd, contacts.pvd, grid.pvd, ...) so each is
+// always a valid series of the frames written so far. Every file goes through a temporary name and
+// a rename.
 #include <cstdint>
 #include <filesystem>
 #include <string>

@@ -1,4 +1,5 @@
-// drumlab info SCENE: derived quantities of a scene, without simulating it.
+// drumlab info SCENE [--write-mesh DIR]: derived quantities of a scene, without simulating it;
+// its triangle walls written as STL files on request.
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -7,6 +8,7 @@
 
 #include "app/cli/commands.hpp"
 #include "app/cli/scene_setup.hpp"
+#include "app/cli/wall_mesh_files.hpp"
 #include "engine/contact/contact_model.hpp"
 #include "engine/contact/hertz_mindlin.hpp"
 #include "engine/contact/sjkr_cohesion.hpp"
@@ -15,6 +17,7 @@
 #include "engine/fill/paper_packing.hpp"
 #include "engine/fill/random_fill.hpp"
 #include "engine/memory_estimate.hpp"
+#include "engine/mesh/wall_meshes.hpp"
 #include "engine/scene/scene_features.hpp"
 #include "engine/search/auto_select.hpp"
 #include "engine/search/search_binning.hpp"
@@ -258,8 +261,28 @@ void print_orbit(const SceneConfig& scene) {
              g > 0.1 * field ? " (gravity is not small against the field: a rough guide)" : "");
 }
 
-void print_info(const std::string& file) {
+/// The triangle walls, a line each, with the file each was written to (if any).
+void print_meshes(const std::vector<WallMesh>& meshes,
+                  const std::vector<std::filesystem::path>& files) {
+  for (std::size_t k = 0; k < meshes.size(); ++k) {
+    fmt::print("wall mesh         {}\n", mesh_summary(meshes[k]));
+    if (k < files.size()) fmt::print("                  written to {}\n", files[k].string());
+  }
+}
+
+void print_info(const std::string& file, const std::string& mesh_dir) {
   const SceneConfig scene = load_scene(file);
+  const std::vector<WallMesh> meshes =
+      scene.has_meshes() ? build_wall_meshes(scene) : std::vector<WallMesh>{};
+  // The files first, all or none: a directory that cannot take them stops info before it prints.
+  std::vector<std::filesystem::path> files;
+  if (!mesh_dir.empty()) {
+    if (meshes.empty()) {
+      throw InputError(
+          fmt::format("--write-mesh: {} has no [[wall.mesh]] or [[wall.lifters]]", file));
+    }
+    files = write_mesh_files(meshes, mesh_dir);
+  }
   const std::size_t total = print_particles_and_drum(scene, file);
   const double dt = print_time_scales(scene, total);
   print_memory(scene, total);
@@ -267,6 +290,7 @@ void print_info(const std::string& file) {
   print_cohesion(scene);
   print_sprays(scene);
   print_orbit(scene);
+  print_meshes(meshes, files);
   if (scene.dynamic()) print_features(scene);
   if (!scene.dynamic()) fmt::print("note              static packing: use `drumlab paper-table`\n");
 }
@@ -275,10 +299,14 @@ void print_info(const std::string& file) {
 
 void add_info_command(CLI::App& app) {
   auto file = std::make_shared<std::string>();
+  auto mesh_dir = std::make_shared<std::string>();
   CLI::App* cmd =
       app.add_subcommand("info", "Derived quantities of a scene (counts, dt, Froude, memory)");
   cmd->add_option("scene", *file, "scene file (TOML)")->required();
-  cmd->callback([file] { print_info(*file); });
+  cmd->add_option("--write-mesh", *mesh_dir,
+                  "write each triangle wall as DIR/<key>.stl (lifters_0.stl, mesh_0.stl), as "
+                  "built, at drum angle 0");
+  cmd->callback([file, mesh_dir] { print_info(*file, *mesh_dir); });
 }
 
 }  // namespace drumlab::cli

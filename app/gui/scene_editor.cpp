@@ -50,6 +50,7 @@ void SceneEditor::panel(const GuiWindow& window, SimThread& sim) {
   input_double("wall friction", edited_.wall.friction, 0.05, "%.3f");
   class_fields();
   fill_fields();
+  mesh_lines();
   if (ImGui::Button("Restart from edited scene")) {
     if (const auto problem = scene_problem(edited_)) {  // the loader's ranges, not a crash
       message_ = fmt::format("not restarted: {}: {}", problem->key, problem->reason);
@@ -95,6 +96,24 @@ void SceneEditor::class_fields() {
     input_double("volume share", c.volume_fraction, 0.05, "%.4f");
     ImGui::PopID();
   }
+  ImGui::TreePop();
+}
+
+void SceneEditor::mesh_lines() const {
+  if (!edited_.has_meshes() || !ImGui::TreeNode("triangle walls")) return;
+  for (std::size_t k = 0; k < edited_.meshes.size(); ++k) {
+    const MeshWallConfig& m = edited_.meshes[k];
+    ImGui::TextWrapped("wall.mesh[%zu]: %s, %s", k, m.file.filename().string().c_str(),
+                       m.attach == MeshAttach::drum ? "turning with the drum" : "fixed in the lab");
+  }
+  for (std::size_t k = 0; k < edited_.lifters.size(); ++k) {
+    const LifterWallConfig& l = edited_.lifters[k];
+    ImGui::TextWrapped("wall.lifters[%zu]: %d %s, %.1f mm high", k, l.count,
+                       l.shape == LifterKind::angled ? "angled" : "straight", 1000.0 * l.height);
+  }
+  ImGui::TextWrapped(
+      "as the scene file sets them, with their own material (wall friction above: "
+      "the drum's)");
   ImGui::TreePop();
 }
 

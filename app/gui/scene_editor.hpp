@@ -1,6 +1,7 @@
 #pragma once
 // The Scene panel: the scene file's scene with the user's edits (drum speed, friction,
-// restitution, particle classes, fill), restarted from or saved as TOML.
+// restitution, particle classes, fill), restarted from or saved as TOML; a scene's triangle walls
+// listed as the file has them.
 #include <string>
 #include <vector>
 
@@ -26,6 +27,8 @@ class SceneEditor {
  private:
   void class_fields();
   void fill_fields();
+  /// The triangle walls ([[wall.mesh]], [[wall.lifters]]), read only: they are the file's.
+  void mesh_lines() const;
 
   std::string file_;
   SceneConfig edited_;

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "engine/io/paraview/frame_datasets.hpp"
+#include "engine/io/paraview/wall_datasets.hpp"
 #include "engine/io/paraview/xml_writer.hpp"
 
 namespace drumlab::cli {
@@ -22,6 +23,7 @@ void PlainVtuSeries::write_frame(const Simulation& whole) {
   };
   write("particles", "vtu", paraview::particles(whole, granule_));
   write("drum", "vtp", paraview::drum(whole));
+  if (whole.wall_meshes()) write("walls", "vtp", paraview::walls(whole));
   if (contacts_) write("contacts", "vtp", paraview::contacts(whole));
   if (whole.scene().drum.orbit.active()) {
     files.emplace_back("carrier", series_.file_name("carrier", "vtp"));

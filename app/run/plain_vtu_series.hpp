@@ -1,10 +1,11 @@
 #pragma once
 // --vtu DIR where VTK cannot be linked (drumlab-mpi, whose MPI HDF5 must not meet VTK's serial one;
 // a build without the render library): the frames `drumlab run --vtu` writes with VTK
-// (render/vtu_series_writer.hpp: particles_NNNNNN.vtu, drum_NNNNNN.vtp, contacts_NNNNNN.vtp on
-// request, their .pvd collections), the same datasets (engine/io/paraview/frame_datasets.hpp)
-// written by the plain XML writer: uncompressed raw appended data, ParaView reads both alike.
-// No grid occupancy (it needs VTK's image data and a live search grid).
+// (render/vtu_series_writer.hpp: particles_NNNNNN.vtu, drum_NNNNNN.vtp, walls_NNNNNN.vtp with
+// triangle walls, contacts_NNNNNN.vtp on request, their .pvd collections), the same datasets
+// (engine/io/paraview/frame_datasets.hpp, wall_datasets.hpp) written by the plain XML writer:
+// uncompressed raw appended data, ParaView reads both alike. No grid occupancy (it needs VTK's
+// image data and a live search grid).
 #include <filesystem>
 #include <string>
 

@@ -66,6 +66,7 @@ FrameSnapshot take_snapshot(const Simulation& sim, const SnapshotRequest& reques
   s.scene_omega = sim.scene().drum.omega;
   s.classes = sim.scene().classes;
   s.sprays = sim.scene().sprays;
+  s.meshes = sim.wall_meshes();
 
   s.position = p.position;
   s.velocity = p.velocity;

@@ -6,10 +6,12 @@
 // FrameSnapshot&)), so a picture of a snapshot and of the simulation it was taken from are the
 // same. Nothing here refers back to the Simulation.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "engine/mesh/wall_meshes.hpp"
 #include "engine/search/contact_search.hpp"
 #include "engine/simulation.hpp"
 
@@ -52,6 +54,10 @@ struct FrameSnapshot {
   double scene_omega = 0.0;  ///< the scene's drum angular velocity, rad/s (0 is not "settling")
   std::vector<ParticleClass> classes;
   std::vector<SprayConfig> sprays;  ///< the scene's nozzles ([[spray]])
+  /// The triangle walls ([[wall.mesh]], [[wall.lifters]]) in the drum's frame at angle 0, shared
+  /// with the simulation, never changed (Simulation::wall_meshes); null without. A mesh attached
+  /// to the drum stands at Rz(drum_angle) x, one fixed in the lab as it is.
+  std::shared_ptr<const std::vector<WallMesh>> meshes;
 
   // The particles, in storage order (storage slots change when the engine re-sorts; ids do not).
   std::vector<Vec3> position;  ///< m

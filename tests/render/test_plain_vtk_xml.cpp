@@ -8,6 +8,7 @@
 
 #include "engine/analysis/agglomerates.hpp"
 #include "engine/io/paraview/frame_datasets.hpp"
+#include "engine/io/paraview/wall_datasets.hpp"
 #include "engine/io/paraview/xml_writer.hpp"
 #include "render/vtk_datasets.hpp"
 #include "render/vtk_files.hpp"
@@ -44,6 +45,16 @@ TEST(PlainVtkXml, DryFrameReadsBackAsVtksOwn) {
   const paraview::DataSet contacts = paraview::contacts(*sim);
   ASSERT_GT(contacts.cell_count(), 0u);
   expect_same_files(contacts, dir, "contacts");
+}
+
+TEST(PlainVtkXml, TriangleWallsReadBackAsVtksOwn) {
+  TempDir dir("plain-xml-walls");
+  SmallDrumText t;
+  t.wall = "friction = 0.5\n[[wall.lifters]]\ncount = 2\nheight = 0.02\nshape = \"angled\"";
+  const std::vector<WallMesh> meshes = build_wall_meshes(parse_scene(t.text(), "walls"));
+  const paraview::DataSet walls = paraview::walls(meshes, 0.7);
+  ASSERT_EQ(walls.cell_count(), meshes[0].mesh.size());
+  expect_same_files(walls, dir, "walls");
 }
 
 TEST(PlainVtkXml, WetFrameAndBondsReadBackAsVtksOwn) {
