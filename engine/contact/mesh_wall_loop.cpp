@@ -150,9 +150,10 @@ std::size_t ContactModel::add_mesh_forces(Particles& p, const MeshWallSet& walls
   std::size_t contacts = 0;
 #pragma omp parallel reduction(+ : contacts)
   {
-    MeshWallSet::Scratch scratch;
-    std::vector<MeshContact> hits;
-    std::vector<Record> records;
+    // Each thread's buffers, kept from step to step: the step allocates nothing once warm.
+    static thread_local MeshWallSet::Scratch scratch;
+    static thread_local std::vector<MeshContact> hits;
+    static thread_local std::vector<Record> records;
     WallBatch batch;
 #pragma omp for schedule(static)
     for (std::int64_t b = 0; b < blocks; ++b) {

@@ -140,7 +140,11 @@ struct Start {
 
 Start make_start(const std::string& scene) {
   if (scene == "dry_periodic") return {dry_periodic_scene(), dry_periodic_particles()};
-  SceneConfig s = turning_drum(scene == "wet_migration" ? kWet : kSjkr);
+  // Lifters: the triangle walls' pass (with adhesion onto them) keeps its buffers too.
+  const std::string lifters = "[[wall.lifters]]\ncount = 4\nheight = 0.02\n";
+  SceneConfig s = turning_drum(scene == "wet_migration" ? std::string(kWet)
+                               : scene == "lifters"     ? kSjkr + lifters
+                                                        : std::string(kSjkr));
   Particles p = random_fill(s);
   return {std::move(s), std::move(p)};
 }
@@ -214,6 +218,12 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Combine(::testing::Values("dry_periodic", "wet_migration", "wet_sjkr"),
                        ::testing::ValuesIn(every_method()), ::testing::Values(1, 2)),
     case_name);
+
+INSTANTIATE_TEST_SUITE_P(TriangleWalls, StepLoopAllocations,
+                         ::testing::Combine(::testing::Values("lifters"),
+                                            ::testing::Values("m5", "verlet:m2"),
+                                            ::testing::Values(1, 2)),
+                         case_name);
 
 }  // namespace
 }  // namespace drumlab
