@@ -38,8 +38,14 @@ void ContactList::assign(std::span<const std::size_t> row_start, std::span<const
   }
   const std::size_t rows = row_start.size() - 1;
   if (row_start.front() != 0 || row_start.back() != col.size()) bad("rows do not cover partners");
+  // Every row's bounds before any partner is read: a row start past the partners (a damaged
+  // checkpoint) would otherwise send the loop below beyond `col`.
   for (std::size_t i = 0; i < rows; ++i) {
-    if (row_start[i] > row_start[i + 1]) bad("row starts decrease");
+    if (row_start[i] > row_start[i + 1] || row_start[i + 1] > col.size()) {
+      bad("row starts decrease or pass the partners");
+    }
+  }
+  for (std::size_t i = 0; i < rows; ++i) {
     for (std::size_t k = row_start[i]; k < row_start[i + 1]; ++k) {
       if (col[k] <= i || col[k] >= rows) bad("partner out of range");
       if (k > row_start[i] && col[k] <= col[k - 1]) bad("row not sorted");
