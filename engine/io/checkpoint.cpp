@@ -37,19 +37,46 @@ void write_particles(hid_t file, const Particles& p, const h5::Rows& rows) {
   h5::write_attribute(g.get(), "extra_arrays", names);
 }
 
+/// A per-particle (or per-contact) column: a dataset of shape (N).
+std::vector<double> column(hid_t g, const std::string& name, std::size_t n,
+                           const h5::RowRange& range = {}) {
+  h5::check_row_shape(g, name, {});
+  return h5::read_doubles(g, name, n, range);
+}
+
+/// The per-particle datasets of /particles: vectors (N x 3) or columns (N), N the particles.
+constexpr std::pair<const char*, bool> kParticleSets[] = {
+    {"radius", false},      {"position", true},    {"velocity", true}, {"omega", true},
+    {"force", true},        {"torque", true},      {"mass", false},    {"inv_mass", false},
+    {"inv_inertia", false}, {"size_class", false}, {"id", false}};
+
 /// The particles of `range` (all by default) of the file's n.
-Particles read_particles(hid_t file, std::size_t n, const h5::RowRange& range) {
+Particles read_particles(hid_t file, const std::string& label, std::size_t n,
+                         const h5::RowRange& range) {
   h5::Handle g = h5::open_group(file, "particles");
+  for (const auto& [name, vector] : kParticleSets) {
+    if (vector) {
+      h5::check_row_shape(g.get(), name, {3});
+    } else {
+      h5::check_row_shape(g.get(), name, {});
+    }
+  }
+  for (const auto& [name, vector] : kParticleSets) {
+    if (const std::size_t rows = h5::rows_of(g.get(), name); rows != n) {
+      throw InputError(fmt::format("{}: particles/{} has {} rows, particles/radius {} (damaged?)",
+                                   label, name, rows, n));
+    }
+  }
   Particles p;
-  p.radius = h5::read_doubles(g.get(), "radius", n, range);
+  p.radius = column(g.get(), "radius", n, range);
   p.position = h5::read_vec3(g.get(), "position", n, range);
   p.velocity = h5::read_vec3(g.get(), "velocity", n, range);
   p.omega = h5::read_vec3(g.get(), "omega", n, range);
   p.force = h5::read_vec3(g.get(), "force", n, range);
   p.torque = h5::read_vec3(g.get(), "torque", n, range);
-  p.mass = h5::read_doubles(g.get(), "mass", n, range);
-  p.inv_mass = h5::read_doubles(g.get(), "inv_mass", n, range);
-  p.inv_inertia = h5::read_doubles(g.get(), "inv_inertia", n, range);
+  p.mass = column(g.get(), "mass", n, range);
+  p.inv_mass = column(g.get(), "inv_mass", n, range);
+  p.inv_inertia = column(g.get(), "inv_inertia", n, range);
   p.size_class = h5::read_u8(g.get(), "size_class", n, range);
   p.id = h5::read_u32(g.get(), "id", n, range);
   if (H5Aexists(g.get(), "extra_arrays") > 0) {
@@ -60,7 +87,7 @@ Particles read_particles(hid_t file, std::size_t n, const h5::RowRange& range) {
       const std::string name = names.substr(begin, end - begin);
       std::vector<double>& a =
           p.add_array(name, h5::read_double_attribute(g.get(), "extra_initial_" + name));
-      a = h5::read_doubles(g.get(), "extra_" + name, n, range);
+      a = column(g.get(), "extra_" + name, n, range);
       begin = end + 1;
     }
   }
@@ -95,6 +122,8 @@ void read_contacts(hid_t file, const std::string& label, std::size_t n, const h5
   h5::Handle g = h5::open_group(file, "contacts");
   const std::size_t m = h5::rows_of(g.get(), "col");
   // An empty row_start (a state whose contact list was never built) has no rows to range over.
+  h5::check_row_shape(g.get(), "row_start", {});
+  h5::check_row_shape(g.get(), "col", {});
   const bool listed = h5::rows_of(g.get(), "row_start") > 0;
   std::vector<std::uint64_t> starts = h5::read_u64(
       g.get(), "row_start", h5::kAnySize,
@@ -113,9 +142,15 @@ void read_contacts(hid_t file, const std::string& label, std::size_t n, const h5
   s.contact_history = h5::read_vec3(g.get(), "history", m, records);
   if (H5Aexists(g.get(), "state_size") > 0) {
     s.contact_state_size = h5::read_u64_attribute(g.get(), "state_size");
+    if (s.contact_state_size == 0 || s.contact_state_size > 64) {
+      throw InputError(
+          fmt::format("{}: contacts/state_size {} (damaged?)", label, s.contact_state_size));
+    }
+    h5::check_row_shape(g.get(), "state", {s.contact_state_size});
     s.contact_state = h5::read_doubles(g.get(), "state", m * s.contact_state_size, records);
   }
   h5::Handle w = h5::open_group(file, "walls");
+  h5::check_row_shape(w.get(), "history", {kWallParts, 3});
   const std::vector<double> flat = h5::read_doubles(w.get(), "history", 9 * n, range);
   s.wall_history.resize(rows);
   for (std::size_t i = 0; i < rows; ++i) {
@@ -195,9 +230,9 @@ void write_checkpoint_datasets(hid_t f, const SimulationState& state, const std:
 
 void write_checkpoint(const std::filesystem::path& file, const SimulationState& state,
                       const std::string& scene_name) {
-  h5::Handle f = h5::create_memory_file(file.string());
+  h5::StagedFile f(file);
   write_checkpoint_datasets(f.get(), state, scene_name);
-  h5::save_memory_file(f, file);
+  f.commit();
 }
 
 namespace {
@@ -229,7 +264,7 @@ Checkpoint read_rows(const std::filesystem::path& file, const h5::RowRange& rang
     h5::Handle g = h5::open_group(f.get(), "particles");
     c.particles = h5::rows_of(g.get(), "radius");
   }
-  s.particles = read_particles(f.get(), c.particles, range);
+  s.particles = read_particles(f.get(), file.string(), c.particles, range);
   read_contacts(f.get(), file.string(), c.particles, range, s);
   s.spray = read_spray(f.get());
   return c;

@@ -8,8 +8,6 @@
 
 #include <fmt/format.h>
 
-#include "engine/io/atomic_file.hpp"
-
 namespace drumlab::h5 {
 
 /// Switches off HDF5's automatic error printing once; our messages say what failed. First of all
@@ -38,6 +36,21 @@ const Rows& all_rows() {
 
 namespace {
 
+/// HDF5's innermost message on its error stack, the cause of the call that just failed ("data
+/// error detected by Fletcher32 checksum", "truncated file: eof = ..."); "" if none. H5Ewalk2
+/// leaves the stack as it is, so this is taken before any other HDF5 call.
+std::string hdf5_cause() {
+  std::string cause;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_UPWARD,
+      [](unsigned n, const H5E_error2_t* e, void* out) -> herr_t {
+        if (n == 0 && e->desc != nullptr) *static_cast<std::string*>(out) = e->desc;
+        return 0;
+      },
+      &cause);
+  return cause;
+}
+
 std::string file_of(hid_t loc) {
   char buf[1024] = {0};
   if (loc >= 0 && H5Fget_name(loc, buf, sizeof buf) > 0) return buf;
@@ -46,6 +59,54 @@ std::string file_of(hid_t loc) {
 
 [[noreturn]] void fail(hid_t loc, const std::string& name, const char* what) {
   throw InputError(fmt::format("{}: {} '{}'", file_of(loc), what, name));
+}
+
+/// Throws "<file>: cannot read <kind> '<name>' (damaged or truncated file: <cause>)", `cause` being
+/// HDF5's innermost message (taken by hdf5_cause() right after the failed call).
+[[noreturn]] void fail_damaged(hid_t loc, const std::string& name, const char* kind,
+                               const std::string& cause) {
+  throw InputError(fmt::format("{}: cannot read {} '{}' (damaged or truncated file: {})",
+                               file_of(loc), kind, name, cause.empty() ? "HDF5 error" : cause));
+}
+
+/// Whether `loc` lives in a file written through MPI-IO (engine/io/mpi/): no filters there.
+bool parallel_file(hid_t loc) {
+#ifdef H5_HAVE_PARALLEL
+  Handle file(H5Iget_file_id(loc), H5Fclose);
+  Handle fapl(file.get() >= 0 ? H5Fget_access_plist(file.get()) : H5I_INVALID_HID, H5Pclose);
+  return fapl.get() >= 0 && H5Pget_driver(fapl.get()) == H5FD_MPIO;
+#else
+  (void)loc;
+  return false;
+#endif
+}
+
+/// Bytes of the file that holds `loc` (0 if unknown).
+hsize_t file_size(hid_t loc) {
+  Handle file(H5Iget_file_id(loc), H5Fclose);
+  hsize_t size = 0;
+  if (file.get() < 0 || H5Fget_filesize(file.get(), &size) < 0) return 0;
+  return size;
+}
+
+/// A dataset's creation list for a serial file: chunks of whole rows, at most 1 MiB each, with
+/// the Fletcher32 checksum, so that a flipped bit in the values is found on reading, not trusted.
+/// H5P_DEFAULT (contiguous, unchecked) for a dataset without values or in a parallel file.
+Handle checked_layout(hid_t loc, const std::vector<hsize_t>& dims, hid_t file_type) {
+  if (dims.empty() || dims[0] == 0 || parallel_file(loc)) return Handle(H5P_DEFAULT, nullptr);
+  hsize_t row_bytes = H5Tget_size(file_type);
+  for (std::size_t k = 1; k < dims.size(); ++k) row_bytes *= std::max<hsize_t>(dims[k], 1);
+  constexpr hsize_t kChunkBytes = 1u << 20;
+  std::vector<hsize_t> chunk = dims;
+  chunk[0] = std::clamp<hsize_t>(kChunkBytes / std::max<hsize_t>(row_bytes, 1), 1, dims[0]);
+  for (std::size_t k = 1; k < chunk.size(); ++k) chunk[k] = std::max<hsize_t>(chunk[k], 1);
+  Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+  if (dcpl.get() < 0 ||
+      H5Pset_chunk(dcpl.get(), static_cast<int>(chunk.size()), chunk.data()) < 0 ||
+      H5Pset_fletcher32(dcpl.get()) < 0) {
+    fail(loc, "dataset", "cannot set up the checksummed layout of a");
+  }
+  return dcpl;
 }
 
 hsize_t product(const std::vector<hsize_t>& dims) {
@@ -81,8 +142,9 @@ void write_raw(hid_t loc, const std::string& name, hid_t file_type, hid_t mem_ty
   if (!rows.all) dims[0] = rows.total;
   if (!rows.all && rows.count() != local[0]) fail(loc, name, "row selection does not match");
   Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
+  const Handle layout = checked_layout(loc, dims, file_type);
   Handle set(
-      H5Dcreate2(loc, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+      H5Dcreate2(loc, name.c_str(), file_type, space.get(), H5P_DEFAULT, layout.get(), H5P_DEFAULT),
       H5Dclose);
   if (!agreed(rows, space.get() >= 0 && set.get() >= 0)) fail(loc, name, "cannot create dataset");
   static const double dummy = 0.0;  // HDF5 wants a buffer even for zero elements
@@ -109,7 +171,11 @@ std::vector<T> read_raw(hid_t loc, const std::string& name, hid_t mem_type, H5T_
   Handle set(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), H5Dclose);
   if (set.get() < 0) fail(loc, name, "cannot open dataset");
   Handle type(H5Dget_type(set.get()), H5Tclose);
-  if (H5Tget_class(type.get()) != cls) fail(loc, name, "unexpected element type in dataset");
+  // The class, the size and (integers) the sign of what was written: a value is never converted.
+  if (H5Tget_class(type.get()) != cls || H5Tget_size(type.get()) != sizeof(T) ||
+      (cls == H5T_INTEGER && H5Tget_sign(type.get()) != H5T_SGN_NONE)) {
+    fail(loc, name, "unexpected element type in dataset");
+  }
   Handle space(H5Dget_space(set.get()), H5Sclose);
   const hssize_t n = H5Sget_simple_extent_npoints(space.get());
   if (n < 0) fail(loc, name, "cannot read the size of dataset");
@@ -117,11 +183,18 @@ std::vector<T> read_raw(hid_t loc, const std::string& name, hid_t mem_type, H5T_
     throw InputError(fmt::format("{}: dataset '{}' has {} values, expected {}", file_of(loc), name,
                                  n, expected));
   }
+  // A damaged header can claim more values than the whole file holds: refused before allocating.
+  const hsize_t bytes = static_cast<hsize_t>(n) * sizeof(T);
+  if (const hsize_t size = file_size(loc); bytes > size) {
+    throw InputError(fmt::format(
+        "{}: dataset '{}' claims {} values ({} bytes), more than the file's {} bytes (damaged?)",
+        file_of(loc), name, n, bytes, size));
+  }
   if (range.all) {
     std::vector<T> out(static_cast<std::size_t>(n));
     T dummy{};
     if (H5Dread(set.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, n ? out.data() : &dummy) < 0) {
-      fail(loc, name, "cannot read dataset");
+      fail_damaged(loc, name, "dataset", hdf5_cause());
     }
     return out;
   }
@@ -143,7 +216,7 @@ std::vector<T> read_raw(hid_t loc, const std::string& name, hid_t mem_type, H5T_
   if (H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(),
                           nullptr) < 0 ||
       H5Dread(set.get(), mem_type, memory.get(), space.get(), H5P_DEFAULT, out.data()) < 0) {
-    fail(loc, name, "cannot read dataset");
+    fail_damaged(loc, name, "dataset", hdf5_cause());
   }
   return out;
 }
@@ -184,25 +257,16 @@ bool Handle::reset() {
   return status >= 0;
 }
 
-Handle create_memory_file(const std::string& label) {
-  quiet();
-  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
-  constexpr std::size_t kIncrement = 16u << 20;  // grow the image 16 MiB at a time
-  if (fapl.get() < 0 || H5Pset_fapl_core(fapl.get(), kIncrement, false) < 0) {
-    throw InputError(fmt::format("{}: cannot set up an in-memory HDF5 file", label));
-  }
-  Handle f(H5Fcreate(label.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose);
-  if (f.get() < 0) throw InputError(fmt::format("{}: cannot create an HDF5 file", label));
-  return f;
-}
-
 namespace {
 
-/// File access without HDF5's file lock: a reader that opens a streamed series between frames
-/// (ParaView, h5ls) must not make the writer's next open fail.
-Handle unlocked_access(const std::filesystem::path& path) {
+/// File access for files drumlab creates: HDF5 1.10's format (superblock 3, version 2 object
+/// headers, 1.10 chunk indexes), in which every piece of metadata carries a checksum; without
+/// HDF5's file lock (a reader that opens a streamed series between frames, ParaView or h5ls,
+/// must not make the writer's next open fail).
+Handle file_access(const std::filesystem::path& path, bool create) {
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
-  if (fapl.get() < 0 || H5Pset_file_locking(fapl.get(), false, true) < 0) {
+  if (fapl.get() < 0 || H5Pset_file_locking(fapl.get(), false, true) < 0 ||
+      (create && H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V110, H5F_LIBVER_LATEST) < 0)) {
     throw InputError(fmt::format("{}: cannot set up HDF5 file access", path.string()));
   }
   return fapl;
@@ -210,9 +274,41 @@ Handle unlocked_access(const std::filesystem::path& path) {
 
 }  // namespace
 
+StagedFile::StagedFile(std::filesystem::path path)
+    : path_(std::move(path)), staging_(path_.string() + fmt::format(".tmp-{}", ::getpid())) {
+  quiet();
+  const Handle fapl = file_access(path_, true);
+  file_ = Handle(H5Fcreate(staging_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose);
+  if (file_.get() < 0) {
+    throw InputError(fmt::format("{}: cannot write (does the directory exist and is it writable?)",
+                                 path_.string()));
+  }
+}
+
+StagedFile::~StagedFile() {
+  if (committed_) return;
+  file_.reset();
+  std::error_code ignored;
+  std::filesystem::remove(staging_, ignored);
+}
+
+void StagedFile::commit() {
+  const bool flushed = H5Fflush(file_.get(), H5F_SCOPE_LOCAL) >= 0;
+  const bool closed = file_.reset();
+  if (!flushed || !closed) {
+    throw InputError(fmt::format("{}: write failed (disk full?)", path_.string()));
+  }
+  std::error_code ec;
+  std::filesystem::rename(staging_, path_, ec);
+  if (ec) {
+    throw InputError(fmt::format("{}: cannot rename into place: {}", path_.string(), ec.message()));
+  }
+  committed_ = true;
+}
+
 Handle create_disk_file(const std::filesystem::path& path) {
   quiet();
-  const Handle fapl = unlocked_access(path);
+  const Handle fapl = file_access(path, true);
   Handle f(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose);
   if (f.get() < 0) throw InputError(fmt::format("{}: cannot create an HDF5 file", path.string()));
   return f;
@@ -220,7 +316,7 @@ Handle create_disk_file(const std::filesystem::path& path) {
 
 Handle open_file_rw(const std::filesystem::path& path) {
   quiet();
-  const Handle fapl = unlocked_access(path);
+  const Handle fapl = file_access(path, false);
   Handle f(H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.get()), H5Fclose);
   if (f.get() < 0) throw InputError(fmt::format("{}: cannot open for writing", path.string()));
   return f;
@@ -230,27 +326,6 @@ void flush(hid_t file) {
   if (H5Fflush(file, H5F_SCOPE_LOCAL) < 0) {
     throw InputError(fmt::format("{}: write failed (disk full?)", file_of(file)));
   }
-}
-
-std::size_t memory_file_size(hid_t file) {
-  const ssize_t n = H5Fget_file_image(file, nullptr, 0);
-  return n < 0 ? 0 : static_cast<std::size_t>(n);
-}
-
-void save_memory_file(Handle& file, const std::filesystem::path& path) {
-  std::vector<char> image;
-  if (H5Fflush(file.get(), H5F_SCOPE_LOCAL) >= 0) {
-    image.resize(memory_file_size(file.get()));
-    const ssize_t got = H5Fget_file_image(file.get(), image.data(), image.size());
-    if (got < 0 || static_cast<std::size_t>(got) != image.size()) image.clear();
-  }
-  const bool closed = file.reset();
-  if (image.empty() || !closed) {
-    throw InputError(fmt::format("{}: cannot assemble the HDF5 file", path.string()));
-  }
-  write_file_atomically(path, [&](std::ostream& out) {
-    out.write(image.data(), static_cast<std::streamsize>(image.size()));
-  });
 }
 
 void check_writable(const std::filesystem::path& path) {
@@ -272,7 +347,11 @@ Handle open_file(const std::filesystem::path& path) {
     throw InputError(fmt::format("{}: no such file", path.string()));
   }
   Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
-  if (f.get() < 0) throw InputError(fmt::format("{}: not an HDF5 file", path.string()));
+  if (f.get() < 0) {
+    const std::string cause = hdf5_cause();
+    throw InputError(fmt::format("{}: not an HDF5 file, or a damaged or truncated one{}{}",
+                                 path.string(), cause.empty() ? "" : ": ", cause));
+  }
   return f;
 }
 
@@ -343,7 +422,8 @@ Handle create_growing(hid_t loc, const std::string& name, hid_t file_type) {
   const hsize_t zero = 0, unlimited = H5S_UNLIMITED, chunk = 256;
   Handle space(H5Screate_simple(1, &zero, &unlimited), H5Sclose);
   Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
-  if (space.get() < 0 || dcpl.get() < 0 || H5Pset_chunk(dcpl.get(), 1, &chunk) < 0) {
+  if (space.get() < 0 || dcpl.get() < 0 || H5Pset_chunk(dcpl.get(), 1, &chunk) < 0 ||
+      (!parallel_file(loc) && H5Pset_fletcher32(dcpl.get()) < 0)) {
     fail(loc, name, "cannot set up growing dataset");
   }
   Handle set(
@@ -418,8 +498,33 @@ std::size_t rows_of(hid_t loc, const std::string& name) {
   return static_cast<std::size_t>(dims[0]);
 }
 
+void check_row_shape(hid_t loc, const std::string& name, std::initializer_list<hsize_t> row_shape) {
+  if (!exists(loc, name)) fail(loc, name, "missing dataset");
+  Handle set(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), H5Dclose);
+  if (set.get() < 0) fail(loc, name, "cannot open dataset");
+  Handle space(H5Dget_space(set.get()), H5Sclose);
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  hsize_t dims[H5S_MAX_RANK] = {};
+  if (rank < 0 || H5Sget_simple_extent_dims(space.get(), dims, nullptr) < 0) {
+    fail(loc, name, "cannot read the size of dataset");
+  }
+  const auto wanted = static_cast<int>(row_shape.size()) + 1;
+  bool same = rank == wanted;
+  for (std::size_t k = 0; same && k < row_shape.size(); ++k) {
+    same = dims[k + 1] == row_shape.begin()[k];
+  }
+  if (same) return;
+  std::string has = rank == 0 ? "scalar" : fmt::format("{}", dims[0]);
+  for (int k = 1; k < rank; ++k) has += fmt::format(" x {}", dims[k]);
+  std::string expected = "N";
+  for (const hsize_t d : row_shape) expected += fmt::format(" x {}", d);
+  throw InputError(fmt::format("{}: dataset '{}' has shape ({}), expected ({})", file_of(loc), name,
+                               has, expected));
+}
+
 std::vector<Vec3> read_vec3(hid_t loc, const std::string& name, std::size_t expected_rows,
                             const RowRange& range) {
+  check_row_shape(loc, name, {3});
   const std::size_t expected = expected_rows == kAnySize ? kAnySize : 3 * expected_rows;
   const std::vector<double> flat = read_doubles(loc, name, expected, range);
   if (flat.size() % 3 != 0) fail(loc, name, "not an N x 3 dataset:");
@@ -449,14 +554,16 @@ void write_attribute(hid_t loc, const std::string& name, const std::string& valu
 double read_double_attribute(hid_t loc, const std::string& name) {
   Handle a = open_attribute(loc, name);
   double v = 0.0;
-  if (H5Aread(a.get(), H5T_NATIVE_DOUBLE, &v) < 0) fail(loc, name, "cannot read attribute");
+  if (H5Aread(a.get(), H5T_NATIVE_DOUBLE, &v) < 0)
+    fail_damaged(loc, name, "attribute", hdf5_cause());
   return v;
 }
 
 std::uint64_t read_u64_attribute(hid_t loc, const std::string& name) {
   Handle a = open_attribute(loc, name);
   std::uint64_t v = 0;
-  if (H5Aread(a.get(), H5T_NATIVE_UINT64, &v) < 0) fail(loc, name, "cannot read attribute");
+  if (H5Aread(a.get(), H5T_NATIVE_UINT64, &v) < 0)
+    fail_damaged(loc, name, "attribute", hdf5_cause());
   return v;
 }
 
@@ -467,7 +574,9 @@ std::string read_string_attribute(hid_t loc, const std::string& name) {
     fail(loc, name, "not a fixed-length string attribute");
   }
   std::string v(H5Tget_size(type.get()), '\0');
-  if (H5Aread(a.get(), type.get(), v.data()) < 0) fail(loc, name, "cannot read attribute");
+  if (H5Aread(a.get(), type.get(), v.data()) < 0) {
+    fail_damaged(loc, name, "attribute", hdf5_cause());
+  }
   v.resize(v.find('\0') == std::string::npos ? v.size() : v.find('\0'));
   return v;
 }

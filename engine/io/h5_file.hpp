@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <initializer_list>
 #include <span>
 #include <string>
 #include <vector>
@@ -57,15 +58,30 @@ const Rows& all_rows();
 /// Switches off HDF5's error printing and its exit handler (once); every create/open calls it.
 void quiet();
 
-/// Creates an HDF5 file in memory (core driver, no backing store); `label` names it in messages.
-/// Checkpoints are built in memory and saved with save_memory_file (temporary name, rename).
-/// Debian's HDF5 1.10 crashes at exit after a failed disk write (disk full) when it closes the
-/// failed file again; HDF5 is therefore initialized with H5dont_atexit (files are closed by
-/// their Handles), which the streamed series (create_disk_file) relies on.
-Handle create_memory_file(const std::string& label);
-/// Writes the image of a memory file to `path` (temporary name, then rename) and closes it.
-/// Throws InputError naming the path if it cannot be written; nothing is left under that name.
-void save_memory_file(Handle& file, const std::filesystem::path& path);
+/// A file written whole, then moved into place (checkpoints): created as PATH.tmp-PID on disk;
+/// commit() closes it and renames it to PATH; destroyed uncommitted (an exception on the way), it
+/// removes the temporary, so a failed write never leaves a file under PATH. Every file drumlab
+/// creates is in HDF5 1.10's format, whose metadata is all checksummed, and every serially
+/// written dataset with values is chunked with the Fletcher32 filter (write()), so a flipped bit
+/// or a cut is found on reading. Debian's HDF5 1.10 crashes at exit after a failed disk write
+/// (disk full) when it closes the failed file again; HDF5 is therefore initialized with
+/// H5dont_atexit (files are closed by their Handles).
+class StagedFile {
+ public:
+  /// Throws InputError naming `path` if the temporary cannot be created.
+  explicit StagedFile(std::filesystem::path path);
+  ~StagedFile();
+  StagedFile(const StagedFile&) = delete;
+  StagedFile& operator=(const StagedFile&) = delete;
+  hid_t get() const { return file_.get(); }
+  /// Flushes, closes and renames into place; throws InputError naming the path if it cannot.
+  void commit();
+
+ private:
+  std::filesystem::path path_, staging_;
+  Handle file_;
+  bool committed_ = false;
+};
 /// Creates (truncates) an HDF5 file on disk for a series streamed frame by frame (sec2 driver,
 /// without HDF5's file lock, as open_file_rw: a reader between frames must not stop the writer).
 /// Throws InputError naming the path.
@@ -77,7 +93,8 @@ Handle open_file_rw(const std::filesystem::path& path);
 void flush(hid_t file);
 /// Bytes the memory file's image takes now.
 std::size_t memory_file_size(hid_t file);
-/// Opens a file read-only. Throws InputError naming the path.
+/// Opens a file read-only. Throws InputError naming the path (and HDF5's reason when it is not
+/// a readable HDF5 file: a cut, a damaged superblock).
 Handle open_file(const std::filesystem::path& path);
 /// Throws InputError unless a file can be created in the directory of `path` (checked by creating
 /// and removing a temporary file there).
@@ -90,7 +107,9 @@ bool exists(hid_t loc, const std::string& name);
 /// Number of values in a dataset (product of its dimensions); throws InputError if missing.
 std::size_t element_count(hid_t loc, const std::string& name);
 
-/// Writes a dataset of shape dims (row-major). data.size() must equal the product of dims.
+/// Writes a dataset of shape dims (row-major). data.size() must equal the product of dims. In a
+/// serial file a dataset with values is chunked (whole rows, at most 1 MiB a chunk) and
+/// checksummed (Fletcher32); a parallel (MPI-IO) file's datasets are contiguous.
 /// With `rows` (a parallel writer's share), dims[0] is the number of rows this process writes.
 void write(hid_t loc, const std::string& name, std::span<const double> data,
            std::vector<hsize_t> dims, const Rows& rows = all_rows());
@@ -120,8 +139,10 @@ struct RowRange {
 };
 
 /// Reads a dataset (or the rows `range` of it); throws InputError if it is missing, of another
-/// element class, its total size (the whole dataset's) differs from `expected` (unless expected is
-/// kAnySize), or the range exceeds its rows.
+/// element type (class, size or sign: nothing is converted), its total size (the whole
+/// dataset's) differs from `expected` (unless expected is kAnySize), it claims more bytes than
+/// the file has, the range exceeds its rows, or HDF5 cannot read it (a checksum error: the
+/// message says so).
 inline constexpr std::size_t kAnySize = static_cast<std::size_t>(-1);
 std::vector<double> read_doubles(hid_t loc, const std::string& name, std::size_t expected,
                                  const RowRange& range = {});
@@ -133,6 +154,9 @@ std::vector<std::uint8_t> read_u8(hid_t loc, const std::string& name, std::size_
                                   const RowRange& range = {});
 std::vector<Vec3> read_vec3(hid_t loc, const std::string& name, std::size_t expected_rows,
                             const RowRange& range = {});
+/// Throws InputError "<file>: dataset 'NAME' has shape (250 x 9), expected (N x 3 x 3)" unless
+/// the dataset is of rank 1 + row_shape.size() with those dimensions after the first.
+void check_row_shape(hid_t loc, const std::string& name, std::initializer_list<hsize_t> row_shape);
 /// The rows (first dimension) of a dataset; throws InputError if it is missing.
 std::size_t rows_of(hid_t loc, const std::string& name);
 

@@ -273,6 +273,8 @@ SeriesFrame read_series_frame(const std::filesystem::path& file, std::size_t k) 
   SeriesFrame s;
   s.time = h5::read_double_attribute(g.get(), "time");
   s.step = h5::read_u64_attribute(g.get(), "step");
+  for (const char* column : {"id", "radius", "size_class"})
+    h5::check_row_shape(g.get(), column, {});
   s.id = h5::read_u32(g.get(), "id", h5::kAnySize);
   const std::size_t n = s.id.size();
   s.position = h5::read_vec3(g.get(), "position", n);
@@ -282,6 +284,9 @@ SeriesFrame read_series_frame(const std::filesystem::path& file, std::size_t k) 
   s.size_class = h5::read_u8(g.get(), "size_class", n);
   s.has_bonds = h5::exists(g.get(), "bonds");
   if (!s.has_bonds) return s;
+  for (const char* column : {"mass", "liquid_volume", "agglomerate_id"}) {
+    h5::check_row_shape(g.get(), column, {});
+  }
   s.mass = h5::read_doubles(g.get(), "mass", n);
   s.film = h5::read_doubles(g.get(), "liquid_volume", n);
   s.agglomerate_id = h5::read_u32(g.get(), "agglomerate_id", n);
