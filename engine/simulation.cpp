@@ -92,6 +92,27 @@ std::optional<double> linear_half_period(const NormalVariant& law, double m_eff)
       law);
 }
 
+/// A restart's contact and wall history must be finite: a NaN spring would spread through the
+/// contact's forces into the whole bed at the first step.
+void check_history_finite(const SimulationState& state) {
+  const auto refuse = [](std::string_view dataset, std::size_t row) {
+    throw InputError(fmt::format("restart state: {}: row {}: not finite", dataset, row));
+  };
+  for (std::size_t k = 0; k < state.contact_history.size(); ++k) {
+    if (!state.contact_history[k].allFinite()) refuse("contacts/history", k);
+  }
+  for (std::size_t k = 0; k < state.contact_state.size(); ++k) {
+    if (!std::isfinite(state.contact_state[k])) {
+      refuse("contacts/state", k / std::max<std::size_t>(state.contact_state_size, 1));
+    }
+  }
+  for (std::size_t i = 0; i < state.wall_history.size(); ++i) {
+    for (const Vec3& v : state.wall_history[i]) {
+      if (!v.allFinite()) refuse("walls/history", i);
+    }
+  }
+}
+
 }  // namespace
 
 std::optional<double> viscous_relaxation_time(const SceneConfig& scene, double r_min) {
@@ -215,6 +236,7 @@ Simulation::Simulation(const SceneConfig& scene, SimulationState state)
   if (!state.contact_row_start.empty() && state.contact_row_start.size() != n + 1) {
     throw InputError("restart state: contact list does not match the particle count");
   }
+  check_history_finite(state);
   if (state.contact_state_size != impl_->model.pair_state_size()) {
     throw InputError(fmt::format(
         "restart state: {} scalars per contact, the scene's contact law keeps {} (a dry and a wet "

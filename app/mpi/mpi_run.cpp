@@ -15,6 +15,7 @@
 #include "app/run/run_report.hpp"
 #include "engine/contact/contact_model.hpp"
 #include "engine/io/checkpoint.hpp"
+#include "engine/io/restart_check.hpp"
 #include "engine/parallel/ghost_layer.hpp"
 #include "engine/threads.hpp"
 
@@ -55,6 +56,7 @@ Start read_shares(MpiComm& comm, const SceneConfig& scene, const SessionOptions&
   s.scene = scene_with_options(scene, o);
   comm.agree([&] {
     s.total = read_checkpoint_rows(o.restart, 0, 0).particles;
+    check_restart_count(s.scene, s.total, o.restart);
     const auto r = static_cast<std::uint64_t>(comm.rank());
     const auto n = static_cast<std::uint64_t>(comm.size());
     s.first = s.total * r / n;

@@ -99,6 +99,15 @@ std::optional<SceneProblem> restart_particles_problem(const SceneConfig& scene,
   return check_ids(p);
 }
 
+void check_restart_count(const SceneConfig& scene, std::size_t count, std::string_view where) {
+  if (scene.fill.kind == FillKind::random && count != scene.fill.count) {
+    throw InputError(fmt::format(
+        "{}: particles: {} in the checkpoint, the scene's fill.count is {} (a checkpoint of "
+        "another scene?)",
+        where, count, scene.fill.count));
+  }
+}
+
 void check_restart_particles(const SceneConfig& scene, const Particles& p, std::string_view where) {
   if (const auto problem = restart_particles_problem(scene, p)) {
     throw InputError(fmt::format("{}: {}: {}", where, problem->key, problem->reason));

@@ -18,6 +18,11 @@ namespace drumlab {
 /// checkpoint's dataset and row ("particles/mass: row 12").
 std::optional<SceneProblem> restart_particles_problem(const SceneConfig& scene, const Particles& p);
 
+/// Throws InputError "<where>: particles: N in the checkpoint, the scene's fill.count is M (...)"
+/// when a scene filled at random (which always places fill.count particles) is handed another
+/// count; other fills are not checked here.
+void check_restart_count(const SceneConfig& scene, std::size_t count, std::string_view where);
+
 /// Throws InputError "<where>: <dataset>: row <i>: <reason>" for restart_particles_problem.
 void check_restart_particles(const SceneConfig& scene, const Particles& p, std::string_view where);
 

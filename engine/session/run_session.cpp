@@ -64,13 +64,18 @@ RunSession::RunSession(SceneConfig scene, SessionOptions options)
     return;
   }
   Checkpoint c = read_checkpoint(options_.restart);
+  check_restart_count(scene_, c.particles, options_.restart);
   check_restart_particles(scene_, c.state.particles, options_.restart);
   restart_ = RestartInfo{options_.restart, c.scene_name, options_.dt_factor > 0.0};
   if (!options_.method.empty()) {
     auto_choice_ = resolve_auto_search(scene_, c.state.particles, c.state.dt);
   }
   const std::string method = scene_.search_method;
-  sim_ = std::make_unique<Simulation>(scene_, std::move(c.state));
+  try {
+    sim_ = std::make_unique<Simulation>(scene_, std::move(c.state));
+  } catch (const InputError& e) {  // "restart state: ...": say which file holds that state
+    throw InputError(fmt::format("{}: {}", options_.restart, e.what()));
+  }
   if (!options_.method.empty()) sim_->set_search_method(method);
 }
 
