@@ -60,7 +60,7 @@ cores=${SOAK_CORES:-$(nproc)}
 read -r -a scenes <<<"${SOAK_SCENES:-scenes/granulation.toml scenes/drum_demo.toml}"
 cd "$root"
 export OMP_NUM_THREADS=1
-calc() { awk "BEGIN { print $1 }"; }
+calc() { awk -v OFMT=%.12g "BEGIN { print ($1) }"; }
 say() { printf '[soak %s] %s\n' "$(date +%H:%M:%S)" "$*" | tee -a "$out/soak.log"; }
 
 budget=$(calc "$hours * 3600")

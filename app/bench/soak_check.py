@@ -277,7 +277,10 @@ def energy_check(series, scene_file):
 
 def cmd_check(a):
     res = {"scene": a.name, "steps": a.steps}
-    drive = json.load(open(os.path.join(a.dir, "drive.json"), encoding="utf-8"))
+    try:
+        drive = json.load(open(os.path.join(a.dir, "drive.json"), encoding="utf-8"))
+    except FileNotFoundError:
+        drive = {"ok": False, "kills": 0, "kills_in_write": 0, "error": "no drive.json"}
     res["drive"] = drive
     ref, killed = os.path.join(a.dir, "reference.h5"), os.path.join(a.dir, "killed.h5")
     try:
