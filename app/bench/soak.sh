@@ -61,6 +61,7 @@ read -r -a scenes <<<"${SOAK_SCENES:-scenes/granulation.toml scenes/drum_demo.to
 cd "$root"
 export OMP_NUM_THREADS=1
 calc() { awk -v OFMT=%.12g "BEGIN { print ($1) }"; }
+trap 'kill $(jobs -p) 2>/dev/null; exit 130' INT TERM
 say() { printf '[soak %s] %s\n' "$(date +%H:%M:%S)" "$*" | tee -a "$out/soak.log"; }
 
 budget=$(calc "$hours * 3600")

@@ -110,6 +110,8 @@ def cmd_drive(a):
               flush=True)
         p = subprocess.Popen(cmd, stdout=log, stderr=subprocess.STDOUT,
                              env=dict(os.environ, OMP_NUM_THREADS="1"))
+        # soak.sh stopped (Ctrl-C, TERM): take this segment's process along.
+        signal.signal(signal.SIGTERM, lambda *_, p=p: (p.kill(), sys.exit(1)))
         rec["segments"] += 1
         seg_start = time.time()
         killed = False
