@@ -231,7 +231,7 @@ void write_checkpoint_datasets(hid_t f, const SimulationState& state, const std:
 void write_checkpoint(const std::filesystem::path& file, const SimulationState& state,
                       const std::string& scene_name) {
   h5::StagedFile f(file);
-  write_checkpoint_datasets(f.get(), state, scene_name);
+  f.write([&](hid_t id) { write_checkpoint_datasets(id, state, scene_name); });
   f.commit();
 }
 

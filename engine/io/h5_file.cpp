@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <optional>
 #include <system_error>
 
 #include <fmt/format.h>
@@ -161,7 +162,7 @@ void write_raw(hid_t loc, const std::string& name, hid_t file_type, hid_t mem_ty
                   data && local[0] > 0 ? data : &dummy) >= 0;
   }
   const bool closed = set.reset();
-  if (!agreed(rows, ok && closed)) fail(loc, name, "cannot write dataset (disk full?)");
+  if (!agreed(rows, ok && closed)) fail(loc, name, "write failed (disk full?) in dataset");
 }
 
 template <class T>
@@ -257,16 +258,19 @@ bool Handle::reset() {
   return status >= 0;
 }
 
+bool set_format(hid_t fapl, FileFormat format) {
+  const H5F_libver_t low = format == FileFormat::whole ? H5F_LIBVER_V110 : H5F_LIBVER_V18;
+  return H5Pset_libver_bounds(fapl, low, low) >= 0;
+}
+
 namespace {
 
-/// File access for files drumlab creates: HDF5 1.10's format (superblock 3, version 2 object
-/// headers, 1.10 chunk indexes), in which every piece of metadata carries a checksum; without
-/// HDF5's file lock (a reader that opens a streamed series between frames, ParaView or h5ls,
-/// must not make the writer's next open fail).
-Handle file_access(const std::filesystem::path& path, bool create) {
+/// File access without HDF5's file lock (a reader that opens a streamed series between frames,
+/// ParaView or h5ls, must not make the writer's next open fail); a new file in `format`.
+Handle file_access(const std::filesystem::path& path, std::optional<FileFormat> format) {
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
   if (fapl.get() < 0 || H5Pset_file_locking(fapl.get(), false, true) < 0 ||
-      (create && H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V110, H5F_LIBVER_LATEST) < 0)) {
+      (format && !set_format(fapl.get(), *format))) {
     throw InputError(fmt::format("{}: cannot set up HDF5 file access", path.string()));
   }
   return fapl;
@@ -277,7 +281,7 @@ Handle file_access(const std::filesystem::path& path, bool create) {
 StagedFile::StagedFile(std::filesystem::path path)
     : path_(std::move(path)), staging_(path_.string() + fmt::format(".tmp-{}", ::getpid())) {
   quiet();
-  const Handle fapl = file_access(path_, true);
+  const Handle fapl = file_access(path_, FileFormat::whole);
   file_ = Handle(H5Fcreate(staging_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose);
   if (file_.get() < 0) {
     throw InputError(fmt::format("{}: cannot write (does the directory exist and is it writable?)",
@@ -290,6 +294,19 @@ StagedFile::~StagedFile() {
   file_.reset();
   std::error_code ignored;
   std::filesystem::remove(staging_, ignored);
+}
+
+void StagedFile::write(const std::function<void(hid_t)>& fill) {
+  try {
+    fill(file_.get());
+  } catch (const InputError& e) {  // HDF5 names the temporary: say the file the user asked for
+    std::string what = e.what();
+    const std::string staging = staging_.string();
+    for (std::size_t at = what.find(staging); at != std::string::npos; at = what.find(staging)) {
+      what.replace(at, staging.size(), path_.string());
+    }
+    throw InputError(what);
+  }
 }
 
 void StagedFile::commit() {
@@ -308,7 +325,7 @@ void StagedFile::commit() {
 
 Handle create_disk_file(const std::filesystem::path& path) {
   quiet();
-  const Handle fapl = file_access(path, true);
+  const Handle fapl = file_access(path, FileFormat::streamed);
   Handle f(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose);
   if (f.get() < 0) throw InputError(fmt::format("{}: cannot create an HDF5 file", path.string()));
   return f;
@@ -316,7 +333,7 @@ Handle create_disk_file(const std::filesystem::path& path) {
 
 Handle open_file_rw(const std::filesystem::path& path) {
   quiet();
-  const Handle fapl = file_access(path, false);
+  const Handle fapl = file_access(path, std::nullopt);
   Handle f(H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.get()), H5Fclose);
   if (f.get() < 0) throw InputError(fmt::format("{}: cannot open for writing", path.string()));
   return f;
@@ -450,7 +467,7 @@ void append_raw(hid_t set, hid_t mem_type, const void* value, const Rows& rows) 
           : H5Sselect_none(file_space.get()) >= 0 && H5Sselect_none(mem_space.get()) >= 0;
   const bool ok = selected && H5Dwrite(set, mem_type, mem_space.get(), file_space.get(),
                                        rows.transfer, value) >= 0;
-  if (!agreed(rows, ok)) fail(set, "growing dataset", "cannot write (disk full?)");
+  if (!agreed(rows, ok)) fail(set, "growing dataset", "write failed (disk full?) in");
 }
 
 }  // namespace

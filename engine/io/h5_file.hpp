@@ -58,14 +58,24 @@ const Rows& all_rows();
 /// Switches off HDF5's error printing and its exit handler (once); every create/open calls it.
 void quiet();
 
+/// The two forms of file drumlab creates. `whole` (checkpoints, written under a temporary name
+/// and renamed when closed): HDF5 1.10's format, in which all metadata carries a checksum
+/// (superblock 3, version 2 object headers, 1.10 chunk indexes). `streamed` (series, opened and
+/// closed frame by frame, readable after a kill): HDF5 1.8's format (superblock 2, version 2
+/// object headers: checksummed; chunk indexes of version 1 B-trees: not), because 1.10's marks
+/// the file as open for writing in its superblock and every reader then refuses a file whose
+/// writer was killed ("file is already open for write", until h5clear).
+enum class FileFormat { whole, streamed };
+/// Sets a file access list's format bounds for a new file of that form; false if HDF5 refuses.
+bool set_format(hid_t fapl, FileFormat format);
+
 /// A file written whole, then moved into place (checkpoints): created as PATH.tmp-PID on disk;
 /// commit() closes it and renames it to PATH; destroyed uncommitted (an exception on the way), it
-/// removes the temporary, so a failed write never leaves a file under PATH. Every file drumlab
-/// creates is in HDF5 1.10's format, whose metadata is all checksummed, and every serially
-/// written dataset with values is chunked with the Fletcher32 filter (write()), so a flipped bit
-/// or a cut is found on reading. Debian's HDF5 1.10 crashes at exit after a failed disk write
-/// (disk full) when it closes the failed file again; HDF5 is therefore initialized with
-/// H5dont_atexit (files are closed by their Handles).
+/// removes the temporary, so a failed write never leaves a file under PATH. The file is in the
+/// `whole` form and, as in every serial file, each dataset with values is chunked with the
+/// Fletcher32 filter (write()): a flipped bit or a cut is found on reading. Debian's HDF5 1.10
+/// crashes at exit after a failed disk write (disk full) when it closes the failed file again; HDF5
+/// is therefore initialized with H5dont_atexit (files are closed by their Handles).
 class StagedFile {
  public:
   /// Throws InputError naming `path` if the temporary cannot be created.
@@ -74,6 +84,8 @@ class StagedFile {
   StagedFile(const StagedFile&) = delete;
   StagedFile& operator=(const StagedFile&) = delete;
   hid_t get() const { return file_.get(); }
+  /// Calls `fill` with the file; an InputError from it names PATH rather than the temporary.
+  void write(const std::function<void(hid_t)>& fill);
   /// Flushes, closes and renames into place; throws InputError naming the path if it cannot.
   void commit();
 
@@ -82,7 +94,8 @@ class StagedFile {
   Handle file_;
   bool committed_ = false;
 };
-/// Creates (truncates) an HDF5 file on disk for a series streamed frame by frame (sec2 driver,
+/// Creates (truncates) an HDF5 file on disk for a series streamed frame by frame (the `streamed`
+/// form, sec2 driver,
 /// without HDF5's file lock, as open_file_rw: a reader between frames must not stop the writer).
 /// Throws InputError naming the path.
 Handle create_disk_file(const std::filesystem::path& path);

@@ -328,7 +328,7 @@ TEST_F(MpiRun, WriteFailingOnOneRankExitsTwoOnEveryRankAndLeavesNoFile) {
                       "64; fi; exec " +
                       DRUMLAB_MPI_CLI + " run " + scene + " --steps 10 --checkpoint " + ck + "'");
   EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("drumlab-mpi: error: " + ck + ": cannot write dataset (disk full?)"),
+  EXPECT_NE(r.output.find("drumlab-mpi: error: " + ck + ": write failed (disk full?) in dataset"),
             std::string::npos)
       << r.output;
   for (const auto& e : std::filesystem::directory_iterator(tmp.path())) {

@@ -126,7 +126,7 @@ void write_checkpoint_mpi(MpiComm& comm, const Simulation& sim,
   const std::filesystem::path tmp = temporary(c, file);
   std::string error;  // the same on every rank: each step of the write is agreed
   try {
-    h5::Handle f = h5::create_mpi_file(c, tmp);
+    h5::Handle f = h5::create_mpi_file(c, tmp, h5::FileFormat::whole);
     write_checkpoint_datasets(f.get(), share.state, scene_name, share.rows);
     h5::close_mpi_file(c, f, file);
   } catch (const InputError& e) {

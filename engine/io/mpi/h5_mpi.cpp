@@ -1,5 +1,6 @@
 #include "engine/io/mpi/h5_mpi.hpp"
 
+#include <optional>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -34,16 +35,16 @@ void on_root(MPI_Comm comm, const std::function<void()>& work) {
 
 namespace {
 
-/// As the serial files (engine/io/h5_file.cpp): a new file in HDF5 1.10's format, whose
-/// metadata is all checksummed. The datasets of a parallel file stay unfiltered (no Fletcher32):
-/// HDF5 1.10.8's collective chunk allocation hangs the ranks after one rank's write failed.
-Handle mpi_access(MPI_Comm comm, const std::filesystem::path& path, bool create) {
+/// As the serial files (engine/io/h5_file.hpp, FileFormat): a new file in the format of its
+/// form. The datasets of a parallel file stay unfiltered (no Fletcher32): HDF5 1.10.8's
+/// collective chunk allocation hung the ranks after one rank's write failed.
+Handle mpi_access(MPI_Comm comm, const std::filesystem::path& path,
+                  std::optional<FileFormat> format) {
   quiet();
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
-  const bool ok =
-      fapl.get() >= 0 && H5Pset_fapl_mpio(fapl.get(), comm, MPI_INFO_NULL) >= 0 &&
-      H5Pset_file_locking(fapl.get(), false, true) >= 0 &&
-      (!create || H5Pset_libver_bounds(fapl.get(), H5F_LIBVER_V110, H5F_LIBVER_LATEST) >= 0);
+  const bool ok = fapl.get() >= 0 && H5Pset_fapl_mpio(fapl.get(), comm, MPI_INFO_NULL) >= 0 &&
+                  H5Pset_file_locking(fapl.get(), false, true) >= 0 &&
+                  (!format || set_format(fapl.get(), *format));
   if (!all_ok(comm, ok)) {
     throw InputError(fmt::format("{}: cannot set up parallel HDF5 file access", path.string()));
   }
@@ -52,8 +53,8 @@ Handle mpi_access(MPI_Comm comm, const std::filesystem::path& path, bool create)
 
 }  // namespace
 
-Handle create_mpi_file(MPI_Comm comm, const std::filesystem::path& path) {
-  const Handle fapl = mpi_access(comm, path, true);
+Handle create_mpi_file(MPI_Comm comm, const std::filesystem::path& path, FileFormat format) {
+  const Handle fapl = mpi_access(comm, path, format);
   Handle f(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose);
   if (!all_ok(comm, f.get() >= 0)) {
     throw InputError(fmt::format("{}: cannot write (does the directory exist and is it writable?)",
@@ -63,7 +64,7 @@ Handle create_mpi_file(MPI_Comm comm, const std::filesystem::path& path) {
 }
 
 Handle open_mpi_file_rw(MPI_Comm comm, const std::filesystem::path& path) {
-  const Handle fapl = mpi_access(comm, path, false);
+  const Handle fapl = mpi_access(comm, path, std::nullopt);
   Handle f(H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.get()), H5Fclose);
   if (!all_ok(comm, f.get() >= 0)) {
     throw InputError(fmt::format("{}: cannot open for writing", path.string()));

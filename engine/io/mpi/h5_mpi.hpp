@@ -28,8 +28,9 @@ bool all_ok(MPI_Comm comm, bool ok);
 void on_root(MPI_Comm comm, const std::function<void()>& work);
 
 /// Creates (truncates) or opens `path` on every rank of `comm` through MPI-IO (no file lock, as
-/// the serial series). Collective; throws InputError naming the path on every rank alike.
-Handle create_mpi_file(MPI_Comm comm, const std::filesystem::path& path);
+/// the serial series); a new file in the format of its form (a checkpoint `whole`, a series
+/// `streamed`). Collective; throws InputError naming the path on every rank alike.
+Handle create_mpi_file(MPI_Comm comm, const std::filesystem::path& path, FileFormat format);
 Handle open_mpi_file_rw(MPI_Comm comm, const std::filesystem::path& path);
 /// Flushes (create) and closes a file opened on every rank; throws InputError on all if any failed.
 void close_mpi_file(MPI_Comm comm, Handle& file, const std::filesystem::path& path);

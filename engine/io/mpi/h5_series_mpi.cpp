@@ -9,7 +9,9 @@ H5Series::Access mpi_series_access(MpiComm& comm, const std::filesystem::path& f
   const MPI_Comm c = comm.comm();
   h5::on_root(c, [&] { h5::check_writable(file); });
   H5Series::Access a;
-  a.create = [c](const std::filesystem::path& f) { return h5::create_mpi_file(c, f); };
+  a.create = [c](const std::filesystem::path& f) {
+    return h5::create_mpi_file(c, f, h5::FileFormat::streamed);
+  };
   a.open = [c](const std::filesystem::path& f) { return h5::open_mpi_file_rw(c, f); };
   a.close = [c](h5::Handle& h, const std::filesystem::path& f) { h5::close_mpi_file(c, h, f); };
   const std::uint64_t root_row[] = {0};
