@@ -4,6 +4,11 @@
 
 namespace drumlab::cli {
 
+/// The whole command line of `drumlab` (app/cli/main.cpp): one subcommand required, and every
+/// add_*_command below (render, teach and convert only with DRUMLAB_WITH_RENDER). Also what the
+/// fuzz harness tests/fuzz/fuzz_cli_drumlab.cpp parses.
+void add_commands(CLI::App& app);
+
 void add_analyze_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_contacts_command(CLI::App& app);

@@ -16,22 +16,7 @@ int main(int argc, char** argv) {
   // A file size limit (ulimit -f) then fails the write with a clear error instead of killing us.
   std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"drumlab: DEM of granular flow in rotating drums, with switchable contact search"};
-  app.require_subcommand(1);
-  drumlab::cli::add_run_command(app);
-  drumlab::cli::add_info_command(app);
-  drumlab::cli::add_law_command(app);
-  drumlab::cli::add_contacts_command(app);
-  drumlab::cli::add_analyze_command(app);
-  drumlab::cli::add_decompose_command(app);
-  drumlab::cli::add_paper_table_command(app);
-  drumlab::cli::add_bench_command(app);
-  drumlab::cli::add_stress_command(app);
-  drumlab::cli::add_sweep_command(app);
-#ifdef DRUMLAB_WITH_RENDER
-  drumlab::cli::add_render_command(app);
-  drumlab::cli::add_teach_command(app);
-  drumlab::cli::add_convert_command(app);
-#endif
+  drumlab::cli::add_commands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {  // --help

@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include "app/mpi/mpi_command_line.hpp"
 #include "app/mpi/mpi_run.hpp"
 #include "engine/openmp_waiting.hpp"
 #include "engine/types.hpp"
@@ -24,24 +25,6 @@
 namespace {
 
 using drumlab::mpi::MpiRunOptions;
-
-/// `drumlab run`'s arguments (app/run/run_options.hpp) and the decomposition's.
-void add_run(CLI::App& app, MpiRunOptions& o, std::string& balance) {
-  auto* run = app.add_subcommand("run", "fill (or restart), settle and turn a scene on all ranks");
-  drumlab::cli::add_run_arguments(run, o.run);
-  run->add_flag("--gather-output", o.gather_output,
-                "gather checkpoints and series on rank 0 and write them there (no MPI-IO)");
-  run->add_option("--rebalance-every", o.rebalance_every,
-                  "steps between balance checks (0: keep the first cut; default 200)");
-  run->add_option("--balance", balance,
-                  "what a re-balance equalises: time (each rank's measured work, the default) or "
-                  "count (owned particles)")
-      ->check(CLI::IsMember({"time", "count"}));
-  run->add_option("--balance-threshold", o.balance_threshold,
-                  "by time: re-cut when the slowest rank's work exceeds the mean by more than "
-                  "this share (default 0.05; 0: at every check)")
-      ->check(CLI::Range(0.0, 10.0));
-}
 
 /// Whether every rank has failed too: each failing rank calls this from its handler, on a
 /// communicator of its own (so that it matches no collective of the run). An error the ranks
@@ -98,7 +81,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   MpiRunOptions o;
   std::string balance = "time";
-  add_run(app, o, balance);
+  drumlab::mpi::add_run(app, o, balance);
   MPI_Comm failures = MPI_COMM_NULL;
   MPI_Comm_dup(MPI_COMM_WORLD, &failures);
   int code = 0;

@@ -5,6 +5,10 @@
 # tests/data/fuzz/READER (and scenes/ for the scene reader); a crash, hang or abort is written
 # to build-fuzz/artifacts/READER/. Once fixed, copy the input into tests/data/fuzz/READER/: ctest
 # replays that folder on every build (fuzz.replay_READER). Needs clang and libfuzzer-14-dev.
+# READERs: scene, particle_csv, stl (the readers), and cli_drumlab, cli_mpi, cli_gui: the command
+# lines of drumlab, drumlab-mpi and drumlab-gui, parsed with every subcommand's callback replaced
+# (nothing runs), one argument a line (or NUL-separated) in an input. A harness this build does
+# not make (cli_mpi without MPI) is skipped with a line saying so.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 seconds="${1:?usage: tests/fuzz/run.sh SECONDS [READER...]}"
@@ -25,6 +29,10 @@ cmake --build "$build" -j "$(nproc)" >"$build/build.log" 2>&1 || {
 }
 status=0
 for reader in "${readers[@]}"; do
+  if [ ! -x "$build/bin/fuzz_$reader" ]; then
+    echo "== $reader: skipped (fuzz_$reader is not built in $build)"
+    continue
+  fi
   corpus="$build/corpus/$reader"
   mkdir -p "$corpus" "$build/artifacts/$reader"
   seeds=("$root/tests/data/fuzz/$reader")
