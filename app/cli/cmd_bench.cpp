@@ -16,6 +16,7 @@
 #include "app/bench/bench_throughput.hpp"
 #include "app/cli/commands.hpp"
 #include "app/cli/scene_setup.hpp"
+#include "app/run/count_option.hpp"
 
 namespace drumlab::cli {
 
@@ -49,7 +50,8 @@ void add_skips_subcommand(CLI::App* bench) {
   cmd->add_option("--repeats", k->repeats, "runs per variant (median kept)")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
-  cmd->add_option("--every", k->every, "writer cadence in steps (default: steps / 10)");
+  cmd->add_option("--every", k->every, "writer cadence in steps (default: steps / 10)")
+      ->check(whole_count());
   cmd->add_option("--tiny", k->tiny, "coefficient that forces the general path")
       ->capture_default_str();
   cmd->callback([k] {
@@ -93,7 +95,9 @@ void add_roofline_subcommand(CLI::App* bench) {
   cmd->add_option("--steps", r->steps, "timed steps")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd->add_option("--warmup", r->warmup, "untimed steps before timing")->capture_default_str();
+  cmd->add_option("--warmup", r->warmup, "untimed steps before timing")
+      ->check(whole_count())
+      ->capture_default_str();
   cmd->add_flag("--quick", r->quick, "short machine measurements (coarse roofs)");
   cmd->callback([r] {
     if (r->scene.empty()) r->scene = shipped_scene("drum_demo.toml");
@@ -120,6 +124,7 @@ void add_bench_command(CLI::App& app) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   throughput->add_option("--warmup", t->warmup, "untimed steps before timing")
+      ->check(whole_count())
       ->capture_default_str();
   throughput
       ->add_option("--sort-every", t->sort_every,
@@ -149,6 +154,7 @@ void add_bench_command(CLI::App& app) {
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   search->add_option("--steps", s->steps, "dynamic steps per method on the flowing state")
+      ->check(whole_count())
       ->capture_default_str();
   search->callback([s] {
     if (s->scene.empty()) s->scene = shipped_scene("drum_demo.toml");

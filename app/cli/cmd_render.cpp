@@ -11,6 +11,7 @@
 #include "app/cli/commands.hpp"
 #include "app/cli/render_observer.hpp"
 #include "app/cli/scene_setup.hpp"
+#include "app/run/count_option.hpp"
 #include "engine/search/search_methods.hpp"
 #include "render/frame_writer.hpp"
 #include "render/movie_writer.hpp"
@@ -155,8 +156,11 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("scene", opt->scene, "scene file (TOML)")->required();
   add_run_options(cmd, *opt);
   cmd->add_option("--out", args->out, "directory for the PNG frames")->required();
-  auto* frames = cmd->add_option("--frames", opt->frames, "frames over the turning phase");
-  cmd->add_option("--every", opt->every, "steps between frames")->excludes(frames);
+  auto* frames = cmd->add_option("--frames", opt->frames, "frames over the turning phase")
+                     ->check(whole_count());
+  cmd->add_option("--every", opt->every, "steps between frames")
+      ->check(whole_count())
+      ->excludes(frames);
   cmd->add_option("--movie", args->movie, "movie file (.mp4 with ffmpeg, else .ogv)");
   cmd->add_option("--size", args->size, "frame size WxH (default 1280x720)");
   cmd->add_option("--color-by", args->color_by,

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <limits>
 
+#include "app/run/count_option.hpp"
 #include "engine/types.hpp"
 
 namespace drumlab::gui {
@@ -31,7 +32,8 @@ void declare_options(CLI::App& app, CommandLine& c) {
       ->check(CLI::Range(320, 8192));
   app.add_option("--height", c.o.height, "window height")->check(CLI::Range(240, 8192));
   app.add_option("--frames", c.o.frames,
-                 "headless: run N frames (steps-per-frame steps each), exit");
+                 "headless: run N frames (steps-per-frame steps each), exit")
+      ->check(drumlab::cli::whole_count());
   app.add_option("--screenshot", c.o.screenshot,
                  "headless: save the whole window as PNG at the end");
   app.add_option("--checkpoint", c.o.checkpoint,
@@ -56,7 +58,8 @@ void declare_options(CLI::App& app, CommandLine& c) {
       ->expected(2);
   app.add_flag("!--no-inset", c.o.inset, "no focus inset");
   app.add_flag("--bench", c.o.bench, "print frames/s paused and running, and particle-steps/s");
-  app.add_option("--bench-frames", c.bench_frames, "frames per --bench measurement");
+  app.add_option("--bench-frames", c.bench_frames, "frames per --bench measurement")
+      ->check(drumlab::cli::whole_count());
 }
 
 void finish_options(CommandLine& c) {

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "app/run/count_option.hpp"
 #include "engine/search/contact_search.hpp"
 #include "engine/search/search_methods.hpp"
 
@@ -16,6 +17,7 @@ void add_run_options(CLI::App* cmd, RunOptions& opt) {
   auto* steps = cmd->add_option(
       "--steps", opt.steps,
       "turning steps after settling (0: only fill and settle, e.g. for --checkpoint)");
+  steps->check(whole_count());
   cmd->add_option("--revolutions", opt.revolutions, "drum revolutions after settling")
       ->check(CLI::PositiveNumber)
       ->excludes(steps);
