@@ -1,6 +1,7 @@
 #include "engine/contact/contact_history.hpp"
 
 #include <algorithm>
+#include <atomic>
 
 #include <fmt/format.h>
 
@@ -205,7 +206,12 @@ void ContactList::build_rows(std::span<const IndexPair> pairs, std::size_t n) {
       first_row = static_cast<std::size_t>(pairs[k - 1].i) + 1;
     }
     if (unsorted == 0) {
-      for (std::size_t r = first_row; r <= p.i; ++r) row_start_[r] = k;
+      // Relaxed atomic stores (plain moves on x86): a sorted input writes each row start once,
+      // but an unsorted one (found unsorted by another thread, and recomputed below) can have
+      // two threads write one row start, a data race that ThreadSanitizer reported.
+      for (std::size_t r = first_row; r <= p.i; ++r) {
+        std::atomic_ref<std::size_t>(row_start_[r]).store(k, std::memory_order_relaxed);
+      }
     }
     col_[k] = p.j;
   }
