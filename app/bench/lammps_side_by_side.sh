@@ -1,7 +1,7 @@
 #!/bin/bash
 # drumlab against LAMMPS on the same drum, one after the other in one run (one core each, or two):
 #
-#   PEERS=DIR [CORES=1|2] [LAMMPS_DT=scene|peer] \
+#   PEERS=DIR [CORES=1|2] [LAMMPS_DT=scene|peer] [LMP=EXECUTABLE] \
 #     bash app/bench/lammps_side_by_side.sh demo|deep|tilted|periodic [ROUNDS] [LAMMPS_STEPS]
 #
 # PEERS is the LAMMPS harness of the drum workload (lammps/drum_small.in, lammps/run.sh,
@@ -22,15 +22,16 @@
 # gives every round's ratio and their median. With CORES=1 both run on core PIN (default 0).
 # LAMMPS_DT=scene (default) runs LAMMPS at the scene's time step (`drumlab info`),
 # LAMMPS_DT=peer at the harness's 1e-4 s. CORES=2: LAMMPS on 2 MPI ranks (mpirun -np 2; the
-# input sets `processors * 1 1`) against drumlab on 2 OpenMP threads. Needs: apt-get install
-# lammps.
+# input sets `processors * 1 1`) against drumlab on 2 OpenMP threads. LMP picks the LAMMPS
+# executable: Debian's `lmp` (default; apt-get install lammps), or the one build_lammps.sh builds
+# from Debian's source with drumlab's compiler and flags (the fair peer).
 set -euo pipefail
 drum=${1:?demo, deep, tilted or periodic}
 rounds=${2:-1}
 cores=${CORES:-1}
 case "$cores" in
-  1) launch=(lmp) ;;
-  2) launch=(mpirun --allow-run-as-root --oversubscribe -np 2 lmp) ;;
+  1) launch=("${LMP:-lmp}") ;;
+  2) launch=(mpirun --allow-run-as-root --oversubscribe -np 2 "${LMP:-lmp}") ;;
   *) echo "lammps_side_by_side: CORES must be 1 or 2, not '$cores'" >&2; exit 2 ;;
 esac
 # One core: both engines on the same core (PIN, default 0; PIN= lets the scheduler choose), so
@@ -41,7 +42,8 @@ here=$(cd "$(dirname "$0")/../.." && pwd)
 peers=$(cd "${PEERS:-$here/../shared/peers}" && pwd)
 bin=${DRUMLAB:-$here/build/bin/drumlab}
 cache=${CACHE:-$here/out/bench}
-command -v lmp >/dev/null || { echo "lammps_side_by_side: lmp not found (apt-get install lammps)" >&2; exit 2; }
+command -v "${LMP:-lmp}" >/dev/null ||
+  { echo "lammps_side_by_side: ${LMP:-lmp} not found (apt-get install lammps, or LMP=...)" >&2; exit 2; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 deck=$work/drum.in
