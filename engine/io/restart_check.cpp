@@ -7,6 +7,9 @@
 
 #include <fmt/format.h>
 
+#include "engine/contact/bond.hpp"
+#include "engine/contact/liquid_bridge.hpp"
+
 namespace drumlab {
 namespace {
 
@@ -88,6 +91,36 @@ Problem check_ids(const Particles& p) {
   return std::nullopt;
 }
 
+/// True for the law parts' arrays that hold a liquid volume (m^3) or a bridge's age (s).
+bool holds_amount(std::string_view name) {
+  const auto in = [&](const auto& names) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+  };
+  return name == kLiquidFilmArray || in(kWallBridgeVolumeArrays) || in(kWallBridgeAgeArrays);
+}
+
+/// The law parts' arrays (films, wall bridges, wall and mesh springs): finite; a volume or an age
+/// not below zero beyond round-off (1e-9 of the array's largest value: a film drawn down to a
+/// bridge's volume may end an ulp below zero). A NaN film would spread through the bridges it
+/// forms into the liquid totals; a negative one would form a bridge of negative volume.
+Problem check_extra(const Particles& p) {
+  for (const ParticleArray& a : p.extra) {
+    const std::string dataset = "extra_" + a.name;
+    double largest = 0.0;
+    for (std::size_t i = 0; i < a.values.size(); ++i) {
+      if (!std::isfinite(a.values[i])) return at_row(dataset, i, "not finite");
+      largest = std::max(largest, std::abs(a.values[i]));
+    }
+    if (!holds_amount(a.name)) continue;
+    for (std::size_t i = 0; i < a.values.size(); ++i) {
+      if (a.values[i] < -1e-9 * largest) {
+        return at_row(dataset, i, fmt::format("{}, below zero (a volume or an age)", a.values[i]));
+      }
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::optional<SceneProblem> restart_particles_problem(const SceneConfig& scene,
@@ -96,6 +129,7 @@ std::optional<SceneProblem> restart_particles_problem(const SceneConfig& scene,
     if (auto problem = check_body(scene, p, i)) return problem;
     if (auto problem = check_motion(p, i)) return problem;
   }
+  if (auto problem = check_extra(p)) return problem;
   return check_ids(p);
 }
 

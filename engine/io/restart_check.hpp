@@ -14,8 +14,9 @@ namespace drumlab {
 /// The first particle value that the scene's fill cannot have made, or nullopt: a size class the
 /// scene lacks; a radius other than its class's; a mass, inverse mass or inverse inertia other
 /// than the class's radius and the material's density give (relative 1e-12); a non-finite
-/// position, velocity, angular velocity, force or torque; an id used twice. The key is the
-/// checkpoint's dataset and row ("particles/mass: row 12").
+/// position, velocity, angular velocity, force or torque; a non-finite value in a law part's
+/// array (Particles::extra), or a liquid volume or bridge age below zero; an id used twice. The key
+/// is the checkpoint's dataset and row ("particles/mass: row 12").
 std::optional<SceneProblem> restart_particles_problem(const SceneConfig& scene, const Particles& p);
 
 /// Throws InputError "<where>: particles: N in the checkpoint, the scene's fill.count is M (...)"

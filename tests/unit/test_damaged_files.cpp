@@ -5,6 +5,7 @@
 // Fletcher32 checksum and all metadata is checksummed (HDF5 1.10's format), so a flipped bit
 // that a read meets is found. Each case prints its message (`damage | message`), the table the
 // hardening note reports.
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <hdf5.h>
@@ -19,6 +20,7 @@
 #include <iterator>
 #include <limits>
 
+#include "engine/contact/bond.hpp"
 #include "engine/io/checkpoint.hpp"
 #include "engine/io/h5_file.hpp"
 #include "engine/io/h5_series.hpp"
@@ -448,6 +450,51 @@ TEST_F(DamagedFiles, NonFiniteHistoryIsRefused) {
   message = restart_refusal(output_scene_text(), inf);
   EXPECT_THAT(message, HasSubstr("inf.h5: restart state: walls/history: row 7: not finite"));
   print_row("inf in walls/history", message);
+}
+
+TEST_F(DamagedFiles, ANonFiniteOrNegativeLiquidArrayIsRefused) {
+  // The law parts' per-particle arrays are checked like the fixed ones: a NaN film would spread
+  // through the bridges it forms into the liquid totals, a negative one form a bridge of negative
+  // volume. The small drum wet, with films (migration) and wall bridges.
+  const std::string text =
+      output_scene_text() +
+      "[liquid]\nsurface_tension = 0.072\ncontact_angle_deg = 0\n"
+      "liquid_content = 0.05\nmax_bridge_volume = 5e-11\nwall_bridges = true\n";
+  const SceneConfig wet = parse_scene(text, "wet-films");
+  const SimulationState state = settled_simulation(wet, 200)->state();
+  const fs::path wet_file = dir_.path() / "wet.h5";
+  write_checkpoint(wet_file, state, wet.name);
+  ASSERT_EQ(restart_refusal(text, wet_file), "");  // the undamaged file restarts
+  const std::size_t n = state.particles.size();
+  const std::vector<double>* film = state.particles.find_array(kLiquidFilmArray);
+  ASSERT_NE(film, nullptr);
+  const struct {
+    std::string file, array;
+    std::size_t row;
+    double value;
+    std::string expected;
+  } cases[] = {
+      {"film_nan.h5", "liquid_film", 4, std::numeric_limits<double>::quiet_NaN(),
+       "particles/extra_liquid_film: row 4: not finite"},
+      {"film_negative.h5", "liquid_film", 5, -1e-12,
+       "particles/extra_liquid_film: row 5: -1e-12, below zero"},
+      {"wall_age_inf.h5", "wall_bridge_age_mantle", 6, std::numeric_limits<double>::infinity(),
+       "particles/extra_wall_bridge_age_mantle: row 6: not finite"},
+  };
+  for (const auto& c : cases) {
+    const fs::path p = dir_.path() / c.file;
+    fs::copy_file(wet_file, p, fs::copy_options::overwrite_existing);
+    std::vector<double> values = c.array == "liquid_film" ? *film : std::vector<double>(n, 0.0);
+    values[c.row] = c.value;
+    const hid_t f = H5Fopen(p.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+    ASSERT_GE(f, 0);
+    replace(f, "particles/extra_" + c.array, H5T_IEEE_F64LE, {n}, values);
+    H5Fclose(f);
+    const std::string message = restart_refusal(text, p);
+    EXPECT_THAT(message, HasSubstr(c.file + ": ")) << c.file;
+    EXPECT_THAT(message, HasSubstr(c.expected)) << c.file;
+    print_row(c.array + " " + (std::isnan(c.value) ? "NaN" : fmt::format("{}", c.value)), message);
+  }
 }
 
 TEST_F(DamagedFiles, ARowStartPastThePartnersIsRefusedBeforeAnyPartnerIsRead) {
