@@ -35,10 +35,10 @@ Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg
 SRC
   apt-get update -qq
 fi
-src=$(find "$work" -maxdepth 1 -type d -name 'lammps-*' | head -n 1)
+src=$(find "$work" -mindepth 1 -maxdepth 1 -type d -name 'lammps-*' | head -n 1)
 if [ -z "$src" ]; then
   (cd "$work" && apt-get source -q lammps)
-  src=$(find "$work" -maxdepth 1 -type d -name 'lammps-*' | head -n 1)
+  src=$(find "$work" -mindepth 1 -maxdepth 1 -type d -name 'lammps-*' | head -n 1)
 fi
 [ -f "$src/cmake/CMakeLists.txt" ] || { echo "build_lammps: no LAMMPS source in $work" >&2; exit 1; }
 
