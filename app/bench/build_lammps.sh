@@ -54,5 +54,5 @@ cmake -S "$src/cmake" -B "$build" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILE
   -DPKG_GRANULAR=ON -DLAMMPS_MACHINE= >"$work/configure.log"
 nice -n 10 cmake --build "$build" -j "$jobs" --target lmp >"$work/build.log" 2>&1 ||
   { tail -n 30 "$work/build.log"; echo "build_lammps: build failed ($work/build.log)" >&2; exit 1; }
-"$build/lmp" -h | sed -n '/^Compiler:/,/^$/p;/^Installed packages:/,/^$/p'
+"$build/lmp" -h | sed -n '/^Compiler:/,/^$/p' && "$build/lmp" -h | grep -A2 '^Installed packages:'
 echo "build_lammps: $build/lmp"
