@@ -14,6 +14,7 @@
 
 #include "engine/io/checkpoint.hpp"
 #include "engine/session/run_session.hpp"
+#include "tests/fuzz/restart_and_step.hpp"
 
 namespace {
 
@@ -26,22 +27,6 @@ const drumlab::SceneConfig& scene(bool wet) {
   return wet ? wet_scene : dry;
 }
 
-/// A restart of the file as `drumlab run SCENE --restart FILE` starts it, stepped twice.
-void restart(const fs::path& file, bool wet) {
-  drumlab::SessionOptions o;
-  o.restart = file.string();
-  drumlab::RunSession session(scene(wet), o);
-  drumlab::Simulation& sim = session.simulation();
-  try {
-    sim.advance(2);
-  } catch (const drumlab::UnstableError&) {
-    return;
-  }
-  for (const drumlab::Vec3& x : sim.particles().position) {
-    if (!x.allFinite()) std::abort();  // a silent NaN from an accepted checkpoint
-  }
-}
-
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -52,13 +37,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   }
   try {
-    restart(file, false);
+    drumlab::fuzz::restart_and_step(scene(false), file);
   } catch (const drumlab::InputError& e) {
     // A wet checkpoint is refused by the dry scene ("a dry and a wet scene do not mix"): the
     // wet scene takes it through the same path.
     if (std::string(e.what()).find("do not mix") != std::string::npos) {
       try {
-        restart(file, true);
+        drumlab::fuzz::restart_and_step(scene(true), file);
       } catch (const drumlab::InputError&) {
       }
     }
