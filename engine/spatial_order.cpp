@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include "engine/threads.hpp"
 
 namespace drumlab {
 
@@ -19,6 +20,74 @@ std::uint64_t spread_bits(std::uint64_t v) {
   return v;
 }
 
+/// Where the first p entries of the merge of the sorted runs a and b (unique values) end in a:
+/// the merge path's crossing of diagonal p (Odeh, Green, Mwassi, Shmueli and Birk, 2012).
+template <class T>
+std::size_t merge_split(std::span<const T> a, std::span<const T> b, std::size_t p) {
+  std::size_t lo = p > b.size() ? p - b.size() : 0;
+  std::size_t hi = std::min(p, a.size());
+  while (lo < hi) {
+    const std::size_t mid = lo + (hi - lo) / 2;
+    if (a[mid] < b[p - mid - 1]) {
+      lo = mid + 1;
+    } else {
+      hi = mid;
+    }
+  }
+  return lo;
+}
+
+/// Sorts `v` (unique values, so every correct sort gives the same order) on the threads at hand
+/// without allocating once `scratch` has grown: one run per thread sorted at once, then rounds
+/// of merges of neighbouring runs, each merge shared by the threads along its merge path.
+template <class T>
+void sort_unique(std::vector<T>& v, std::vector<T>& scratch) {
+  constexpr std::size_t kPerThread = 4096;  // below this, one thread
+  const std::size_t n = v.size();
+  const auto runs = static_cast<std::size_t>(
+      std::clamp<std::size_t>(n / kPerThread, 1, static_cast<std::size_t>(max_threads())));
+  if (runs == 1) {
+    std::sort(v.begin(), v.end());
+    return;
+  }
+  scratch.resize(n);
+  const auto run_start = [&](std::size_t r) { return n * std::min(r, runs) / runs; };
+  T* from = v.data();
+  T* to = scratch.data();
+  const int wanted = static_cast<int>(runs);
+#pragma omp parallel num_threads(wanted)
+  {
+    // The team may be smaller than asked for (a nested region): each thread takes every team-th
+    // run.
+    const auto team = static_cast<std::size_t>(team_size());
+    const auto t = static_cast<std::size_t>(thread_number());
+    for (std::size_t r = t; r < runs; r += team)
+      std::sort(from + run_start(r), from + run_start(r + 1));
+    for (std::size_t width = 1; width < runs; width *= 2) {
+#pragma omp barrier
+      for (std::size_t g = 0; g < runs; g += 2 * width) {
+        const std::size_t a0 = run_start(g);
+        const std::size_t b0 = run_start(g + width);
+        const std::size_t end = run_start(g + 2 * width);
+        const std::span<const T> a(from + a0, b0 - a0);
+        const std::span<const T> b(from + b0, end - b0);
+        const std::size_t p0 = (end - a0) * t / team;
+        const std::size_t p1 = (end - a0) * (t + 1) / team;
+        const std::size_t i0 = merge_split(a, b, p0);
+        const std::size_t i1 = merge_split(a, b, p1);
+        std::merge(a.begin() + static_cast<std::ptrdiff_t>(i0),
+                   a.begin() + static_cast<std::ptrdiff_t>(i1),
+                   b.begin() + static_cast<std::ptrdiff_t>(p0 - i0),
+                   b.begin() + static_cast<std::ptrdiff_t>(p1 - i1), to + a0 + p0);
+      }
+#pragma omp barrier
+#pragma omp single
+      std::swap(from, to);
+    }
+  }
+  if (from != v.data()) v.swap(scratch);
+}
+
 }  // namespace
 
 std::uint64_t morton_key(const Vec3& x, const Vec3& lo, double cell) {
@@ -33,16 +102,31 @@ std::uint64_t morton_key(const Vec3& x, const Vec3& lo, double cell) {
 
 void morton_order(std::span<const Vec3> position, double cell, ReorderBuffers& b) {
   const std::size_t n = position.size();
-  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
-  for (const Vec3& x : position) lo = lo.cwiseMin(x);
-  b.keys.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    b.keys[i] = {morton_key(position[i], lo, cell), static_cast<Index>(i)};
+  const auto count = static_cast<std::int64_t>(n);
+  // Each thread's smallest corner, then theirs: a minimum is exact in any order.
+  const int threads = max_threads();
+  std::vector<Vec3>& lows = b.lows;
+  lows.assign(static_cast<std::size_t>(threads),
+              Vec3::Constant(std::numeric_limits<double>::infinity()));
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < count; ++i) {
+    Vec3& lo = lows[static_cast<std::size_t>(thread_number())];
+    lo = lo.cwiseMin(position[static_cast<std::size_t>(i)]);
   }
-  std::sort(b.keys.begin(), b.keys.end());
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity());
+  for (const Vec3& l : lows) lo = lo.cwiseMin(l);
+  b.keys.resize(n);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < count; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    b.keys[k] = {morton_key(position[k], lo, cell), static_cast<Index>(k)};
+  }
+  sort_unique(b.keys, b.sorted);
   b.order.resize(n);
   b.new_index.resize(n);
-  for (std::size_t k = 0; k < n; ++k) {
+#pragma omp parallel for schedule(static)
+  for (std::int64_t i = 0; i < count; ++i) {
+    const auto k = static_cast<std::size_t>(i);
     b.order[k] = b.keys[k].second;
     b.new_index[b.order[k]] = static_cast<Index>(k);
   }

@@ -2,6 +2,7 @@
 // Spatial re-ordering of particles for cache locality (HOOMD's SFCPackTuner, LAMMPS's atom_modify
 // sort): particles are ordered along a Morton (Z-order) curve over cells of a given side, so that
 // particles close in space are close in memory and a contact's partner is usually in cache.
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <utility>
@@ -13,7 +14,9 @@ namespace drumlab {
 
 /// Buffers of a re-ordering, kept between calls so that re-ordering allocates nothing once warm.
 struct ReorderBuffers {
+  std::vector<Vec3> lows;  ///< each thread's smallest corner
   std::vector<std::pair<std::uint64_t, Index>> keys;
+  std::vector<std::pair<std::uint64_t, Index>> sorted;  ///< the sort's other buffer
   std::vector<Index> order;      ///< slot k of the new order holds the particle now at order[k]
   std::vector<Index> new_index;  ///< inverse: particle i moves to slot new_index[i]
   std::vector<Vec3> vec3;
@@ -33,7 +36,11 @@ void morton_order(std::span<const Vec3> position, double cell, ReorderBuffers& b
 template <class T>
 void apply_order(std::vector<T>& values, std::span<const Index> order, std::vector<T>& scratch) {
   scratch.resize(values.size());
-  for (std::size_t k = 0; k < order.size(); ++k) scratch[k] = values[order[k]];
+  const auto n = static_cast<std::int64_t>(order.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t k = 0; k < n; ++k) {
+    scratch[static_cast<std::size_t>(k)] = values[order[static_cast<std::size_t>(k)]];
+  }
   values.swap(scratch);
 }
 

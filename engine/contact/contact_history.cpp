@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "engine/threads.hpp"
+
 namespace drumlab {
 
 void ContactList::clear() {
@@ -86,12 +88,41 @@ void ContactList::renumber(std::span<const Index> new_index) {
     }
   }
   // Counting sort of the entries by their new first index, then each (short, independent) row
-  // by the second: O(m), where a comparison sort of all entries took O(m log m).
-  row_start_.assign(n + 1, 0);
-  for (const IndexPair& p : renumbered_) ++row_start_[p.i + 1];
-  for (std::size_t i = 0; i < n; ++i) row_start_[i + 1] += row_start_[i];
-  fill_.assign(row_start_.begin(), row_start_.end() - 1);
-  for (std::size_t k = 0; k < m; ++k) by_pair_[fill_[renumbered_[k].i]++] = k;
+  // by the second: O(m), where a comparison sort of all entries took O(m log m). As in
+  // sort_pairs, each thread counts and places a contiguous share of the entries, with counts per
+  // (row, thread) laid out by row, so a row's entries keep their order whatever the thread count.
+  constexpr std::size_t kPerThread = 16384;  // below this, one thread
+  const int threads = static_cast<int>(
+      std::clamp<std::size_t>(m / kPerThread, 1, static_cast<std::size_t>(max_threads())));
+  const auto t_count = static_cast<std::size_t>(threads);
+  fill_.assign(n * t_count + 1, 0);  // fill_[i * T + t]: thread t's next slot in row i
+  row_start_.resize(n + 1);
+#pragma omp parallel num_threads(threads)
+  {
+    // A smaller team than asked for (a nested region) leaves the other threads' counts at zero.
+    const auto team = static_cast<std::size_t>(team_size());
+    const auto t = static_cast<std::size_t>(thread_number());
+    const std::size_t begin = m * t / team;
+    const std::size_t end = m * (t + 1) / team;
+    for (std::size_t k = begin; k < end; ++k) ++fill_[renumbered_[k].i * t_count + t];
+#pragma omp barrier
+#pragma omp single
+    {
+      std::size_t running = 0;
+      for (std::size_t& c : fill_) {
+        const std::size_t here = c;
+        c = running;
+        running += here;
+      }
+    }
+#pragma omp for schedule(static)
+    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      row_start_[i] = fill_[i * t_count];
+    }
+    for (std::size_t k = begin; k < end; ++k) by_pair_[fill_[renumbered_[k].i * t_count + t]++] = k;
+  }
+  row_start_[n] = m;
   col_.resize(m);
   history_.resize(m);
   const std::size_t s = state_size_;

@@ -119,7 +119,10 @@ void VerletListSearch::renumber(std::span<const Index> order, std::span<const In
     invalidate();
     return;
   }
-  for (IndexPair& p : list_) {
+  const auto listed = static_cast<std::int64_t>(list_.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t k = 0; k < listed; ++k) {
+    IndexPair& p = list_[static_cast<std::size_t>(k)];
     const Index a = new_index[p.i];
     const Index b = new_index[p.j];
     p = a < b ? IndexPair{a, b} : IndexPair{b, a};

@@ -11,6 +11,7 @@
 
 #include "engine/contact/contact_history.hpp"
 #include "engine/spatial_order.hpp"
+#include "engine/threads.hpp"
 #include "tests/unit/output_test_scene.hpp"
 
 namespace drumlab::test {
@@ -73,6 +74,68 @@ TEST(ContactList, RenumberKeepsEachPairsHistoryAndFlipsItsSign) {
   for (std::size_t i = 0; i < list.rows(); ++i)
     for (std::size_t k = row[i] + 1; k < row[i + 1]; ++k)
       EXPECT_LT(list.col()[k - 1], list.col()[k]);
+}
+
+// The re-ordering runs on the threads at hand (the sort as runs merged along their merge path,
+// the renumbering's counting sort in shares): the result must not depend on how many there are.
+TEST(MortonOrder, IsTheSameForAnyThreadCount) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Vec3> x(50'000);  // runs of at least 4096 keys: up to 12 threads share the sort
+  for (Vec3& p : x) p = Vec3(u(rng), u(rng), 0.2 * u(rng));
+  ReorderBuffers one;
+  set_thread_count(1);
+  morton_order(x, 0.01, one);
+  for (int threads : {2, 3, 5, 8}) {
+    set_thread_count(threads);
+    ReorderBuffers b;
+    morton_order(x, 0.01, b);
+    EXPECT_EQ(b.order, one.order) << threads << " threads";
+    EXPECT_EQ(b.new_index, one.new_index) << threads << " threads";
+  }
+  set_thread_count(1);
+  for (std::size_t k = 1; k < one.keys.size(); ++k) ASSERT_LT(one.keys[k - 1], one.keys[k]);
+}
+
+TEST(ContactList, RenumberIsTheSameForAnyThreadCount) {
+  // 60,000 contacts among 20,000 particles (shares of at least 16,384 entries), a random
+  // permutation, then each thread count's list entry by entry.
+  constexpr std::size_t n = 20'000;
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<Index> pick(0, n - 1);
+  std::vector<IndexPair> pairs;
+  while (pairs.size() < 60'000) {
+    const Index a = pick(rng), b = pick(rng);
+    if (a != b) pairs.push_back(a < b ? IndexPair{a, b} : IndexPair{b, a});
+  }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  std::vector<Index> new_index(n);
+  std::iota(new_index.begin(), new_index.end(), 0);
+  std::shuffle(new_index.begin(), new_index.end(), rng);
+  const auto renumbered = [&](int threads) {
+    set_thread_count(threads);
+    ContactList list;
+    list.update(pairs, n);
+    for (std::size_t k = 0; k < list.size(); ++k)
+      list.history()[k] = Vec3(static_cast<double>(k), -0.5 * static_cast<double>(k), 1.0);
+    list.renumber(new_index);
+    set_thread_count(1);
+    return list;
+  };
+  const ContactList one = renumbered(1);
+  ASSERT_EQ(one.size(), pairs.size());
+  for (int threads : {2, 3, 4}) {
+    const ContactList list = renumbered(threads);
+    ASSERT_TRUE(std::ranges::equal(list.row_start(), one.row_start())) << threads << " threads";
+    ASSERT_TRUE(std::ranges::equal(list.col(), one.col())) << threads << " threads";
+    ASSERT_TRUE(std::ranges::equal(list.history(), one.history())) << threads << " threads";
+  }
+  // And the entries are those of the old list under the new numbers.
+  for (const IndexPair& p : pairs) {
+    const Index a = new_index[p.i], b = new_index[p.j];
+    ASSERT_NE(one.find(std::min(a, b), std::max(a, b)), nullptr);
+  }
 }
 
 /// Positions by stable id.
