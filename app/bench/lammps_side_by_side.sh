@@ -22,13 +22,20 @@
 # gives every round's ratio and their median. With CORES=1 both run on core PIN (default 0).
 # LAMMPS_DT=scene (default) runs LAMMPS at the scene's time step (`drumlab info`),
 # LAMMPS_DT=peer at the harness's 1e-4 s. CORES=2: LAMMPS on 2 MPI ranks (mpirun -np 2; the
-# input sets `processors * 1 1`) against drumlab on 2 OpenMP threads. LMP picks the LAMMPS
+# input sets `processors * 1 1`) against drumlab on 2 OpenMP threads, whose waits spin
+# (OMP_WAIT_POLICY=active, as the MPI ranks poll: both cores are the run's; WAIT=passive runs
+# drumlab's default for a shared machine, "Threads on a shared machine"). LMP picks the LAMMPS
 # executable: Debian's `lmp` (default; apt-get install lammps), or the one build_lammps.sh builds
 # from Debian's source with drumlab's compiler and flags (the fair peer).
 set -euo pipefail
 drum=${1:?demo, deep, tilted or periodic}
 rounds=${2:-1}
 cores=${CORES:-1}
+wait_policy=${WAIT:-active}
+case "$wait_policy" in
+  active | passive) ;;
+  *) echo "lammps_side_by_side: WAIT must be active or passive, not '$wait_policy'" >&2; exit 2 ;;
+esac
 case "$cores" in
   1) launch=("${LMP:-lmp}") ;;
   2) launch=(mpirun --allow-run-as-root --oversubscribe -np 2 "${LMP:-lmp}") ;;
@@ -100,6 +107,7 @@ case "${LAMMPS_DT:-scene}" in
 esac
 echo "drumlab: $scene, $(awk '/^particles/ {print $2; exit}' <<<"$info") particles, dt $dt s"
 echo "LAMMPS:  ${gen[*]:-(default drum)} ${lvars[*]}"
+[ "$cores" = 1 ] || echo "drumlab's threads wait: OMP_WAIT_POLICY=$wait_policy"
 printf '%-6s %-9s %-14s %14s  %s\n' round engine "method ($cores core(s))" "p-steps/s" load
 lammps_round() {
   (cd "$work" && python3 "$peers/common/gen_drum.py" --prefix drum "${gen[@]}" >/dev/null &&
@@ -115,7 +123,7 @@ lammps_round() {
 }
 drumlab_round() {
   local out
-  out=$("${pin[@]}" "$bin" bench throughput --scene "$scene" --methods "$method" --steps 600 \
+  out=$(OMP_WAIT_POLICY=$wait_policy "${pin[@]}" "$bin" bench throughput --scene "$scene" --methods "$method" --steps 600 \
     --repeats 1 --threads "$cores" --cache "$cache" --out "$work/bench")
   drumlab_rate=$(awk -v m="$method" -v t="$cores" '$1 == m && $2 == t {print $4}' <<<"$out" | tail -1)
   printf '%-6s %-9s %-14s %14s  %s\n' "$1" drumlab "$method" "$drumlab_rate" "$(cut -d' ' -f1 /proc/loadavg)"
