@@ -54,33 +54,36 @@ void sort_unique(std::vector<T>& v, std::vector<T>& scratch) {
   const auto run_start = [&](std::size_t r) { return n * std::min(r, runs) / runs; };
   T* from = v.data();
   T* to = scratch.data();
-  const int wanted = static_cast<int>(runs);
-#pragma omp parallel num_threads(wanted)
+  const auto count = static_cast<std::int64_t>(runs);
+  // Work is shared by run and by slice of a merge's output, not by thread number, so a team
+  // smaller than asked for (a nested region) still does all of it.
+#pragma omp parallel num_threads(static_cast <int>(runs))
   {
-    // The team may be smaller than asked for (a nested region): each thread takes every team-th
-    // run.
-    const auto team = static_cast<std::size_t>(team_size());
-    const auto t = static_cast<std::size_t>(thread_number());
-    for (std::size_t r = t; r < runs; r += team)
-      std::sort(from + run_start(r), from + run_start(r + 1));
+#pragma omp for schedule(static)
+    for (std::int64_t r = 0; r < count; ++r) {
+      std::sort(from + run_start(static_cast<std::size_t>(r)),
+                from + run_start(static_cast<std::size_t>(r) + 1));
+    }
     for (std::size_t width = 1; width < runs; width *= 2) {
-#pragma omp barrier
       for (std::size_t g = 0; g < runs; g += 2 * width) {
         const std::size_t a0 = run_start(g);
         const std::size_t b0 = run_start(g + width);
         const std::size_t end = run_start(g + 2 * width);
         const std::span<const T> a(from + a0, b0 - a0);
         const std::span<const T> b(from + b0, end - b0);
-        const std::size_t p0 = (end - a0) * t / team;
-        const std::size_t p1 = (end - a0) * (t + 1) / team;
-        const std::size_t i0 = merge_split(a, b, p0);
-        const std::size_t i1 = merge_split(a, b, p1);
-        std::merge(a.begin() + static_cast<std::ptrdiff_t>(i0),
-                   a.begin() + static_cast<std::ptrdiff_t>(i1),
-                   b.begin() + static_cast<std::ptrdiff_t>(p0 - i0),
-                   b.begin() + static_cast<std::ptrdiff_t>(p1 - i1), to + a0 + p0);
+#pragma omp for schedule(static)
+        for (std::int64_t slice = 0; slice < count; ++slice) {
+          const auto q = static_cast<std::size_t>(slice);
+          const std::size_t p0 = (end - a0) * q / runs;
+          const std::size_t p1 = (end - a0) * (q + 1) / runs;
+          const std::size_t i0 = merge_split(a, b, p0);
+          const std::size_t i1 = merge_split(a, b, p1);
+          std::merge(a.begin() + static_cast<std::ptrdiff_t>(i0),
+                     a.begin() + static_cast<std::ptrdiff_t>(i1),
+                     b.begin() + static_cast<std::ptrdiff_t>(p0 - i0),
+                     b.begin() + static_cast<std::ptrdiff_t>(p1 - i1), to + a0 + p0);
+        }
       }
-#pragma omp barrier
 #pragma omp single
       std::swap(from, to);
     }

@@ -24,15 +24,6 @@ inline int thread_number() {
 #endif
 }
 
-/// Threads in the current parallel region (1 outside one or without OpenMP).
-inline int team_size() {
-#ifdef _OPENMP
-  return omp_get_num_threads();
-#else
-  return 1;
-#endif
-}
-
 /// Sets the thread count of later parallel regions (no effect without OpenMP).
 inline void set_thread_count([[maybe_unused]] int threads) {
 #ifdef _OPENMP

@@ -99,13 +99,15 @@ void ContactList::renumber(std::span<const Index> new_index) {
   row_start_.resize(n + 1);
 #pragma omp parallel num_threads(threads)
   {
-    // A smaller team than asked for (a nested region) leaves the other threads' counts at zero.
-    const auto team = static_cast<std::size_t>(team_size());
-    const auto t = static_cast<std::size_t>(thread_number());
-    const std::size_t begin = m * t / team;
-    const std::size_t end = m * (t + 1) / team;
-    for (std::size_t k = begin; k < end; ++k) ++fill_[renumbered_[k].i * t_count + t];
-#pragma omp barrier
+    // Shares by number, not by thread: a team smaller than asked for (a nested region) still
+    // counts and places every share.
+#pragma omp for schedule(static)
+    for (std::int64_t share = 0; share < threads; ++share) {
+      const auto t = static_cast<std::size_t>(share);
+      for (std::size_t k = m * t / t_count; k < m * (t + 1) / t_count; ++k) {
+        ++fill_[renumbered_[k].i * t_count + t];
+      }
+    }
 #pragma omp single
     {
       std::size_t running = 0;
@@ -120,7 +122,13 @@ void ContactList::renumber(std::span<const Index> new_index) {
       const auto i = static_cast<std::size_t>(ii);
       row_start_[i] = fill_[i * t_count];
     }
-    for (std::size_t k = begin; k < end; ++k) by_pair_[fill_[renumbered_[k].i * t_count + t]++] = k;
+#pragma omp for schedule(static)
+    for (std::int64_t share = 0; share < threads; ++share) {
+      const auto t = static_cast<std::size_t>(share);
+      for (std::size_t k = m * t / t_count; k < m * (t + 1) / t_count; ++k) {
+        by_pair_[fill_[renumbered_[k].i * t_count + t]++] = k;
+      }
+    }
   }
   row_start_[n] = m;
   col_.resize(m);
