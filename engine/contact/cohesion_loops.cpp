@@ -150,7 +150,8 @@ template <class Live, class Visit>
   const auto col = contacts.col();
   const auto state = contacts.state();
   const std::size_t stride = contacts.state_size();
-  CohesionBuffers::Entry* out = &buffers.entries[contacts.row_start()[block * kCohesionBlockRows]];
+  CohesionBuffers::Entry* out =
+      buffers.entries.data() + contacts.row_start()[block * kCohesionBlockRows];
   std::size_t n = 0;
   for_each_acting_pair(
       contacts, buffers.mark.data(), block, [&](std::size_t k) { return live(&state[k * stride]); },
@@ -172,7 +173,8 @@ template <class Law>
   const auto col = contacts.col();
   const auto state = contacts.state();
   const std::size_t stride = contacts.state_size();
-  CohesionBuffers::Entry* out = &buffers.entries[contacts.row_start()[block * kCohesionBlockRows]];
+  CohesionBuffers::Entry* out =
+      buffers.entries.data() + contacts.row_start()[block * kCohesionBlockRows];
   std::size_t n = 0;
   typename PartBatch<Law>::type batch;
   const auto flush = [&] {
@@ -239,7 +241,7 @@ void list_events_of(const CohesiveParts& parts, const ContactList& contacts, std
   const auto state = contacts.state();
   const std::size_t stride = contacts.state_size();
   for (std::size_t b = 0; b < blocks; ++b) {
-    const CohesionBuffers::Entry* e = &buffers.entries[row[b * kCohesionBlockRows]];
+    const CohesionBuffers::Entry* e = buffers.entries.data() + row[b * kCohesionBlockRows];
     for (const CohesionBuffers::Entry* last = e + buffers.count[b]; e != last; ++e) {
       if (e->event == 0) continue;
       buffers.events.push_back({e->i, e->j, event_liquid(parts, &state[e->k * stride])});
@@ -361,7 +363,7 @@ void cohesion_ordered_pass(const CohesiveParts& parts, Particles& p, ContactList
     }
   };
   for (std::size_t b = 0; b < blocks; ++b) {
-    const CohesionBuffers::Entry* e = &buffers.entries[row[b * kCohesionBlockRows]];
+    const CohesionBuffers::Entry* e = buffers.entries.data() + row[b * kCohesionBlockRows];
     for (const CohesionBuffers::Entry* last = e + buffers.count[b]; e != last; ++e) {
       settle_dropped({e->i, e->j});
       Vec3 f = e->force;
