@@ -65,6 +65,7 @@ double ordered_wall_liquid(MpiComm& comm, const Simulation& sim,
     for (const std::vector<std::byte>& bytes : all) {
       const std::size_t at = values.size();
       values.resize(at + bytes.size() / sizeof(WallValue));
+      if (bytes.empty()) continue;  // memcpy wants pointers even for 0 bytes (values may be empty)
       std::memcpy(static_cast<void*>(values.data() + at), bytes.data(), bytes.size());
     }
     std::sort(values.begin(), values.end(), [](const WallValue& a, const WallValue& b) {
