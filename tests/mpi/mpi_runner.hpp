@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -30,12 +33,21 @@ inline std::string read_text(const std::string& file) {
 
 /// The mpirun command for `ranks` ranks (root allowed, more ranks than cores allowed), or the
 /// empty string when no launcher was found at configure time.
+/// Each test process gives its mpiruns a session folder base of its own: two mpiruns of two tests
+/// (ctest -j) starting at once both create /tmp/ompi.HOST.UID and one fails ("A call to mkdir was
+/// unable to create the desired directory ... File exists", seen under load).
 inline std::string mpirun(int ranks) {
   const std::string launcher = DRUMLAB_MPIEXEC;
   if (launcher.empty()) return {};
+  static const std::string session_base = [] {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("drumlab-ompi-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    return dir.string();
+  }();
   return "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
-         "OMPI_MCA_mpi_yield_when_idle=1 " +
-         launcher + " --oversubscribe -np " + std::to_string(ranks) + " ";
+         "OMPI_MCA_mpi_yield_when_idle=1 OMPI_MCA_orte_tmpdir_base=" +
+         session_base + " " + launcher + " --oversubscribe -np " + std::to_string(ranks) + " ";
 }
 
 /// A test that runs `drumlab run` and `drumlab-mpi run` in its own temporary directory and reads
