@@ -16,6 +16,18 @@ namespace {
 class MemoryEstimateTest : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(MemoryEstimateTest, WithinTwentyPercentOfTheMeasuredHeap) {
+#if defined(__SANITIZE_THREAD__)
+#define DRUMLAB_TSAN_TEST 1
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+#define DRUMLAB_TSAN_TEST 1
+#endif
+#endif
+#ifdef DRUMLAB_TSAN_TEST
+  // Measured under TSan: m5 1139 B/particle against 894 estimated; Archer, the OpenMP tool the
+  // thread build loads, allocates its own records per parallel region from the same heap.
+  GTEST_SKIP() << "ThreadSanitizer's OpenMP tool allocates from the heap this test measures";
+#endif
   SceneConfig scene = load_scene(std::string(DRUMLAB_SCENES_DIR) + "/mono_periodic.toml");
   scene.fill.count = 800;
   set_thread_count(1);  // the estimate is for one thread
