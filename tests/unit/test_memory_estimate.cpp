@@ -24,9 +24,10 @@ TEST_P(MemoryEstimateTest, WithinTwentyPercentOfTheMeasuredHeap) {
 #endif
 #endif
 #ifdef DRUMLAB_TSAN_TEST
-  // Measured under TSan: m5 1139 B/particle against 894 estimated; Archer, the OpenMP tool the
-  // thread build loads, allocates its own records per parallel region from the same heap.
-  GTEST_SKIP() << "ThreadSanitizer's OpenMP tool allocates from the heap this test measures";
+  // Under TSan (clang 14) the heap measures m5 at 1139 B/particle against 894 estimated, with or
+  // without the OpenMP tool; GCC's ASan and the plain build agree within 20 %: its allocator's
+  // count is not comparable (not traced further).
+  GTEST_SKIP() << "ThreadSanitizer's allocator counts the heap differently";
 #endif
   SceneConfig scene = load_scene(std::string(DRUMLAB_SCENES_DIR) + "/mono_periodic.toml");
   scene.fill.count = 800;
