@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <numeric>
 
 #include <fmt/format.h>
 
@@ -109,14 +110,7 @@ void ContactList::renumber(std::span<const Index> new_index) {
       }
     }
 #pragma omp single
-    {
-      std::size_t running = 0;
-      for (std::size_t& c : fill_) {
-        const std::size_t here = c;
-        c = running;
-        running += here;
-      }
-    }
+    std::exclusive_scan(fill_.begin(), fill_.end(), fill_.begin(), std::size_t{0});
 #pragma omp for schedule(static)
     for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
       const auto i = static_cast<std::size_t>(ii);
