@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+
 #include "engine/threads.hpp"
 
 namespace drumlab {
@@ -55,9 +56,10 @@ void sort_unique(std::vector<T>& v, std::vector<T>& scratch) {
   T* from = v.data();
   T* to = scratch.data();
   const auto count = static_cast<std::int64_t>(runs);
+  const int team = static_cast<int>(runs);
   // Work is shared by run and by slice of a merge's output, not by thread number, so a team
   // smaller than asked for (a nested region) still does all of it.
-#pragma omp parallel num_threads(static_cast <int>(runs))
+#pragma omp parallel num_threads(team)
   {
 #pragma omp for schedule(static)
     for (std::int64_t r = 0; r < count; ++r) {
