@@ -117,9 +117,11 @@ double event_liquid(const CohesiveParts& parts, const double* state) {
 
 // Visits, by increasing k, the listed pairs of the rows of cohesion block `block` on which a
 // cohesive part may act: take(mark[k], live(k)). Most listed pairs are apart, with no live part
-// state: nothing acts (a bridge forms only on contact; sjkr acts only while overlapping). Each
-// chunk of a row is first sifted by a loop without branches on the touch marks the contact pair
-// loop left (no partner is gathered for it), then visit(i, k) runs on the pairs that remain.
+// state: nothing acts (a bridge forms only on contact; sjkr acts only while overlapping). The
+// block's entries are contiguous in k, so they are sifted in chunks of kChunk across row ends by a
+// loop without branches on the touch marks the contact pair loop left (no partner is gathered for
+// it); visit(i, k) then runs on the pairs that remain, each pair's row i found by a cursor that
+// only moves forward. (Sifting row by row paid each short row's loop exits, ~8 entries a row.)
 template <class Live, class Visit>
 [[gnu::always_inline]] inline void for_each_acting_pair(const ContactList& contacts,
                                                         const std::uint8_t* mark, std::size_t block,
@@ -129,15 +131,18 @@ template <class Live, class Visit>
   const auto row = contacts.row_start();
   const std::size_t begin = block * kCohesionBlockRows;
   const std::size_t end = std::min(contacts.rows(), begin + kCohesionBlockRows);
-  for (std::size_t i = begin; i < end; ++i) {
-    for (std::size_t k0 = row[i]; k0 < row[i + 1]; k0 += kChunk) {
-      const std::size_t k1 = std::min(row[i + 1], k0 + kChunk);
-      std::size_t m = 0;
-      for (std::size_t k = k0; k < k1; ++k) {
-        sel[m] = static_cast<std::uint32_t>(k - k0);
-        m += take(mark[k], live(k));
-      }
-      for (std::size_t q = 0; q < m; ++q) visit(i, k0 + sel[q]);
+  std::size_t i = begin;
+  for (std::size_t k0 = row[begin]; k0 < row[end]; k0 += kChunk) {
+    const std::size_t k1 = std::min(row[end], k0 + kChunk);
+    std::size_t m = 0;
+    for (std::size_t k = k0; k < k1; ++k) {
+      sel[m] = static_cast<std::uint32_t>(k - k0);
+      m += take(mark[k], live(k));
+    }
+    for (std::size_t q = 0; q < m; ++q) {
+      const std::size_t k = k0 + sel[q];
+      while (row[i + 1] <= k) ++i;
+      visit(i, k);
     }
   }
 }
