@@ -37,7 +37,7 @@ Measured measure(const RollingState& rolling, const RooflineOptions& opt) {
   SimulationState state = rolling.state;
   if (!opt.method.empty()) state.search_method = opt.method;
   Simulation sim(rolling.scene, std::move(state));
-  sim.advance(opt.warmup);
+  warm_up(sim, opt.warmup);
   Measured m;
   m.method = std::string(sim.search().name());
   m.shape = law_shape(rolling.scene, sim.particles());

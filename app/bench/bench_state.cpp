@@ -106,6 +106,11 @@ std::size_t peak_rss_bytes() {
   return static_cast<std::size_t>(u.ru_maxrss) * 1024;  // Linux: kilobytes
 }
 
+void warm_up(Simulation& sim, std::uint64_t steps) {
+  sim.advance(steps);
+  if (sim.scene().performance.sort_every > 0) sim.reorder_particles();
+}
+
 void make_output_dir(const std::filesystem::path& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);

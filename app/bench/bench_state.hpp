@@ -3,11 +3,16 @@
 // (fill, settle with the drum at rest, turn a little), cached as a checkpoint so every method and
 // every later bench run starts from the same particles; plus memory probes and the output folder.
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
 #include "engine/scene/scene_config.hpp"
 #include "engine/simulation_state.hpp"
+
+namespace drumlab {
+class Simulation;
+}
 
 namespace drumlab::bench {
 
@@ -29,6 +34,12 @@ struct RollingState {
 /// and was made from the same scene text with the same plan, otherwise made now (and cached when
 /// any step was simulated). Throws InputError for a bad scene or an unusable cache folder.
 RollingState rolling_state(const std::string& scene_file, const RollingPlan& plan);
+
+/// The untimed steps before a timed window: `steps` steps, then, if the scene re-orders its
+/// particles (performance.sort_every > 0), one re-ordering, so that the window does not pay the
+/// run's first one: the first touch of its scratch buffers (page faults), ~3x a later one. A long
+/// run pays that once; LAMMPS's loop time leaves its setup out the same way.
+void warm_up(Simulation& sim, std::uint64_t steps);
 
 /// Bytes the allocator holds for live objects now: engine/memory_probe.hpp's probe.
 std::size_t heap_bytes_in_use();

@@ -92,7 +92,7 @@ ThroughputRow measure(const RollingState& rolling, const std::string& method,
     }
     Simulation sim(scene, std::move(state));
     row.particles = sim.particles().size();
-    sim.advance(warmup);
+    warm_up(sim, warmup);
     const std::uint64_t rebuilds0 = verlet_rebuilds(sim);
     PhaseMeter meter(sim);
     sim.advance(steps);
@@ -203,10 +203,13 @@ void run_bench_throughput(const ThroughputOptions& opt) {
 #else
   fmt::print("build             x86-64 baseline (SSE2), no AVX2/FMA\n");
 #endif
-  fmt::print("run               {} warm-up + {} timed steps per method{}\n", opt.warmup, opt.steps,
-             std::find(methods.begin(), methods.end(), "brute") != methods.end()
-                 ? fmt::format(" (brute: at most {})", kBruteMaxSteps)
-                 : std::string());
+  fmt::print(
+      "run               {} warm-up steps (and a re-ordering, unless sort_every = 0) + {} "
+      "timed steps per method{}\n",
+      opt.warmup, opt.steps,
+      std::find(methods.begin(), methods.end(), "brute") != methods.end()
+          ? fmt::format(" (brute: at most {})", kBruteMaxSteps)
+          : std::string());
   std::vector<int> threads{1};
   if (opt.threads > 1) threads.push_back(opt.threads);
   std::vector<std::uint64_t> sorts;
