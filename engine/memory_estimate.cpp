@@ -49,8 +49,8 @@ MemoryEstimate estimate_memory(std::string_view method, const MemoryShape& s) {
   b += 5.0 * kVec3 + 4.0 * sizeof(double) + sizeof(std::uint8_t) + kIndex;
   b += 2.0 * kWallParts * kVec3;  // wall history, and its scratch for re-ordering
   // Contact list: rows (current, previous, fill), and per pair partner and history, twice
-  // (current and previous, for the history transfer).
-  b += 3.0 * kSize + kGrowth * pairs * 2.0 * (kIndex + kVec3);
+  // (current and previous, for the history transfer), and its row (the pair loop's index).
+  b += 3.0 * kSize + kGrowth * pairs * (2.0 * (kIndex + kVec3) + kIndex);
   // The pair loop's cross-block sums (one thread).
   b += s.rotation ? 2.0 * kVec3 : kVec3;
   // Re-ordering: Morton keys, order and inverse, one scratch array of each type; renumbering

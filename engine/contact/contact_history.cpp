@@ -199,9 +199,11 @@ void ContactList::build_cross_block(std::size_t block_rows) {
   const std::size_t n = rows();
   // Count per partner, then the receivers in increasing order, then the contacts by k.
   fill_.assign(n + 1, 0);
+  entry_row_.resize(col_.size());
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t block_end = row_block_end_[i];
     for (std::size_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {
+      entry_row_[k] = static_cast<Index>(i);
       if (col_[k] >= block_end) ++fill_[col_[k]];
     }
   }

@@ -58,6 +58,9 @@ class ContactList {
   /// block_start()[b + 1]); row_block_end()[i] is the end of row i's block.
   std::span<const std::size_t> block_start() const { return block_start_; }
   std::span<const std::size_t> row_block_end() const { return row_block_end_; }
+  /// The row of every contact: entry_rows()[k] = i for k in [row_start()[i], row_start()[i + 1])
+  /// (the pair loop splits chunks of entries across row ends). Valid after index_cross_block().
+  std::span<const Index> entry_rows() const { return entry_row_; }
   /// The particles that are the partner of some cross-block contact, increasing; for the r-th,
   /// its cross-block contacts are k = cross_contacts()[q] for q in [cross_start()[r],
   /// cross_start()[r + 1]), increasing k. Valid after index_cross_block().
@@ -105,6 +108,7 @@ class ContactList {
   std::vector<IndexPair> dropped_;
   std::vector<double> dropped_state_;
   std::vector<std::size_t> fill_;  // scratch: next free slot per row
+  std::vector<Index> entry_row_;
   std::vector<Index> cross_receivers_;
   std::vector<std::size_t> cross_start_;
   std::vector<std::size_t> cross_k_;

@@ -25,29 +25,32 @@ namespace {
   return nearest_image(p.position[i], p.position[j], period);
 }
 
-// Visits the entries k in [begin, end) of row i: apart(k) for those that do not overlap (in any
-// order), then overlap(k) for those that do, by increasing k. Most entries of a Verlet list do not
-// overlap, in no predictable pattern; so each chunk is first split by a loop without branches,
-// the overlapping entries from the front of `sel`, the others from its back, and the force
-// kernel then runs without a mispredicted branch per entry (measured +10 % p-steps/s).
+// Visits the entries k in [begin, end) (rows in order; entry k is row row_of[k]'s):
+// apart(k) for those that do not overlap (in any order), then overlap(i, k) for those that do, by
+// increasing k. Most entries of a Verlet list do not overlap, in no predictable pattern; so each
+// chunk is first split by a loop without branches, the overlapping entries from the front of
+// `sel`, the others from its back, and the force kernel then runs without a mispredicted branch
+// per entry (measured +10 % p-steps/s). The chunks run across row ends: a row holds ~7 entries,
+// and loops row by row paid three short loops' exits a row.
 // `touching` counts the entries within the touching tolerance (what a search with margin 0 finds).
 // kMark (a scene with cohesive parts): also writes each entry's touch mark (cohesion_loops.hpp)
 // to mark[k], so the cohesive pass need not gather the partners again.
 template <bool kMark, class Overlap, class Apart>
-[[gnu::always_inline]] inline void split_row(const Particles& p, std::span<const Index> col,
-                                             std::size_t i, std::size_t begin, std::size_t end,
-                                             double period, std::size_t& touching,
-                                             std::uint8_t* mark, Overlap&& overlap, Apart&& apart) {
+[[gnu::always_inline]] inline void split_entries(const Particles& p, std::span<const Index> col,
+                                                 std::span<const Index> row_of, std::size_t begin,
+                                                 std::size_t end, double period,
+                                                 std::size_t& touching, std::uint8_t* mark,
+                                                 Overlap&& overlap, Apart&& apart) {
   constexpr std::size_t kChunk = 64;
   std::uint32_t sel[kChunk];
-  const double r_i = p.radius[i];
   for (std::size_t k0 = begin; k0 < end; k0 += kChunk) {
     const std::size_t k1 = std::min(end, k0 + kChunk);
     std::size_t front = 0, back = k1 - k0;  // sel[0, front): overlapping; sel[back, n): apart
     for (std::size_t k = k0; k < k1; ++k) {
+      const Index i = row_of[k];
       const Index j = col[k];
       const Vec3 d = separation(p, i, j, period);
-      const double sum_r = r_i + p.radius[j];
+      const double sum_r = p.radius[i] + p.radius[j];
       const double dist2 = d.squaredNorm();
       const double cut = sum_r + kTouchTolerance;
       const auto overlapping = static_cast<std::size_t>((dist2 < sum_r * sum_r) & (dist2 != 0.0));
@@ -60,7 +63,10 @@ template <bool kMark, class Overlap, class Apart>
       back -= 1 - overlapping;
     }
     for (std::size_t q = back; q < k1 - k0; ++q) apart(k0 + sel[q]);
-    for (std::size_t q = 0; q < front; ++q) overlap(k0 + sel[q]);
+    for (std::size_t q = 0; q < front; ++q) {
+      const std::size_t k = k0 + sel[q];
+      overlap(row_of[k], k);
+    }
   }
 }
 
@@ -97,19 +103,17 @@ template <class Normal, bool Tangential, RollingKind Rolling, bool kMark, class 
     batch.count = 0;
   };
   std::size_t touching = 0;
-  for (std::size_t i = begin; i < end; ++i) {
-    split_row<kMark>(
-        p, col, i, row[i], row[i + 1], period, touching, mark,
-        [&](std::size_t k) {
-          batch.add(p, i, col[k], separation(p, i, col[k], period), hist[k], k);
-          if constexpr (kSpring) batch.set_rolling(roll + k * stride);
-          if (batch.full()) flush();
-        },
-        [&](std::size_t k) {  // not (or no longer) overlapping
-          hist[k].setZero();
-          if constexpr (kSpring) std::fill_n(roll + k * stride, kRollingStateSize, 0.0);
-        });
-  }
+  split_entries<kMark>(
+      p, col, contacts.entry_rows(), row[begin], row[end], period, touching, mark,
+      [&](std::size_t i, std::size_t k) {
+        batch.add(p, i, col[k], separation(p, i, col[k], period), hist[k], k);
+        if constexpr (kSpring) batch.set_rolling(roll + k * stride);
+        if (batch.full()) flush();
+      },
+      [&](std::size_t k) {  // not (or no longer) overlapping
+        hist[k].setZero();
+        if constexpr (kSpring) std::fill_n(roll + k * stride, kRollingStateSize, 0.0);
+      });
   if (batch.count > 0) flush();
   return touching;
 }
@@ -230,7 +234,7 @@ template <class Normal, bool Tangential, RollingKind Rolling, bool kMark>
 }
 
 // Several threads: (1) whole blocks, each by one thread (contacts are independent; each owns its
-// history); (2) each particle adds its cross-block shares, by k. kMark: see split_row (the
+// history); (2) each particle adds its cross-block shares, by k. kMark: see split_entries (the
 // buffer buf.cohesion.mark is sized here).
 template <class Normal, bool Tangential, RollingKind Rolling, bool kMark>
 std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts,
