@@ -99,5 +99,37 @@ TEST(ContactList, LongRowsAreSortedAndMatched) {
   }
 }
 
+// entry_rows()[k] is row i of every entry k, after the list is built, replaced, renumbered and
+// re-indexed: the pair loop splits its chunks across row ends by it.
+void expect_entry_rows(ContactList& c) {
+  c.index_cross_block(4);
+  ASSERT_EQ(c.entry_rows().size(), c.size());
+  for (std::size_t i = 0; i < c.rows(); ++i) {
+    for (std::size_t k = c.row_start()[i]; k < c.row_start()[i + 1]; ++k) {
+      ASSERT_EQ(c.entry_rows()[k], i) << "entry " << k;
+    }
+  }
+}
+
+TEST(ContactList, EntryRowsFollowTheListThroughUpdateAndRenumber) {
+  ContactList c;
+  // Rows of 0 to 4 entries, empty rows between, and an empty row at the end.
+  const std::vector<IndexPair> pairs{{0, 1}, {0, 5}, {0, 9}, {2, 3}, {2, 4}, {2, 6},
+                                     {2, 8}, {5, 6}, {7, 8}, {7, 9}, {8, 9}};
+  c.update(pairs, 11);
+  expect_entry_rows(c);
+  c.update(std::vector<IndexPair>{{1, 2}, {3, 10}, {4, 5}, {4, 6}}, 11);
+  expect_entry_rows(c);
+  std::vector<Index> new_index{10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0};
+  c.renumber(new_index);
+  expect_entry_rows(c);
+  c.update(pairs, 11);
+  c.index_cross_block(2);  // another block size: rebuilt as well
+  ASSERT_EQ(c.entry_rows().size(), pairs.size());
+  EXPECT_EQ(c.entry_rows()[3], 2u);
+  c.update(std::vector<IndexPair>{}, 11);
+  expect_entry_rows(c);
+}
+
 }  // namespace
 }  // namespace drumlab
