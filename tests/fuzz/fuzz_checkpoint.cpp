@@ -4,8 +4,6 @@
 // third of the rows, read_checkpoint_rows). Bad input must be an InputError; an accepted state is
 // stepped twice and must then be finite or stop as UnstableError. Anything else (another
 // exception, a crash, a sanitizer report, a NaN in an accepted run) is a finding.
-#include <unistd.h>
-
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -15,6 +13,7 @@
 #include "engine/io/checkpoint.hpp"
 #include "engine/session/run_session.hpp"
 #include "tests/fuzz/restart_and_step.hpp"
+#include "tests/fuzz/scratch_file.hpp"
 
 namespace {
 
@@ -30,8 +29,8 @@ const drumlab::SceneConfig& scene(bool wet) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const fs::path file =
-      fs::temp_directory_path() / ("drumlab-fuzz-checkpoint-" + std::to_string(::getpid()) + ".h5");
+  static const drumlab::fuzz::ScratchFile scratch("drumlab-fuzz-checkpoint");
+  const fs::path& file = scratch.path();
   {
     std::ofstream out(file, std::ios::binary | std::ios::trunc);
     out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));

@@ -14,8 +14,6 @@
 // Input: byte 0 picks the drum (mod 3); then edits of 12 bytes each (at most 16): the array
 // (mod the count of arrays), row (2 bytes), component, the value's kind, then 7 bytes of value
 // (kind 15: the raw double of those 7 bytes and the next).
-#include <unistd.h>
-
 #include <array>
 #include <bit>
 #include <cmath>
@@ -31,6 +29,7 @@
 #include "engine/io/checkpoint.hpp"
 #include "engine/session/run_session.hpp"
 #include "tests/fuzz/restart_and_step.hpp"
+#include "tests/fuzz/scratch_file.hpp"
 
 namespace {
 
@@ -207,8 +206,8 @@ void edit(drumlab::SimulationState& s, Bytes& in) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const fs::path file =
-      fs::temp_directory_path() / ("drumlab-fuzz-values-" + std::to_string(::getpid()) + ".h5");
+  static const drumlab::fuzz::ScratchFile scratch("drumlab-fuzz-values");
+  const fs::path& file = scratch.path();
   Bytes in(data, size);
   const Drum& d = drum(in.next() % 3);
   drumlab::SimulationState state = d.state;

@@ -2,8 +2,6 @@
 // analyze` and the Python module read it: read_series_info, then each of the first frames. Bad
 // input must be an InputError; a frame read must have arrays of one length. Anything else
 // (another exception, a crash, a sanitizer report) is a finding.
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
@@ -12,11 +10,12 @@
 #include <string>
 
 #include "engine/io/h5_series.hpp"
+#include "tests/fuzz/scratch_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   namespace fs = std::filesystem;
-  static const fs::path file =
-      fs::temp_directory_path() / ("drumlab-fuzz-series-" + std::to_string(::getpid()) + ".h5");
+  static const drumlab::fuzz::ScratchFile scratch("drumlab-fuzz-series");
+  const fs::path& file = scratch.path();
   {
     std::ofstream out(file, std::ios::binary | std::ios::trunc);
     out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <system_error>
 
 #include "engine/io/checkpoint.hpp"
 #include "tests/unit/cli_runner.hpp"
@@ -39,15 +40,20 @@ inline std::string read_text(const std::string& file) {
 inline std::string mpirun(int ranks) {
   const std::string launcher = DRUMLAB_MPIEXEC;
   if (launcher.empty()) return {};
-  static const std::string session_base = [] {
-    const std::filesystem::path dir =
+  struct SessionBase {  // removed with the test process, as TempDir is with its test
+    std::filesystem::path dir =
         std::filesystem::temp_directory_path() / ("drumlab-ompi-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(dir);
-    return dir.string();
-  }();
+    SessionBase() { std::filesystem::create_directories(dir); }
+    ~SessionBase() {
+      std::error_code ignored;
+      std::filesystem::remove_all(dir, ignored);
+    }
+  };
+  static const SessionBase session_base;
   return "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
          "OMPI_MCA_mpi_yield_when_idle=1 OMPI_MCA_orte_tmpdir_base=" +
-         session_base + " " + launcher + " --oversubscribe -np " + std::to_string(ranks) + " ";
+         session_base.dir.string() + " " + launcher + " --oversubscribe -np " +
+         std::to_string(ranks) + " ";
 }
 
 /// A test that runs `drumlab run` and `drumlab-mpi run` in its own temporary directory and reads
