@@ -230,29 +230,33 @@ void run_bench_throughput(const ThroughputOptions& opt) {
   for (const std::string& m : methods) {
     const std::uint64_t steps = m == "brute" ? std::min(opt.steps, kBruteMaxSteps) : opt.steps;
     for (const std::uint64_t k : sorts) {
-      for (const bool dry : dry_runs) {
-        std::string label = sorts.size() > 1 ? fmt::format("{} sort {}", m, k) : m;
-        if (dry) label += " dry";
-        labels.push_back(label);
-        // The thread counts take turns within each repeat, so that the speed-up compares runs
-        // made in the same minutes of a machine whose speed drifts.
-        std::vector<ThroughputRow> best(threads.size());
-        for (int rep = 0; rep < std::max(1, opt.repeats); ++rep) {
+      // The thread counts, and with --dry-too the wet and the dry run, take turns within each
+      // repeat, so that a speed-up or the wet/dry ratio compares runs made in the same minutes of
+      // a machine whose speed drifts.
+      std::vector<std::vector<ThroughputRow>> best(dry_runs.size(),
+                                                   std::vector<ThroughputRow>(threads.size()));
+      for (int rep = 0; rep < std::max(1, opt.repeats); ++rep) {
+        for (std::size_t v = 0; v < dry_runs.size(); ++v) {
           for (std::size_t q = 0; q < threads.size(); ++q) {
-            ThroughputRow run =
-                measure(rolling, m, k, threads[q], steps, m == "brute" ? 1 : opt.warmup, dry);
-            if (rep == 0 || run.rate() > best[q].rate()) best[q] = std::move(run);
+            ThroughputRow run = measure(rolling, m, k, threads[q], steps,
+                                        m == "brute" ? 1 : opt.warmup, dry_runs[v]);
+            if (rep == 0 || run.rate() > best[v][q].rate()) best[v][q] = std::move(run);
           }
         }
-        const double base_rate = best.front().rate();
-        for (ThroughputRow& row : best) {
+      }
+      for (std::size_t v = 0; v < dry_runs.size(); ++v) {
+        std::string label = sorts.size() > 1 ? fmt::format("{} sort {}", m, k) : m;
+        if (dry_runs[v]) label += " dry";
+        labels.push_back(label);
+        const double base_rate = best[v].front().rate();
+        for (ThroughputRow& row : best[v]) {
           row.label = label;
           row.speedup = base_rate > 0.0 ? row.rate() / base_rate : 0.0;
           print_row(row);
           std::fflush(stdout);  // rows as they come, also into a pipe or file
           rows.push_back(std::move(row));
         }
-        if (dry) {
+        if (dry_runs[v]) {
           const ThroughputRow& wet = rows[rows.size() - 2 * threads.size()];
           fmt::print("{:<20} wet costs {:.3f}x dry per particle-step (1 thread)\n", "",
                      rows[rows.size() - threads.size()].rate() / wet.rate());
