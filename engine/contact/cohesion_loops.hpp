@@ -65,8 +65,9 @@ inline constexpr std::size_t kCohesionBlockRows = 256;
 
 /// Advances every listed pair's cohesive state by dt (each part's advance_pair: bridges form, age,
 /// rupture; films give and take liquid) and adds the attractive forces to p.force, in two passes.
-/// buffers.mark must hold every listed pair's touch_mark at the current positions (the contact
-/// pair loop, ContactModel::add_pair_forces_parallel, writes it just before).
+/// buffers.mark must hold every listed pair's touch_mark at the current positions and `contacts`
+/// its entry_rows() (the contact pair loop, ContactModel::add_pair_forces_parallel, writes and
+/// indexes them just before).
 /// Pass 1, in parallel over blocks of rows: every pair on which a part may act and no part has an
 /// event gets its force and its state advanced (they read no film); the others are marked.
 /// `list_events`: buffers.events lists this step's events for a replay across MPI ranks.
