@@ -10,16 +10,26 @@
 
 namespace drumlab {
 
+std::filesystem::path staging_path(const std::filesystem::path& file, long pid) {
+  return file.string() + fmt::format(".tmp-{}", pid);
+}
+
+std::filesystem::path staging_path(const std::filesystem::path& file) {
+  return staging_path(file, static_cast<long>(::getpid()));
+}
+
+InputError cannot_create(const std::filesystem::path& file) {
+  return InputError(fmt::format("{}: cannot write (does the directory exist and is it writable?)",
+                                file.string()));
+}
+
 void write_file_atomically(const std::filesystem::path& file,
                            const std::function<void(std::ostream&)>& write) {
   namespace fs = std::filesystem;
-  const fs::path tmp = file.string() + fmt::format(".tmp-{}", ::getpid());
+  const fs::path tmp = staging_path(file);
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) {
-      throw InputError(fmt::format(
-          "{}: cannot write (does the directory exist and is it writable?)", file.string()));
-    }
+    if (!out) throw cannot_create(file);
     write(out);
     out.flush();
     if (!out) {

@@ -1,13 +1,13 @@
 #include "engine/io/h5_file.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <fstream>
 #include <optional>
 #include <system_error>
 
 #include <fmt/format.h>
+
+#include "engine/io/atomic_file.hpp"
 
 namespace drumlab::h5 {
 
@@ -279,14 +279,11 @@ Handle file_access(const std::filesystem::path& path, std::optional<FileFormat> 
 }  // namespace
 
 StagedFile::StagedFile(std::filesystem::path path)
-    : path_(std::move(path)), staging_(path_.string() + fmt::format(".tmp-{}", ::getpid())) {
+    : path_(std::move(path)), staging_(staging_path(path_)) {
   quiet();
   const Handle fapl = file_access(path_, FileFormat::whole);
   file_ = Handle(H5Fcreate(staging_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose);
-  if (file_.get() < 0) {
-    throw InputError(fmt::format("{}: cannot write (does the directory exist and is it writable?)",
-                                 path_.string()));
-  }
+  if (file_.get() < 0) throw cannot_create(path_);
 }
 
 StagedFile::~StagedFile() {
@@ -346,16 +343,13 @@ void flush(hid_t file) {
 }
 
 void check_writable(const std::filesystem::path& path) {
-  const std::filesystem::path probe = path.string() + fmt::format(".tmp-{}", ::getpid());
+  const std::filesystem::path probe = staging_path(path);
   std::ofstream out(probe, std::ios::binary | std::ios::trunc);
   const bool ok = static_cast<bool>(out);
   out.close();
   std::error_code ignored;
   std::filesystem::remove(probe, ignored);
-  if (!ok) {
-    throw InputError(fmt::format("{}: cannot write (does the directory exist and is it writable?)",
-                                 path.string()));
-  }
+  if (!ok) throw cannot_create(path);
 }
 
 Handle open_file(const std::filesystem::path& path) {

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "engine/io/atomic_file.hpp"
 #include "engine/io/checkpoint_layout.hpp"
 #include "engine/io/mpi/h5_mpi.hpp"
 
@@ -109,11 +110,11 @@ Share make_share(MpiComm& comm, const Simulation& sim, std::span<const std::uint
   return s;
 }
 
-/// FILE.tmp-PID with rank 0's pid, the same name on every rank.
+/// staging_path with rank 0's pid, the same name on every rank.
 std::filesystem::path temporary(MPI_Comm comm, const std::filesystem::path& file) {
   int pid = static_cast<int>(::getpid());
   MPI_Bcast(&pid, 1, MPI_INT, 0, comm);
-  return file.string() + fmt::format(".tmp-{}", pid);
+  return staging_path(file, pid);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "engine/io/atomic_file.hpp"
 #include "engine/parallel/particle_pack.hpp"
 
 namespace drumlab::h5 {
@@ -56,10 +57,7 @@ Handle mpi_access(MPI_Comm comm, const std::filesystem::path& path,
 Handle create_mpi_file(MPI_Comm comm, const std::filesystem::path& path, FileFormat format) {
   const Handle fapl = mpi_access(comm, path, format);
   Handle f(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose);
-  if (!all_ok(comm, f.get() >= 0)) {
-    throw InputError(fmt::format("{}: cannot write (does the directory exist and is it writable?)",
-                                 path.string()));
-  }
+  if (!all_ok(comm, f.get() >= 0)) throw cannot_create(path);
   return f;
 }
 
