@@ -49,6 +49,9 @@ struct BridgeBatch {
   alignas(64) double yy[kSize];
 
   bool full() const { return count == kSize; }
+  /// The contact pair loop adds the pull of overlapping pairs' live bridges (TouchingPull,
+  /// add_touching_pull below); pass 1 leaves them out.
+  static constexpr bool kTouchingInPairLoop = true;
   /// Whether a scene's bridge can run its pass 1 in batches (no viscous term).
   static bool applies(const LiquidBridge& b) { return b.viscosity == 0.0; }
 
@@ -132,5 +135,35 @@ template <>
 struct PartBatch<LiquidBridge> {
   using type = BridgeBatch;
 };
+
+/// After PairBatch::evaluate in the contact pair loop (contact_model.cpp), for a scene whose
+/// bridges pass 1 runs in BridgeBatch: every lane (an overlapping pair) whose bridge lives gets
+/// its pull added to its force on i, F0 = 2 pi R gamma cos(theta) towards j (touching: s~ = 0, so
+/// LiquidBridge::force is F0 and no event can happen), computed as BridgeBatch::evaluate computes
+/// it; and its bridge ages by dt. The force on j (minus it) and the sums follow the contact's.
+inline void add_touching_pull(const TouchingPull& t, PairBatch& b) {
+  alignas(64) double volume[PairBatch::kSize];
+  alignas(64) double xx[PairBatch::kSize];
+  alignas(64) double yy[PairBatch::kSize];
+  const std::size_t n = b.count;
+  for (std::size_t l = 0; l < n; ++l) volume[l] = t.state[b.k[l] * t.stride];
+  for (std::size_t l = 0; l < n; ++l) {  // the squares rounded as in BridgeBatch::evaluate
+    xx[l] = b.d.x[l] * b.d.x[l];
+    yy[l] = b.d.y[l] * b.d.y[l];
+  }
+  for (std::size_t l = 0; l < n; ++l) {
+    const LaneVec d = b.d.get(l);
+    const double dist = std::sqrt(std::fma(d.z, d.z, xx[l] + yy[l]));
+    const double pull = t.f0_per_radius * LiquidBridge::pair_radius(b.r_i[l], b.r_j[l]);
+    const LaneVec f = (pull / dist) * d;  // on j, towards i
+    const bool live = volume[l] > 0.0;
+    b.force.x[l] = live ? b.force.x[l] - f.x : b.force.x[l];
+    b.force.y[l] = live ? b.force.y[l] - f.y : b.force.y[l];
+    b.force.z[l] = live ? b.force.z[l] - f.z : b.force.z[l];
+  }
+  for (std::size_t l = 0; l < n; ++l) {
+    if (volume[l] > 0.0) t.state[b.k[l] * t.stride + 1] += t.dt;  // the bridge ages
+  }
+}
 
 }  // namespace drumlab

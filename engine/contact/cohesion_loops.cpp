@@ -62,6 +62,15 @@ struct LiveTest {
   const unsigned m = mark;
   return ((m & kTouchOrEqual) | static_cast<unsigned>(live)) & (m >> 1);
 }
+// take() without the overlapping pairs whose state is live: the pair loop has added their pull
+// (TouchingPull). What remains: touching without live state (a bridge may form), or live and not
+// overlapping (apart, or touching with |d| = r_i + r_j exactly).
+[[gnu::always_inline]] inline std::size_t take_not_pulled(std::uint8_t mark, bool live) {
+  const unsigned m = mark;
+  const auto l = static_cast<unsigned>(live);
+  const unsigned overlapping = (m >> 2) & 1u;
+  return (((m & kTouchOrEqual) & (l ^ 1u)) | (l & (overlapping ^ 1u))) & (m >> 1) & 1u;
+}
 
 // One listed pair: advances every part's state, returns the sum of their attractions (N, > 0
 // pulls i towards j), added in the parts' order. film: nullptr in pass 1 (no event there).
@@ -123,7 +132,8 @@ double event_liquid(const CohesiveParts& parts, const double* state) {
 // it); visit(i, k) then runs on the pairs that remain, each pair's row i read from entry_rows()
 // (the pair loop indexed it this step). Sifting row by row paid each short row's loop exits, ~8
 // entries a row; a cursor over the row starts, a mispredicted exit for most pairs.
-template <class Live, class Visit>
+// kPulled: the pair loop has done the overlapping pairs with live state (take_not_pulled).
+template <bool kPulled = false, class Live, class Visit>
 [[gnu::always_inline]] inline void for_each_acting_pair(const ContactList& contacts,
                                                         const std::uint8_t* mark, std::size_t block,
                                                         Live&& live, Visit&& visit) {
@@ -138,7 +148,11 @@ template <class Live, class Visit>
     std::size_t m = 0;
     for (std::size_t k = k0; k < k1; ++k) {
       sel[m] = static_cast<std::uint32_t>(k - k0);
-      m += take(mark[k], live(k));
+      if constexpr (kPulled) {
+        m += take_not_pulled(mark[k], live(k));
+      } else {
+        m += take(mark[k], live(k));
+      }
     }
     for (std::size_t q = 0; q < m; ++q) {
       const std::size_t k = k0 + sel[q];
@@ -170,7 +184,8 @@ template <class Live, class Visit>
 
 // Pass 1 over block `block` for a scene whose only cohesive part is `law`, with the SIMD batch
 // PartBatch<Law> (bridge_batch.hpp): the same entries as cohesion_block, in the same order; the
-// pairs that may act are evaluated in the batch's lanes.
+// pairs that may act are evaluated in the batch's lanes. A batch with kTouchingInPairLoop leaves
+// out the pairs the pair loop has pulled (touching_pull).
 template <class Law>
 [[gnu::noinline]] void batched_block(const Law& law, std::size_t off, const Particles& p,
                                      ContactList& contacts, double period, double dt,
@@ -181,7 +196,8 @@ template <class Law>
   CohesionBuffers::Entry* out =
       buffers.entries.data() + contacts.row_start()[block * kCohesionBlockRows];
   std::size_t n = 0;
-  typename PartBatch<Law>::type batch;
+  using Batch = typename PartBatch<Law>::type;
+  Batch batch;
   const auto flush = [&] {
     batch.evaluate(law);
     for (std::size_t l = 0; l < batch.count; ++l) {
@@ -192,7 +208,7 @@ template <class Law>
     }
     batch.count = 0;
   };
-  for_each_acting_pair(
+  for_each_acting_pair<Batch::kTouchingInPairLoop>(
       contacts, buffers.mark.data(), block,
       [&](std::size_t k) { return Law::live(&state[k * stride + off]); },
       [&](std::size_t i, std::size_t k) {
@@ -220,6 +236,23 @@ std::size_t batched_part(const CohesiveParts& parts) {
   });
   return present == 1 ? batched : kParts;
 }
+
+}  // namespace
+
+TouchingPull touching_pull(const CohesiveParts& parts, ContactList& contacts, double dt) {
+  TouchingPull pull;
+  const std::size_t batched = batched_part(parts);
+  CohesiveParts::for_each_law([&]<std::size_t K, class Law>() {
+    if constexpr (std::is_same_v<Law, LiquidBridge>) {
+      if (K != batched || !PartBatch<Law>::type::kTouchingInPairLoop) return;
+      pull = {contacts.state().data() + parts.offset_at(K), contacts.state_size(),
+              parts.at<K>()->pair.f0_per_radius, dt};
+    }
+  });
+  return pull;
+}
+
+namespace {
 
 // Pass 1 over one block: batched by part `batched` (batched_part), or pair by pair.
 void pass_one_block(const CohesiveParts& parts, std::size_t batched, const LiveTest& live,

@@ -55,13 +55,33 @@ struct CohesionBuffers {
 /// A listed pair's touch mark at squared centre distance dist2, radii summing to sum_r:
 /// kTouchOrEqual if |d| <= r_i + r_j (a part may act without live state), kApartCentres if
 /// the centres differ (|d| > 0: the pair has a direction).
+/// kOverlapping if the pair overlaps, |d| < r_i + r_j with |d| > 0 (the pair loop's contact: a
+/// TouchingPull below has added its bridge's pull).
 inline constexpr std::uint8_t kTouchOrEqual = 1;
 inline constexpr std::uint8_t kApartCentres = 2;
+inline constexpr std::uint8_t kOverlapping = 4;
 [[gnu::always_inline]] inline std::uint8_t touch_mark(double dist2, double sum_r) {
-  return static_cast<std::uint8_t>(static_cast<unsigned>(!(dist2 > sum_r * sum_r)) |
-                                   (static_cast<unsigned>(dist2 != 0.0) << 1));
+  const auto touch = static_cast<unsigned>(!(dist2 > sum_r * sum_r));
+  const auto apart = static_cast<unsigned>(dist2 != 0.0);
+  const auto overlapping = static_cast<unsigned>(dist2 < sum_r * sum_r) & apart;
+  return static_cast<std::uint8_t>(touch | (apart << 1) | (overlapping << 2));
 }
 inline constexpr std::size_t kCohesionBlockRows = 256;
+
+/// The live bridges of overlapping pairs, whose pull the contact pair loop adds (a scene whose only
+/// cohesive part is the plain liquid bridge, the part pass 1 runs in BridgeBatch): touching, a
+/// bridge pulls with the constant F0 and has no event (it forms on contact and ruptures apart), so
+/// the pair loop, which has the pair's separation and radii in its batch anyway, adds F0 to the
+/// contact's force and ages the bridge by dt (add_touching_pull, bridge_batch.hpp); pass 1 leaves
+/// these pairs out (their touch mark has kOverlapping). state == nullptr: none (every other
+/// composition of parts: pass 1 evaluates every acting pair).
+struct TouchingPull {
+  double* state = nullptr;  ///< the bridge's scalars of listed pair k: state[k * stride]
+  std::size_t stride = 0;
+  double f0_per_radius = 0.0;  ///< BridgeLiquid::f0_per_radius of the pair liquid
+  double dt = 0.0;             ///< the bridges' age step
+};
+TouchingPull touching_pull(const CohesiveParts& parts, ContactList& contacts, double dt);
 
 /// Advances every listed pair's cohesive state by dt (each part's advance_pair: bridges form, age,
 /// rupture; films give and take liquid) and adds the attractive forces to p.force, in two passes.
@@ -69,7 +89,8 @@ inline constexpr std::size_t kCohesionBlockRows = 256;
 /// its entry_rows() (the contact pair loop, ContactModel::add_pair_forces_parallel, writes and
 /// indexes them just before).
 /// Pass 1, in parallel over blocks of rows: every pair on which a part may act and no part has an
-/// event gets its force and its state advanced (they read no film); the others are marked.
+/// event gets its force and its state advanced (they read no film); the others are marked. The
+/// pairs of touching_pull() are left out: the pair loop has done them.
 /// `list_events`: buffers.events lists this step's events for a replay across MPI ranks.
 void cohesion_pass_one(const CohesiveParts& parts, const Particles& p, ContactList& contacts,
                        double period, double dt, CohesionBuffers& buffers, bool list_events);

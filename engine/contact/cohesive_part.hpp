@@ -37,7 +37,9 @@
 //              parameters are checked before, by validate_laws (scene/scene_validation.hpp).
 //   batch      optional, for speed: PartBatch<P>::type, a batch that evaluates pass 1 of a scene
 //              whose only cohesive part is P in SIMD lanes with the same bits (bridge_batch.hpp:
-//              add(), evaluate(), acts(), settle(), the lanes' i, j, k, force; applies(law)).
+//              add(), evaluate(), acts(), settle(), the lanes' i, j, k, force; applies(law);
+//              kTouchingInPairLoop: the contact pair loop adds the pull of overlapping pairs
+//              with live state, and pass 1 leaves them out: TouchingPull, cohesion_loops.hpp).
 // A part is registered once, in CohesiveParts (cohesive_laws.hpp); the order there is the order
 // in which the parts' forces add up in a pair (it fixes the bits).
 #include <algorithm>

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "engine/contact/bridge_batch.hpp"
 #include "engine/contact/contact_kernel.hpp"
 #include "engine/contact/law_dispatch.hpp"
 #include "engine/contact/mesh_wall_history.hpp"
@@ -71,16 +72,16 @@ template <bool kMark, class Overlap, class Apart>
 }
 
 // Evaluates the overlapping entries of rows [begin, end) in batches; for each, by increasing k,
-// stores its advanced history and calls sink(batch, l) with its force and torques in lane l.
-// Resets the history of the entries that do not overlap. Returns the entries within the touching
-// tolerance.
+// stores its advanced history and calls sink(batch, l) with its force and torques in lane l (with
+// `pull.state`, its live bridge's pull added: TouchingPull). Resets the history of the entries
+// that do not overlap. Returns the entries within the touching tolerance.
 template <class Normal, bool Tangential, RollingKind Rolling, bool kMark, class Sink>
 [[gnu::always_inline]] inline std::size_t batched_rows(const ContactLaw<Normal>& law,
                                                        const Particles& p, ContactList& contacts,
                                                        std::size_t begin, std::size_t end,
                                                        double period, double dt, double history_dt,
-                                                       std::uint8_t* mark, PairBatch& batch,
-                                                       Sink&& sink) {
+                                                       std::uint8_t* mark, const TouchingPull& pull,
+                                                       PairBatch& batch, Sink&& sink) {
   const auto row = contacts.row_start();
   const auto col = contacts.col();
   const auto hist = contacts.history();
@@ -90,6 +91,9 @@ template <class Normal, bool Tangential, RollingKind Rolling, bool kMark, class 
   double* const roll = kSpring ? contacts.state().data() + (stride - kRollingStateSize) : nullptr;
   const auto flush = [&] {
     batch.evaluate<Normal, Tangential, Rolling>(law, dt, history_dt);
+    if constexpr (kMark) {
+      if (pull.state != nullptr) add_touching_pull(pull, batch);
+    }
     for (std::size_t l = 0; l < batch.count; ++l) {
       hist[batch.k[l]] = batch.xi.vec3(l);
       if constexpr (kSpring) {
@@ -158,7 +162,8 @@ constexpr std::size_t kBlockRows = kPairBlockRows;
 // cross_torque (by k, as the rows come in order) and added at the end.
 template <class Normal, bool Tangential, RollingKind Rolling, bool kMark>
 std::size_t pair_loop_serial(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts,
-                             PairForceBuffers& buf, double period, double dt, double history_dt) {
+                             PairForceBuffers& buf, double period, double dt, double history_dt,
+                             const TouchingPull& pull) {
   constexpr bool kTorque = Tangential || rolls(Rolling);
   contacts.index_cross_block(kBlockRows);
   const auto receivers = contacts.cross_receivers();
@@ -172,8 +177,8 @@ std::size_t pair_loop_serial(const ContactLaw<Normal>& law, Particles& p, Contac
   PairBatch batch;
   RowSum<kTorque> own;
   const std::size_t touching = batched_rows<Normal, Tangential, Rolling, kMark>(
-      law, p, contacts, 0, contacts.rows(), period, dt, history_dt, buf.cohesion.mark.data(), batch,
-      [&](const PairBatch& b, std::size_t l) {
+      law, p, contacts, 0, contacts.rows(), period, dt, history_dt, buf.cohesion.mark.data(), pull,
+      batch, [&](const PairBatch& b, std::size_t l) {
         const Index i = b.i[l];
         const Index j = b.j[l];
         own.add(p, i, b, l);
@@ -203,7 +208,7 @@ template <class Normal, bool Tangential, RollingKind Rolling, bool kMark>
 [[gnu::noinline]] std::size_t block_rows(const ContactLaw<Normal>& law, Particles& p,
                                          ContactList& contacts, PairForceBuffers& buf,
                                          std::size_t block, double period, double dt,
-                                         double history_dt) {
+                                         double history_dt, const TouchingPull& pull) {
   constexpr bool kTorque = Tangential || rolls(Rolling);
   const std::size_t begin = contacts.block_start()[block];
   const std::size_t end = contacts.block_start()[block + 1];
@@ -215,7 +220,7 @@ template <class Normal, bool Tangential, RollingKind Rolling, bool kMark>
   PairBatch batch;
   RowSum<kTorque> own;
   const std::size_t touching = batched_rows<Normal, Tangential, Rolling, kMark>(
-      law, p, contacts, begin, end, period, dt, history_dt, buf.cohesion.mark.data(), batch,
+      law, p, contacts, begin, end, period, dt, history_dt, buf.cohesion.mark.data(), pull, batch,
       [&](const PairBatch& b, std::size_t l) {
         const Index j = b.j[l];
         own.add(p, b.i[l], b, l);
@@ -238,14 +243,15 @@ template <class Normal, bool Tangential, RollingKind Rolling, bool kMark>
 // buffer buf.cohesion.mark is sized here).
 template <class Normal, bool Tangential, RollingKind Rolling, bool kMark>
 std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts,
-                      PairForceBuffers& buf, double period, double dt, double history_dt) {
+                      PairForceBuffers& buf, double period, double dt, double history_dt,
+                      const TouchingPull& pull) {
   if constexpr (kMark) buf.cohesion.mark.resize(contacts.size());
 #ifdef _OPENMP
   if (omp_get_max_threads() == 1)
 #endif
   {
     return pair_loop_serial<Normal, Tangential, Rolling, kMark>(law, p, contacts, buf, period, dt,
-                                                                history_dt);
+                                                                history_dt, pull);
   }
   constexpr bool kTorque = Tangential || rolls(Rolling);
   const std::size_t zero = contacts.size();  // the slot of the pairs that do not overlap
@@ -262,7 +268,7 @@ std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& 
 #pragma omp parallel for schedule(static) reduction(+ : touching)
   for (std::int64_t b = 0; b < blocks; ++b) {
     touching += block_rows<Normal, Tangential, Rolling, kMark>(
-        law, p, contacts, buf, static_cast<std::size_t>(b), period, dt, history_dt);
+        law, p, contacts, buf, static_cast<std::size_t>(b), period, dt, history_dt, pull);
   }
   const auto receivers = contacts.cross_receivers();
   const auto start = contacts.cross_start();
@@ -517,12 +523,14 @@ std::size_t ContactModel::add_pair_forces_parallel(Particles& p, ContactList& co
                                                    bool list_events) const {
   std::size_t touching = 0;
   const bool cohesive = cohesive_.any();
+  const TouchingPull pull =
+      cohesive ? touching_pull(cohesive_, contacts, history_dt) : TouchingPull{};
   with_law(pair_, pair_tangential_, rolling_kind(pair_rolling_, spring_),
            [&]<class N, bool Tangential, RollingKind Rolling>(const ContactLaw<N>& law) {
              touching = cohesive ? pair_loop<N, Tangential, Rolling, true>(
-                                       law, p, contacts, buffers, period, dt, history_dt)
+                                       law, p, contacts, buffers, period, dt, history_dt, pull)
                                  : pair_loop<N, Tangential, Rolling, false>(
-                                       law, p, contacts, buffers, period, dt, history_dt);
+                                       law, p, contacts, buffers, period, dt, history_dt, pull);
            });
   if (cohesive) {
     cohesion_pass_one(cohesive_, p, contacts, period, history_dt, buffers.cohesion, list_events);

@@ -100,6 +100,41 @@ TEST(WetLaws, ProbedBridgeForceFollowsWillettAtEveryGapRadiusPairAndWall) {
   }
 }
 
+// While two bridged spheres overlap, the bridge's pull is F0 (s~ = 0) on top of the contact
+// force: the wet probe's force minus the dry probe's at the same overlaps (the same scene without
+// [liquid]; the spheres at rest, so the contact force depends on the overlap alone) is -F0, to the
+// round-off of one sum. The pair loop adds it there (TouchingPull), not the cohesive pass.
+TEST(WetLaws, OverlappingBridgedPairsAddF0ToTheContactForce) {
+  const SceneConfig wet = scene_with(kMigration);
+  SceneConfig dry = parse_scene(output_scene_text(), "wet-laws-test-dry");
+  dry.search_method = "m5";
+  const double theta = 10.0 * kPi / 180.0;
+  for (const auto& [a, b] : {std::pair<std::uint8_t, std::uint8_t>{0, 0}, {0, 1}, {1, 1}}) {
+    LawProbeOptions o;
+    o.class_a = a;
+    o.class_b = b;
+    o.end_gap = 2e-3;  // the same positions in both probes (the dry law has no range)
+    const LawCurve w = probe_law(wet, o);
+    const LawCurve d = probe_law(dry, o);
+    SCOPED_TRACE(w.label);
+    ASSERT_EQ(w.samples.size(), d.samples.size());
+    const double r1 = wet.classes[a].radius, r2 = wet.classes[b].radius;
+    const double f0 = 2.0 * kPi * (2.0 * r1 * r2 / (r1 + r2)) * kGamma * std::cos(theta);
+    std::size_t bridged = 0;
+    for (std::size_t k = 0; k < w.samples.size(); ++k) {
+      const LawSample& sw = w.samples[k];
+      const LawSample& sd = d.samples[k];
+      ASSERT_EQ(sw.gap, sd.gap);
+      if (!(sw.gap < 0.0)) continue;
+      ASSERT_GT(sd.normal_force, 0.0) << sw.gap;   // overlapping: repulsive when dry
+      ASSERT_GT(sw.bridge_volume, 0.0) << sw.gap;  // formed at the first touch, full films
+      EXPECT_NEAR(sw.normal_force - sd.normal_force, -f0, 1e-13 * (sd.normal_force + f0)) << sw.gap;
+      ++bridged;
+    }
+    EXPECT_GT(bridged, 60u);  // every overlapping sample, approach and retreat
+  }
+}
+
 TEST(WetLaws, RuptureIsSharpAtSrup) {
   const SceneConfig scene = scene_with(kMigration);
   const double s_rup = (1.0 + 0.5 * 10.0 * kPi / 180.0) * std::cbrt(1e-9);
