@@ -146,7 +146,11 @@ inline void add_touching_pull(const TouchingPull& t, PairBatch& b) {
   alignas(64) double xx[PairBatch::kSize];
   alignas(64) double yy[PairBatch::kSize];
   const std::size_t n = b.count;
-  for (std::size_t l = 0; l < n; ++l) volume[l] = t.state[b.k[l] * t.stride];
+  for (std::size_t l = 0; l < n; ++l) {
+    double* s = t.state + b.k[l] * t.stride;
+    volume[l] = s[0];
+    s[1] += s[0] > 0.0 ? t.dt : 0.0;  // a live bridge ages (+0 leaves any other age as it is)
+  }
   for (std::size_t l = 0; l < n; ++l) {  // the squares rounded as in BridgeBatch::evaluate
     xx[l] = b.d.x[l] * b.d.x[l];
     yy[l] = b.d.y[l] * b.d.y[l];
@@ -160,9 +164,6 @@ inline void add_touching_pull(const TouchingPull& t, PairBatch& b) {
     b.force.x[l] = live ? b.force.x[l] - f.x : b.force.x[l];
     b.force.y[l] = live ? b.force.y[l] - f.y : b.force.y[l];
     b.force.z[l] = live ? b.force.z[l] - f.z : b.force.z[l];
-  }
-  for (std::size_t l = 0; l < n; ++l) {
-    if (volume[l] > 0.0) t.state[b.k[l] * t.stride + 1] += t.dt;  // the bridge ages
   }
 }
 

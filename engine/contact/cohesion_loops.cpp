@@ -339,14 +339,6 @@ void settle_dropped_pair(const CohesiveParts& parts, const ContactList& contacts
 
 }  // namespace
 
-WallGap wall_gap(const Drum& drum, WallPart part, const Vec3& x, double r) {
-  if (part == WallPart::cap_low) return {x.z() - r, Vec3(0.0, 0.0, 1.0)};
-  if (part == WallPart::cap_high) return {drum.depth() - x.z() - r, Vec3(0.0, 0.0, -1.0)};
-  const double rho = std::sqrt(x.x() * x.x() + x.y() * x.y());
-  if (rho == 0.0) return {drum.radius() - r, Vec3::Zero()};
-  return {drum.radius() - rho - r, Vec3(-x.x() / rho, -x.y() / rho, 0.0)};
-}
-
 void cohesion_pass_one(const CohesiveParts& parts, const Particles& p, ContactList& contacts,
                        double period, double dt, CohesionBuffers& buffers, bool list_events) {
   const std::size_t blocks = (contacts.rows() + kCohesionBlockRows - 1) / kCohesionBlockRows;

@@ -44,6 +44,7 @@
 // in which the parts' forces add up in a pair (it fixes the bits).
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <concepts>
 #include <cstddef>
 #include <optional>
@@ -77,7 +78,15 @@ struct WallGap {
   double gap = 0.0;
   Vec3 normal = Vec3::Zero();
 };
-WallGap wall_gap(const Drum& drum, WallPart part, const Vec3& x, double r);
+/// (Inlined: the wall pass calls it for every wall candidate and part.)
+[[gnu::always_inline]] inline WallGap wall_gap(const Drum& drum, WallPart part, const Vec3& x,
+                                               double r) {
+  if (part == WallPart::cap_low) return {x.z() - r, Vec3(0.0, 0.0, 1.0)};
+  if (part == WallPart::cap_high) return {drum.depth() - x.z() - r, Vec3(0.0, 0.0, -1.0)};
+  const double rho = std::sqrt(x.x() * x.x() + x.y() * x.y());
+  if (rho == 0.0) return {drum.radius() - r, Vec3::Zero()};
+  return {drum.radius() - rho - r, Vec3(-x.x() / rho, -x.y() / rho, 0.0)};
+}
 
 /// Particle i against wall part `part` of the drum turning at omega (rad/s), for advance_wall.
 struct WallSite {
