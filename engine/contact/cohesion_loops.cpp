@@ -66,10 +66,10 @@ struct LiveTest {
 // (TouchingPull). What remains: touching without live state (a bridge may form), or live and not
 // overlapping (apart, or touching with |d| = r_i + r_j exactly).
 [[gnu::always_inline]] inline std::size_t take_not_pulled(std::uint8_t mark, bool live) {
-  const unsigned m = mark;
-  const auto l = static_cast<unsigned>(live);
-  const unsigned overlapping = (m >> 2) & 1u;
-  return (((m & kTouchOrEqual) & (l ^ 1u)) | (l & (overlapping ^ 1u))) & (m >> 1) & 1u;
+  const bool touch = (mark & kTouchOrEqual) != 0;
+  const bool apart = (mark & kApartCentres) != 0;
+  const bool overlapping = (mark & kOverlapping) != 0;
+  return static_cast<std::size_t>(((touch & !live) | (live & !overlapping)) & apart);
 }
 
 // One listed pair: advances every part's state, returns the sum of their attractions (N, > 0
