@@ -22,20 +22,22 @@ namespace drumlab::bench {
 
 namespace {
 
-/// What the cached state depends on: the scene text and the plan.
-std::string cache_key(const std::string& scene_file, double settle_time, double revolutions) {
-  std::ifstream in(scene_file, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return fmt::format("scene-text-hash {:016x} settle {:.17g} turn {:.17g}\n",
-                     std::hash<std::string>{}(text.str()), settle_time, revolutions);
-}
-
 std::string read_text(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   std::stringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+/// What the cached state depends on: the scene text, a file fill's packing and the plan.
+std::string cache_key(const std::string& scene_file, const SceneConfig& scene, double settle_time,
+                      double revolutions) {
+  const auto hash = [](const std::string& text) { return std::hash<std::string>{}(text); };
+  std::string key = fmt::format("scene-text-hash {:016x} settle {:.17g} turn {:.17g}\n",
+                                hash(read_text(scene_file)), settle_time, revolutions);
+  if (scene.fill.kind == FillKind::file)
+    key += fmt::format("fill-file-hash {:016x}\n", hash(read_text(scene.fill.file)));
+  return key;
 }
 
 /// Fill (the scene's [fill] kind), settle with the drum at rest, turn: the state to benchmark.
@@ -68,12 +70,15 @@ RollingState rolling_state(const std::string& scene_file, const RollingPlan& pla
   RollingState r;
   r.scene = load_dynamic_scene(scene_file);
   const double settle = plan.settle_time >= 0.0 ? plan.settle_time : r.scene.fill.settle_time;
-  const std::string key = cache_key(scene_file, settle, plan.turn_revolutions);
+  const std::string key = cache_key(scene_file, r.scene, settle, plan.turn_revolutions);
   const auto file = plan.cache_dir / (r.scene.name + "_rolling.h5");
   const auto key_file = plan.cache_dir / (r.scene.name + "_rolling.key");
   if (!plan.fresh && std::filesystem::exists(file) && read_text(key_file) == key) {
     Checkpoint c = read_checkpoint(file);
-    if (c.scene_name == r.scene.name && c.state.particles.size() == r.scene.fill.count) {
+    // A random fill names its count; a file fill's packing is in the key.
+    const bool count_ok =
+        r.scene.fill.kind != FillKind::random || c.state.particles.size() == r.scene.fill.count;
+    if (c.scene_name == r.scene.name && count_ok) {
       r.state = std::move(c.state);
       if (const auto choice = resolve_auto_search(r.scene, r.state.particles, r.state.dt)) {
         cli::print_auto_choice(*choice);

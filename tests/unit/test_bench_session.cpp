@@ -67,6 +67,19 @@ TEST(BenchSession, ThroughputTakesAFileFillScene) {
   ASSERT_EQ(lines.size(), 2u) << out;
   EXPECT_EQ(lines[1].rfind("tiny_file,m5,", 0), 0u) << lines[1];
   EXPECT_NE(lines[1].find("," + std::to_string(count) + ",3,"), std::string::npos) << lines[1];
+
+  // The cached state is reused (a file fill names no count), and made again once the packing
+  // changes (its last particle left out), the scene's text unchanged.
+  const auto plan = tiny_throughput(dir, scene).plan;
+  testing::internal::CaptureStdout();
+  const bench::RollingState cached = bench::rolling_state(scene.string(), plan);
+  EXPECT_NE(cached.origin.find("cached "), std::string::npos) << cached.origin;
+  EXPECT_EQ(cached.state.particles.size(), count);
+  bench::write_text(dir.path() / s.fill_file, csv.substr(0, csv.rfind('\n', csv.size() - 2) + 1));
+  const bench::RollingState remade = bench::rolling_state(scene.string(), plan);
+  testing::internal::GetCapturedStdout();
+  EXPECT_EQ(remade.origin.rfind("made in ", 0), 0u) << remade.origin;
+  EXPECT_EQ(remade.state.particles.size(), count - 1);
 }
 
 }  // namespace
