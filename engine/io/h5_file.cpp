@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "engine/io/atomic_file.hpp"
+#include "engine/io/h5_journal.hpp"
 
 namespace drumlab::h5 {
 
@@ -323,6 +324,7 @@ void StagedFile::commit() {
 Handle create_disk_file(const std::filesystem::path& path) {
   quiet();
   const Handle fapl = file_access(path, FileFormat::streamed);
+  use_journal_driver(fapl.get());
   Handle f(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose);
   if (f.get() < 0) throw InputError(fmt::format("{}: cannot create an HDF5 file", path.string()));
   return f;
@@ -330,7 +332,12 @@ Handle create_disk_file(const std::filesystem::path& path) {
 
 Handle open_file_rw(const std::filesystem::path& path) {
   quiet();
+  if (recover_journal(path) == JournalState::in_use) {
+    throw InputError(fmt::format("{}: cannot open for writing: another process writes it ({})",
+                                 path.string(), journal_path(path).string()));
+  }
   const Handle fapl = file_access(path, std::nullopt);
+  use_journal_driver(fapl.get());
   Handle f(H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.get()), H5Fclose);
   if (f.get() < 0) throw InputError(fmt::format("{}: cannot open for writing", path.string()));
   return f;
@@ -357,7 +364,13 @@ Handle open_file(const std::filesystem::path& path) {
   if (!std::filesystem::exists(path)) {
     throw InputError(fmt::format("{}: no such file", path.string()));
   }
-  Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  // A journal a killed writer left is rolled back first; one in use is read through.
+  Handle fapl(H5P_DEFAULT, nullptr);
+  if (recover_journal(path) == JournalState::in_use) {
+    fapl = file_access(path, std::nullopt);
+    use_journal_driver(fapl.get());
+  }
+  Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, fapl.get()), H5Fclose);
   if (f.get() < 0) {
     const std::string cause = hdf5_cause();
     throw InputError(fmt::format("{}: not an HDF5 file, or a damaged or truncated one{}{}",

@@ -95,19 +95,21 @@ class StagedFile {
   bool committed_ = false;
 };
 /// Creates (truncates) an HDF5 file on disk for a series streamed frame by frame (the `streamed`
-/// form, sec2 driver,
-/// without HDF5's file lock, as open_file_rw: a reader between frames must not stop the writer).
-/// Throws InputError naming the path.
+/// form, the journal driver of h5_journal.hpp: a process killed before the file closes leaves it
+/// as it was; without HDF5's file lock, as open_file_rw: a reader between frames must not stop
+/// the writer). Throws InputError naming the path.
 Handle create_disk_file(const std::filesystem::path& path);
-/// Opens an existing file for appending (sec2 driver). Throws InputError naming the path.
+/// Opens an existing file for appending (the journal driver, after rolling back a journal a
+/// killed writer left). Throws InputError naming the path.
 Handle open_file_rw(const std::filesystem::path& path);
 /// Writes everything HDF5 holds for `file` to disk (H5Fflush); throws InputError naming the
 /// file if it cannot (disk full).
 void flush(hid_t file);
 /// Bytes the memory file's image takes now.
 std::size_t memory_file_size(hid_t file);
-/// Opens a file read-only. Throws InputError naming the path (and HDF5's reason when it is not
-/// a readable HDF5 file: a cut, a damaged superblock).
+/// Opens a file read-only, after rolling back a journal a killed writer left (h5_journal.hpp;
+/// read through one a live writer holds). Throws InputError naming the path (and HDF5's reason
+/// when it is not a readable HDF5 file: a cut, a damaged superblock).
 Handle open_file(const std::filesystem::path& path);
 /// Throws InputError unless a file can be created in the directory of `path` (checked by creating
 /// and removing a temporary file there).

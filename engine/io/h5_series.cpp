@@ -9,6 +9,7 @@
 
 #include "engine/io/atomic_file.hpp"
 #include "engine/io/h5_file.hpp"
+#include "engine/io/h5_journal.hpp"
 
 namespace drumlab {
 
@@ -126,6 +127,7 @@ void H5Series::discard() noexcept {
   if (impl_->access.root) {
     std::error_code ignored;
     std::filesystem::remove(file_, ignored);
+    std::filesystem::remove(h5::journal_path(file_), ignored);
     std::filesystem::remove(xdmf_file(), ignored);
   }
   finished_ = true;  // nothing more is written
