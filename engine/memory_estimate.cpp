@@ -60,6 +60,14 @@ MemoryEstimate estimate_memory(std::string_view method, const MemoryShape& s) {
          kIndex;
     b += kGrowth * pairs * (kPair + kSize);
   }
+  // From two threads on, the parallel pair loop (contact/contact_model.cpp) keeps per pair a
+  // force slot, the force and the partner's torque, and the pair's row; per particle its
+  // block's end. Measured (tests/unit/test_memory_estimate.cpp): 42-69 B a particle more on
+  // grids, 302-325 with a Verlet list; 664 in the paper's Table 2 drum (6.53 listed pairs).
+  if (s.threads > 1) {
+    b += kGrowth * pairs * (sizeof(std::uint32_t) + kVec3 + (s.rotation ? kVec3 : 0.0) + kIndex) +
+         kSize;
+  }
   // Wall candidates: flags, positions at the build and scratch, the list.
   b += sizeof(std::uint8_t) + 2.0 * kVec3 + kIndex;
   if (parsed->verlet) {

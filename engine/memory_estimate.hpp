@@ -17,6 +17,7 @@ struct MemoryShape {
   double grid_cells = 0.0;  ///< cells of the search grid (dense index), 0 without one
   bool rotation = true;     ///< a torque is integrated (friction or rolling resistance)
   bool reorder = true;      ///< particles are re-ordered now and then (performance.sort_every > 0)
+  int threads = 1;          ///< OpenMP threads: from 2 on, the parallel pair loop's buffers
 };
 
 struct MemoryEstimate {
@@ -26,8 +27,8 @@ struct MemoryEstimate {
   double total() const { return per_particle * particles + grid; }
 };
 
-/// The heap a Simulation with search `method` holds for `shape` (one thread). Throws InputError
-/// for an unknown method.
+/// The heap a Simulation with search `method` holds for `shape`. Throws InputError for an
+/// unknown method.
 MemoryEstimate estimate_memory(std::string_view method, const MemoryShape& shape);
 
 /// Pairs per particle in the contact list of a settled bed: ~6 touching neighbours (3 pairs); a

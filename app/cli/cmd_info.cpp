@@ -166,9 +166,14 @@ void print_memory(const SceneConfig& scene, std::size_t total) {
   shape.rotation = scene_features(scene).rotation;
   shape.reorder = scene.performance.sort_every > 0;
   const MemoryEstimate memory = estimate_memory(estimated, shape);
-  fmt::print("memory estimate   {:.1f} MiB ({:.0f} B/particle with {:.1f} listed pairs each{}{})\n",
-             memory.total() / 1048576.0, memory.per_particle, shape.listed_pairs_per_particle, grid,
-             scene.search_method == "auto" ? "; auto: for m5" : "");
+  shape.threads = 2;
+  const MemoryEstimate parallel = estimate_memory(estimated, shape);
+  fmt::print(
+      "memory estimate   {:.1f} MiB on 1 thread, {:.1f} MiB on 2 or more ({:.0f} / {:.0f} "
+      "B/particle with {:.1f} listed pairs each{}{})\n",
+      memory.total() / 1048576.0, parallel.total() / 1048576.0, memory.per_particle,
+      parallel.per_particle, shape.listed_pairs_per_particle, grid,
+      scene.search_method == "auto" ? "; auto: for m5" : "");
 }
 
 /// How `method` bins the scene's radii (engine/search/search_binning.hpp).

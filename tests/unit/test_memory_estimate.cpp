@@ -1,7 +1,9 @@
 // The memory estimate (engine/memory_estimate.hpp) against the heap a small settled run really
 // holds (glibc mallinfo2 before the Simulation is built and after it has run), for each kind of
-// search: within 20 %.
+// search, on one thread and on two (the parallel pair loop's buffers): within 20 %.
 #include <gtest/gtest.h>
+
+#include <tuple>
 
 #include "engine/fill/random_fill.hpp"
 #include "engine/memory_estimate.hpp"
@@ -13,7 +15,7 @@
 namespace drumlab {
 namespace {
 
-class MemoryEstimateTest : public ::testing::TestWithParam<const char*> {};
+class MemoryEstimateTest : public ::testing::TestWithParam<std::tuple<const char*, int>> {};
 
 TEST_P(MemoryEstimateTest, WithinTwentyPercentOfTheMeasuredHeap) {
 #if defined(__SANITIZE_THREAD__)
@@ -31,8 +33,9 @@ TEST_P(MemoryEstimateTest, WithinTwentyPercentOfTheMeasuredHeap) {
 #endif
   SceneConfig scene = load_scene(std::string(DRUMLAB_SCENES_DIR) + "/mono_periodic.toml");
   scene.fill.count = 800;
-  set_thread_count(1);  // the estimate is for one thread
-  scene.search_method = GetParam();
+  const auto [method, threads] = GetParam();
+  set_thread_count(threads);
+  scene.search_method = method;
   const std::size_t heap0 = heap_bytes_in_use();
   double measured = 0.0;
   MemoryShape shape;
@@ -42,23 +45,28 @@ TEST_P(MemoryEstimateTest, WithinTwentyPercentOfTheMeasuredHeap) {
     measured = static_cast<double>(heap_bytes_in_use() - heap0);
     const SimulationState st = sim.state();
     shape.particles = sim.particles().size();
+    shape.threads = threads;
     shape.listed_pairs_per_particle =
         static_cast<double>(st.contact_col.size()) / static_cast<double>(shape.particles);
     const auto* verlet = dynamic_cast<const VerletListSearch*>(&sim.search());
     const ContactSearch& grid = verlet != nullptr ? verlet->builder() : sim.search();
     shape.grid_cells = static_cast<double>(grid.counters().cells_total);
   }
-  const MemoryEstimate e = estimate_memory(GetParam(), shape);
+  set_thread_count(1);
+  const MemoryEstimate e = estimate_memory(method, shape);
   const double n = static_cast<double>(shape.particles);
-  std::printf("%s: %.2f pairs/particle, %.0f cells; measured %.0f B/particle, estimated %.0f\n",
-              GetParam(), shape.listed_pairs_per_particle, shape.grid_cells, measured / n,
-              e.total() / n);
+  std::printf(
+      "%s, %d threads: %.2f pairs/particle, %.0f cells; measured %.0f B/particle, estimated %.0f\n",
+      method, threads, shape.listed_pairs_per_particle, shape.grid_cells, measured / n,
+      e.total() / n);
   EXPECT_GT(shape.listed_pairs_per_particle, 1.0) << "a settled bed";
   EXPECT_NEAR(e.total() / measured, 1.0, 0.2);
 }
 
 INSTANTIATE_TEST_SUITE_P(Methods, MemoryEstimateTest,
-                         ::testing::Values("m5", "m2", "m1", "mlgrid", "verlet", "verlet:m2"));
+                         ::testing::Combine(::testing::Values("m5", "m2", "m1", "mlgrid", "verlet",
+                                                              "verlet:m2"),
+                                            ::testing::Values(1, 2)));
 
 }  // namespace
 }  // namespace drumlab
