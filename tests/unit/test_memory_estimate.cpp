@@ -3,6 +3,8 @@
 // search, on one thread and on two (the parallel pair loop's buffers): within 20 %.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <string>
 #include <tuple>
 
 #include "engine/fill/random_fill.hpp"
@@ -66,7 +68,12 @@ TEST_P(MemoryEstimateTest, WithinTwentyPercentOfTheMeasuredHeap) {
 INSTANTIATE_TEST_SUITE_P(Methods, MemoryEstimateTest,
                          ::testing::Combine(::testing::Values("m5", "m2", "m1", "mlgrid", "verlet",
                                                               "verlet:m2"),
-                                            ::testing::Values(1, 2)));
+                                            ::testing::Values(1, 2)),
+                         [](const auto& info) {
+                           std::string name = std::get<0>(info.param);
+                           std::replace(name.begin(), name.end(), ':', '_');
+                           return name + "_" + std::to_string(std::get<1>(info.param)) + "threads";
+                         });
 
 }  // namespace
 }  // namespace drumlab
