@@ -333,8 +333,10 @@ Handle create_disk_file(const std::filesystem::path& path) {
 Handle open_file_rw(const std::filesystem::path& path) {
   quiet();
   if (recover_journal(path) == JournalState::in_use) {
-    throw InputError(fmt::format("{}: cannot open for writing: another process writes it ({})",
-                                 path.string(), journal_path(path).string()));
+    throw InputError(fmt::format(
+        "{}: cannot open for writing: its journal {} is held by another process or cannot be "
+        "rolled back",
+        path.string(), journal_path(path).string()));
   }
   const Handle fapl = file_access(path, std::nullopt);
   use_journal_driver(fapl.get());

@@ -51,10 +51,11 @@ std::uint64_t checksum(std::uint64_t a, std::uint64_t b, const unsigned char* p,
   return fnv1a(p, n, h);
 }
 
-bool read_all(int fd, void* buf, std::size_t n, std::uint64_t at) {
-  auto* p = static_cast<unsigned char*>(buf);
+/// pread or pwrite of n bytes at `at`, retried until done; false on an error or the end of file.
+template <class Byte, class Io>
+bool whole(Io io, int fd, Byte* p, std::size_t n, std::uint64_t at) {
   while (n > 0) {
-    const ssize_t r = ::pread(fd, p, n, static_cast<off_t>(at));
+    const ssize_t r = io(fd, p, n, static_cast<off_t>(at));
     if (r < 0 && errno == EINTR) continue;
     if (r <= 0) return false;
     p += r;
@@ -64,17 +65,12 @@ bool read_all(int fd, void* buf, std::size_t n, std::uint64_t at) {
   return true;
 }
 
+bool read_all(int fd, void* buf, std::size_t n, std::uint64_t at) {
+  return whole(::pread, fd, static_cast<unsigned char*>(buf), n, at);
+}
+
 bool write_all(int fd, const void* buf, std::size_t n, std::uint64_t at) {
-  const auto* p = static_cast<const unsigned char*>(buf);
-  while (n > 0) {
-    const ssize_t w = ::pwrite(fd, p, n, static_cast<off_t>(at));
-    if (w < 0 && errno == EINTR) continue;
-    if (w <= 0) return false;
-    p += w;
-    n -= static_cast<std::size_t>(w);
-    at += static_cast<std::uint64_t>(w);
-  }
-  return true;
+  return whole(::pwrite, fd, static_cast<const unsigned char*>(buf), n, at);
 }
 
 /// A journal's content: the file's length when it was opened and the pages as they were then.
