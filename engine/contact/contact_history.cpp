@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "engine/counting_sort.hpp"
 #include "engine/threads.hpp"
 
 namespace drumlab {
@@ -88,41 +89,20 @@ void ContactList::renumber(std::span<const Index> new_index) {
       if (b < a) old_history_[k] = -old_history_[k];
     }
   }
-  // Counting sort of the entries by their new first index, then each (short, independent) row
-  // by the second: O(m), where a comparison sort of all entries took O(m log m). As in
-  // sort_pairs, each thread counts and places a contiguous share of the entries, with counts per
-  // (row, thread) laid out by row, so a row's entries keep their order whatever the thread count.
+  // Counting sort of the entries by their new first index (counting_sort.hpp: a row's entries
+  // keep their order whatever the thread count), then each (short, independent) row by the
+  // second: O(m), where a comparison sort of all entries took O(m log m).
   constexpr std::size_t kPerThread = 16384;  // below this, one thread
-  const int threads = static_cast<int>(
-      std::clamp<std::size_t>(m / kPerThread, 1, static_cast<std::size_t>(max_threads())));
-  const auto t_count = static_cast<std::size_t>(threads);
-  fill_.assign(n * t_count + 1, 0);  // fill_[i * T + t]: thread t's next slot in row i
+  const std::size_t t_count =
+      std::clamp<std::size_t>(m / kPerThread, 1, static_cast<std::size_t>(max_threads()));
+  counting_sort_by_row(
+      m, n, t_count, fill_, [&](std::size_t k) { return std::size_t{renumbered_[k].i}; },
+      [&](std::size_t k, std::size_t slot) { by_pair_[slot] = k; });
   row_start_.resize(n + 1);
-#pragma omp parallel num_threads(threads)
-  {
-    // Shares by number, not by thread: a team smaller than asked for (a nested region) still
-    // counts and places every share.
-#pragma omp for schedule(static)
-    for (std::int64_t share = 0; share < threads; ++share) {
-      const auto t = static_cast<std::size_t>(share);
-      for (std::size_t k = m * t / t_count; k < m * (t + 1) / t_count; ++k) {
-        ++fill_[renumbered_[k].i * t_count + t];
-      }
-    }
-#pragma omp single
-    std::exclusive_scan(fill_.begin(), fill_.end(), fill_.begin(), std::size_t{0});
-#pragma omp for schedule(static)
-    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
-      const auto i = static_cast<std::size_t>(ii);
-      row_start_[i] = fill_[i * t_count];
-    }
-#pragma omp for schedule(static)
-    for (std::int64_t share = 0; share < threads; ++share) {
-      const auto t = static_cast<std::size_t>(share);
-      for (std::size_t k = m * t / t_count; k < m * (t + 1) / t_count; ++k) {
-        by_pair_[fill_[renumbered_[k].i * t_count + t]++] = k;
-      }
-    }
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    row_start_[i] = i == 0 ? 0 : fill_[(i - 1) * t_count + t_count - 1];
   }
   row_start_[n] = m;
   col_.resize(m);

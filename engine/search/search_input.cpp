@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "engine/counting_sort.hpp"
 #include "engine/threads.hpp"
 
 namespace drumlab {
@@ -50,47 +51,27 @@ void validate_search_input(const SearchInput& in) {
 
 void sort_pairs(std::vector<IndexPair>& pairs, std::size_t n, std::vector<IndexPair>& scratch,
                 std::vector<std::uint32_t>& counts) {
-  // Counting sort by i, each thread counting and placing a contiguous share of the pairs: with
-  // counts per (row, thread) laid out by row, thread t's pairs of row i go after those of the
-  // threads before it, so the rows come out in input order whatever the thread count.
+  // Counting sort by i (counting_sort.hpp: the rows come out in input order whatever the thread
+  // count), then each (short) row by j.
   const std::size_t m = pairs.size();
   constexpr std::size_t kPairsPerThread = 32768;  // below this, one thread
-  const int threads = static_cast<int>(
-      std::clamp<std::size_t>(m / kPairsPerThread, 1, static_cast<std::size_t>(max_threads())));
-  const auto t_count = static_cast<std::size_t>(threads);
-  counts.assign(n * t_count + 1, 0);  // counts[i * T + t]; the last entry ends the last row
+  const std::size_t t_count =
+      std::clamp<std::size_t>(m / kPairsPerThread, 1, static_cast<std::size_t>(max_threads()));
   scratch.resize(m);
-#pragma omp parallel num_threads(threads)
-  {
-    const auto t = static_cast<std::size_t>(thread_number());
-    const std::size_t begin = m * t / t_count;
-    const std::size_t end = m * (t + 1) / t_count;
-    for (std::size_t k = begin; k < end; ++k) ++counts[pairs[k].i * t_count + t];
-#pragma omp barrier
-#pragma omp single
-    {
-      std::uint32_t running = 0;
-      for (std::uint32_t& c : counts) {
-        const std::uint32_t here = c;
-        c = running;
-        running += here;
-      }
-    }
-    for (std::size_t k = begin; k < end; ++k)
-      scratch[counts[pairs[k].i * t_count + t]++] = pairs[k];
-#pragma omp barrier
-      // Row i now spans [end of row i - 1, counts[i * T + T - 1]); rows are short: insertion sort.
-#pragma omp for schedule(static)
-    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
-      const auto i = static_cast<std::size_t>(ii);
-      const std::size_t row_begin = i == 0 ? 0 : counts[(i - 1) * t_count + t_count - 1];
-      const std::size_t row_end = counts[i * t_count + t_count - 1];
-      for (std::size_t a = row_begin + 1; a < row_end; ++a) {
-        const IndexPair v = scratch[a];
-        std::size_t b = a;
-        for (; b > row_begin && scratch[b - 1].j > v.j; --b) scratch[b] = scratch[b - 1];
-        scratch[b] = v;
-      }
+  counting_sort_by_row(
+      m, n, t_count, counts, [&](std::size_t k) { return std::size_t{pairs[k].i}; },
+      [&](std::size_t k, std::uint32_t slot) { scratch[slot] = pairs[k]; });
+  // Row i now spans [end of row i - 1, counts[i * T + T - 1]); rows are short: insertion sort.
+#pragma omp parallel for schedule(static)
+  for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    const std::size_t row_begin = i == 0 ? 0 : counts[(i - 1) * t_count + t_count - 1];
+    const std::size_t row_end = counts[i * t_count + t_count - 1];
+    for (std::size_t a = row_begin + 1; a < row_end; ++a) {
+      const IndexPair v = scratch[a];
+      std::size_t b = a;
+      for (; b > row_begin && scratch[b - 1].j > v.j; --b) scratch[b] = scratch[b - 1];
+      scratch[b] = v;
     }
   }
   pairs.swap(scratch);
