@@ -29,11 +29,13 @@ void VerletListSearch::filter(const SearchInput& in, std::vector<IndexPair>& out
   // and does not depend on the thread count.
   const std::size_t m = list_.size();
   const double margin = in.margin + kTouchTolerance;
+  // Slices by number, not by thread: a team smaller than asked for (a nested region,
+  // OMP_DYNAMIC on a busy machine) still filters every slice.
   const int threads = slices_.prepare(max_threads());
-#pragma omp parallel num_threads(threads)
-  {
-    const auto t = static_cast<std::size_t>(thread_number());
-    std::vector<IndexPair>& slice = slices_.slice(thread_number());
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (int share = 0; share < threads; ++share) {
+    const auto t = static_cast<std::size_t>(share);
+    std::vector<IndexPair>& slice = slices_.slice(share);
     const std::size_t begin = m * t / static_cast<std::size_t>(threads);
     const std::size_t end = m * (t + 1) / static_cast<std::size_t>(threads);
     for (std::size_t k = begin; k < end; ++k) {

@@ -8,6 +8,7 @@
 #include <span>
 
 #include "engine/search/verlet_list.hpp"
+#include "engine/threads.hpp"
 
 namespace drumlab {
 namespace {
@@ -46,6 +47,31 @@ TEST(VerletList, MatchesBruteForceWhileParticlesMove) {
     EXPECT_LT(list->rebuilds(), 30u);
     EXPECT_EQ(list->calls(), 60u);
   }
+}
+
+// Called inside a parallel region (nesting off, OpenMP's default), the list's own region gets a
+// team of one while the thread count reads 2: every slice of the list must still be filtered.
+TEST(VerletList, FindsEveryPairWithATeamSmallerThanAskedFor) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Vec3> x;
+  std::vector<double> r(1500, 0.01);
+  for (int i = 0; i < 1500; ++i) x.emplace_back(0.3 * u(rng), 0.3 * u(rng), 0.1 * u(rng));
+  const SearchInput in{x, r, 0.0, std::nullopt, std::nullopt};
+  auto brute = make_search("brute");
+  const std::vector<IndexPair> expected = sorted(*brute, in);
+  ASSERT_GT(expected.size(), 100u);
+  const int saved = max_threads();
+  set_thread_count(2);
+  auto verlet = make_search("verlet:m2");
+  std::vector<IndexPair> found;
+#pragma omp parallel num_threads(2)
+  {
+#pragma omp single
+    found = sorted(*verlet, in);
+  }
+  set_thread_count(saved);
+  EXPECT_EQ(found, expected);
 }
 
 // True if every pair of `contacts` is in the (sorted) list.
