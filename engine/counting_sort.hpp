@@ -1,27 +1,33 @@
 #pragma once
 // The parallel counting sort by row behind the Verlet list's pair sort (search/search_input.cpp,
 // sort_pairs) and the contact list's renumbering (contact/contact_history.cpp).
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <numeric>
 #include <vector>
 
+#include "engine/threads.hpp"
+
 namespace drumlab {
 
-/// Sorts m items stably by their row (row_of(k) < n) in `shares` contiguous shares (items
+/// Sorts m items stably by their row (row_of(k) < n) in T contiguous shares (items
 /// [m t / T, m (t + 1) / T) for share t of T): each share counts, then places its items, with the
 /// counts laid out by (row, share), so every row keeps its items in input order whatever the
 /// team. place(k, slot) is called once for each item with its place in the sorted order. The
 /// shares go to the threads by number, not by thread: a team smaller than asked for (a nested
-/// region, OMP_DYNAMIC) still counts and places every share. On return fill[i * T + T - 1] ends
-/// row i (fill holds n * T + 1 counts).
+/// region, OMP_DYNAMIC) still counts and places every share. T is one share per
+/// `items_per_share` items, at least 1 and at most the thread count. Returns T; on return
+/// fill[i * T + T - 1] ends row i (fill holds n * T + 1 counts).
 template <class Count, class RowOf, class Place>
-void counting_sort_by_row(std::size_t m, std::size_t n, std::size_t shares,
-                          std::vector<Count>& fill, RowOf&& row_of, Place&& place) {
-  const std::size_t t_count = shares;
+std::size_t counting_sort_by_row(std::size_t m, std::size_t n, std::size_t items_per_share,
+                                 std::vector<Count>& fill, RowOf&& row_of, Place&& place) {
+  const std::size_t t_count =
+      std::clamp<std::size_t>(m / items_per_share, 1, static_cast<std::size_t>(max_threads()));
   const auto share_count = static_cast<std::int64_t>(t_count);
+  const int team = static_cast<int>(t_count);
   fill.assign(n * t_count + 1, 0);
-#pragma omp parallel num_threads(static_cast <int>(t_count))
+#pragma omp parallel num_threads(team)
   {
 #pragma omp for schedule(static)
     for (std::int64_t share = 0; share < share_count; ++share) {
@@ -40,6 +46,7 @@ void counting_sort_by_row(std::size_t m, std::size_t n, std::size_t shares,
       }
     }
   }
+  return t_count;
 }
 
 }  // namespace drumlab

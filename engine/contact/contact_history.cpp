@@ -93,10 +93,8 @@ void ContactList::renumber(std::span<const Index> new_index) {
   // keep their order whatever the thread count), then each (short, independent) row by the
   // second: O(m), where a comparison sort of all entries took O(m log m).
   constexpr std::size_t kPerThread = 16384;  // below this, one thread
-  const std::size_t t_count =
-      std::clamp<std::size_t>(m / kPerThread, 1, static_cast<std::size_t>(max_threads()));
-  counting_sort_by_row(
-      m, n, t_count, fill_, [&](std::size_t k) { return std::size_t{renumbered_[k].i}; },
+  const std::size_t t_count = counting_sort_by_row(
+      m, n, kPerThread, fill_, [&](std::size_t k) { return std::size_t{renumbered_[k].i}; },
       [&](std::size_t k, std::size_t slot) { by_pair_[slot] = k; });
   row_start_.resize(n + 1);
 #pragma omp parallel for schedule(static)

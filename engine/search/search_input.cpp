@@ -55,11 +55,9 @@ void sort_pairs(std::vector<IndexPair>& pairs, std::size_t n, std::vector<IndexP
   // count), then each (short) row by j.
   const std::size_t m = pairs.size();
   constexpr std::size_t kPairsPerThread = 32768;  // below this, one thread
-  const std::size_t t_count =
-      std::clamp<std::size_t>(m / kPairsPerThread, 1, static_cast<std::size_t>(max_threads()));
   scratch.resize(m);
-  counting_sort_by_row(
-      m, n, t_count, counts, [&](std::size_t k) { return std::size_t{pairs[k].i}; },
+  const std::size_t t_count = counting_sort_by_row(
+      m, n, kPairsPerThread, counts, [&](std::size_t k) { return std::size_t{pairs[k].i}; },
       [&](std::size_t k, std::uint32_t slot) { scratch[slot] = pairs[k]; });
   // Row i now spans [end of row i - 1, counts[i * T + T - 1]); rows are short: insertion sort.
 #pragma omp parallel for schedule(static)
