@@ -157,6 +157,8 @@ struct RowSum {
 // the contacts, with particles in Morton order) pass through buffers and a second pass.
 // The blocks are ContactList's (index_cross_block): i / kBlockRows in a serial run.
 constexpr std::size_t kBlockRows = kPairBlockRows;
+// Receivers of cross-block shares a block of the second pass (BlockDealer).
+constexpr std::size_t kReceiverBlock = 1024;
 
 // One thread: the rows in order; the cross-block shares summed per partner in cross_force /
 // cross_torque (by k, as the rows come in order) and added at the end.
@@ -263,28 +265,34 @@ std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& 
     buf.torque_j[zero].setZero();
   }
   contacts.index_cross_block(kBlockRows);
-  const auto blocks = static_cast<std::int64_t>(contacts.block_start().size()) - 1;
+  const std::size_t blocks = contacts.block_start().size() - 1;
   std::size_t touching = 0;
-#pragma omp parallel for schedule(static) reduction(+ : touching)
-  for (std::int64_t b = 0; b < blocks; ++b) {
-    touching += block_rows<Normal, Tangential, Rolling, kMark>(
-        law, p, contacts, buf, static_cast<std::size_t>(b), period, dt, history_dt, pull);
+  // Dealt from both ends of each thread pair's segment (BlockDealer): a block writes only its
+  // rows, its inner partners and its own slots, so who takes it does not change the sums.
+#pragma omp parallel reduction(+ : touching)
+  {
+    buf.blocks.deal(blocks);
+    for (std::size_t b; buf.blocks.next(b);) {
+      touching += block_rows<Normal, Tangential, Rolling, kMark>(law, p, contacts, buf, b, period,
+                                                                 dt, history_dt, pull);
+    }
   }
   const auto receivers = contacts.cross_receivers();
   const auto start = contacts.cross_start();
   const auto cross_k = contacts.cross_contacts();
-  const auto count = static_cast<std::int64_t>(receivers.size());
-#pragma omp parallel for schedule(static)
-  for (std::int64_t r = 0; r < count; ++r) {
-    Vec3 f = Vec3::Zero(), t = Vec3::Zero();
-    for (std::size_t q = start[r]; q < start[r + 1]; ++q) {
-      const std::uint32_t s = buf.slot[cross_k[q]];
-      f -= buf.force[s];
-      if constexpr (kTorque) t += buf.torque_j[s];
+#pragma omp parallel
+  deal_ranges(buf.blocks, receivers.size(), kReceiverBlock, [&](std::size_t b, std::size_t e) {
+    for (std::size_t r = b; r < e; ++r) {
+      Vec3 f = Vec3::Zero(), t = Vec3::Zero();
+      for (std::size_t q = start[r]; q < start[r + 1]; ++q) {
+        const std::uint32_t s = buf.slot[cross_k[q]];
+        f -= buf.force[s];
+        if constexpr (kTorque) t += buf.torque_j[s];
+      }
+      p.force[receivers[r]] += f;
+      if constexpr (kTorque) p.torque[receivers[r]] += t;
     }
-    p.force[receivers[r]] += f;
-    if constexpr (kTorque) p.torque[receivers[r]] += t;
-  }
+  });
   return touching;
 }
 
@@ -394,20 +402,17 @@ std::size_t wall_rows(const ContactLaw<Normal>& law, Particles& p,
 template <class Normal, bool Tangential, RollingKind Rolling>
 std::size_t wall_loop(const ContactLaw<Normal>& law, Particles& p,
                       std::span<const Index> candidates, const Drum& drum, double omega,
-                      WallHistory& history, double dt, double history_dt) {
+                      WallHistory& history, double dt, double history_dt, BlockDealer& dealer) {
   constexpr std::size_t kPerTask = 256;
-  const auto tasks = static_cast<std::int64_t>((candidates.size() + kPerTask - 1) / kPerTask);
   std::size_t contacts = 0;
+  // Each candidate's forces and history are its own: who takes a task does not change the bits.
 #pragma omp parallel reduction(+ : contacts)
   {
     WallBatch batch;
-#pragma omp for schedule(static)
-    for (std::int64_t t = 0; t < tasks; ++t) {
-      const std::size_t begin = static_cast<std::size_t>(t) * kPerTask;
-      contacts += wall_rows<Normal, Tangential, Rolling>(
-          law, p, candidates, begin, std::min(candidates.size(), begin + kPerTask), drum, omega,
-          history, dt, history_dt, batch);
-    }
+    deal_ranges(dealer, candidates.size(), kPerTask, [&](std::size_t begin, std::size_t end) {
+      contacts += wall_rows<Normal, Tangential, Rolling>(law, p, candidates, begin, end, drum,
+                                                         omega, history, dt, history_dt, batch);
+    });
   }
   return contacts;
 }
@@ -553,7 +558,7 @@ std::size_t ContactModel::add_wall_forces(Particles& p, std::span<const Index> c
   with_law(wall_, wall_tangential_, rolling_kind(wall_rolling_, spring_),
            [&]<class N, bool Tangential, RollingKind Rolling>(const ContactLaw<N>& law) {
              contacts = wall_loop<N, Tangential, Rolling>(law, p, candidates, drum, omega, history,
-                                                          dt, history_dt);
+                                                          dt, history_dt, wall_blocks_);
            });
   if (cohesive_.any()) {
     cohesion_wall_loop(cohesive_, p, candidates, drum, omega, history_dt);

@@ -12,6 +12,7 @@
 #include <variant>
 #include <vector>
 
+#include "engine/block_dealer.hpp"
 #include "engine/contact/bond.hpp"
 #include "engine/contact/cohesion_loops.hpp"
 #include "engine/contact/cohesive_laws.hpp"
@@ -82,6 +83,7 @@ struct PairForceBuffers {
   std::vector<std::uint32_t> slot;
   std::vector<Vec3> force;
   std::vector<Vec3> torque_j;
+  BlockDealer blocks;        ///< deals the blocks of rows to the threads (several threads)
   CohesionBuffers cohesion;  ///< the cohesive parts' pass (a scene with [liquid] or [cohesion])
 };
 
@@ -210,6 +212,9 @@ class ContactModel {
   double pair_range_ = 0.0;
   std::vector<MeshLaw> mesh_laws_;
   bool mesh_torque_ = false;  ///< some mesh law has a tangential or rolling part
+  /// Deals the wall loop's tasks to the threads: scratch of one call at a time (a model belongs
+  /// to one simulation), hence mutable in add_wall_forces.
+  mutable BlockDealer wall_blocks_;
 };
 
 }  // namespace drumlab
