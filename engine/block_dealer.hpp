@@ -20,6 +20,8 @@ namespace drumlab {
 /// done takes blocks from the others' segments. Each thread works through contiguous runs of
 /// blocks, and the team finishes together. Who does a block must not change what the block
 /// computes (each block writes only its own outputs): then results do not depend on the dealing.
+/// The segments follow the team the region got, so a team smaller than asked for (a nested
+/// region, OMP_DYNAMIC) still takes every block.
 ///
 ///     BlockDealer dealer;   // outside the region; one per loop, reused
 ///     #pragma omp parallel
