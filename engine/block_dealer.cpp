@@ -1,5 +1,7 @@
 #include "engine/block_dealer.hpp"
 
+#include "engine/threads.hpp"
+
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -58,11 +60,7 @@ bool BlockDealer::take_back(Segment& s, std::size_t& block) {
 }
 
 bool BlockDealer::next(std::size_t& block) {
-#ifdef _OPENMP
-  const int t = omp_get_thread_num();
-#else
-  const int t = 0;
-#endif
+  const int t = thread_number();
   const std::size_t count = segments_.size();
   const auto home = static_cast<std::size_t>(t / 2);
   const bool forward = t % 2 == 0;
