@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/block_dealer.hpp"
 #include "engine/search/cell_index.hpp"
 #include "engine/search/contact_search.hpp"
 #include "engine/search/half_stencil.hpp"
@@ -83,8 +84,10 @@ class MultiLevelGridSearch final : public ContactSearch {
                    const SearchInput& in, std::vector<IndexPair>& out);
 
   std::vector<Level> levels_;
-  PairSlices slices_;             ///< per-thread pairs of visit_level()
-  std::vector<double> distinct_;  ///< assign_levels' buffers
+  static constexpr std::size_t kSlotsPerBlock = 512;  ///< slots a dealt block of visit_level()
+  PairSlices slices_;                                 ///< pairs of visit_level(), per block
+  BlockDealer dealer_;                                ///< deals visit_level()'s blocks
+  std::vector<double> distinct_;                      ///< assign_levels' buffers
   std::vector<int> raw_;
   std::vector<int> compact_;
   double slack_ = 0.0;
