@@ -175,30 +175,39 @@ void ContactList::build_blocks(std::size_t block_rows) {
 void ContactList::build_cross_block(std::size_t block_rows) {
   build_blocks(block_rows);
   const std::size_t n = rows();
-  // Count per partner, then the receivers in increasing order, then the contacts by k.
-  fill_.assign(n + 1, 0);
-  entry_row_.resize(col_.size());
-  for (std::size_t i = 0; i < n; ++i) {
+  const std::size_t m = col_.size();
+  // Each contact's row, and how many contacts reach past their row's block.
+  entry_row_.resize(m);
+  std::size_t cross = 0;
+#pragma omp parallel for schedule(static) reduction(+ : cross)
+  for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
     const std::size_t block_end = row_block_end_[i];
     for (std::size_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {
       entry_row_[k] = static_cast<Index>(i);
-      if (col_[k] >= block_end) ++fill_[col_[k]];
+      cross += col_[k] >= block_end;
     }
   }
+  // Those contacts by receiver (the partner), each receiver's in increasing k: a stable counting
+  // sort, the other contacts in a last row n that takes the places after them and is dropped.
+  const auto receiver_of = [&](std::size_t k) {
+    const std::size_t j = col_[k];
+    return j >= row_block_end_[entry_row_[k]] ? j : n;
+  };
+  constexpr std::size_t kContactsPerShare = 32768;  // below this, one thread
+  cross_k_.resize(cross);
+  const std::size_t t_count = counting_sort_by_row(m, n + 1, kContactsPerShare, fill_, receiver_of,
+                                                   [&](std::size_t k, std::size_t slot) {
+                                                     if (slot < cross) cross_k_[slot] = k;
+                                                   });
+  // Row j ends at fill_[j T + T - 1]; the receivers are the rows that are not empty.
   cross_receivers_.clear();
   cross_start_.assign(1, 0);
   for (std::size_t j = 0; j < n; ++j) {
-    if (fill_[j] == 0) continue;
+    const std::size_t row_end = fill_[j * t_count + t_count - 1];
+    if (row_end == cross_start_.back()) continue;
     cross_receivers_.push_back(static_cast<Index>(j));
-    cross_start_.push_back(cross_start_.back() + fill_[j]);
-    fill_[j] = cross_start_[cross_start_.size() - 2];  // next free place of receiver j
-  }
-  cross_k_.resize(cross_start_.back());
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t block_end = row_block_end_[i];
-    for (std::size_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {
-      if (col_[k] >= block_end) cross_k_[fill_[col_[k]]++] = k;
-    }
+    cross_start_.push_back(row_end);
   }
 }
 
