@@ -177,10 +177,6 @@ struct Simulation::Impl {
   /// per-particle displacement checks.
   double moved = std::numeric_limits<double>::infinity();
   bool forces_cleared = false;  ///< by kick_drift(), for the force evaluation that follows
-  /// The last step's closing half kick is deferred to the next step's first pass (advance());
-  /// `closing_g` is the body acceleration it uses.
-  bool kick_pending = false;
-  Vec3 closing_g = Vec3::Zero();
   /// Each particle's liquid not put in its film at the start (LiquidConfig::film_share < 1), for
   /// the bridges of the first evaluation (seed_bridges); empty afterwards.
   std::vector<double> liquid_reserve;
@@ -646,7 +642,7 @@ void Simulation::kick(double h, const Vec3& g) {
   });
 }
 
-double Simulation::kick_drift(double h, const Vec3& g, const Vec3* closing) {
+double Simulation::kick_drift(double h, const Vec3& g) {
   // The half kick and the drift in one pass over the particles (each particle's update reads only
   // its own data), which also clears the forces for the coming evaluation: three passes in one.
   Particles& p = particles_;
@@ -657,8 +653,6 @@ double Simulation::kick_drift(double h, const Vec3& g, const Vec3* closing) {
   double v2max = 0.0, xmax = 0.0;
   int non_finite = 0;
   const std::uint8_t* ghost = ghost_.empty() ? nullptr : ghost_.data();
-  const bool close = closing != nullptr;
-  const Vec3 gc = close ? *closing : Vec3::Zero();
 #pragma omp parallel reduction(max : v2max, xmax) reduction(| : non_finite)
   deal_ranges(impl_->integration_blocks, n, kIntegrationBlock, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
@@ -666,10 +660,6 @@ double Simulation::kick_drift(double h, const Vec3& g, const Vec3* closing) {
         p.force[i].setZero();
         p.torque[i].setZero();
         continue;
-      }
-      if (close) {  // the previous step's closing half kick, as kick() does it
-        p.velocity[i] += h * (p.inv_mass[i] * p.force[i] + gc);
-        if (rotation) p.omega[i] += (h * p.inv_inertia[i]) * p.torque[i];
       }
       p.velocity[i] += h * (p.inv_mass[i] * p.force[i] + g);
       if (rotation) p.omega[i] += (h * p.inv_inertia[i]) * p.torque[i];
@@ -733,15 +723,10 @@ void Simulation::apply_reorder() {
 }
 
 void Simulation::step() {
-  step_deferring(false);
-}
-
-void Simulation::step_deferring(bool defer_kick) {
   // Velocity Verlet: half kick with the forces of the current positions, drift, new forces,
   // half kick. Spheres need no orientation, so rotation is the same scheme on omega.
   const std::uint64_t sort_every = scene_.performance.sort_every;
   if (sort_every > 0 && steps_ > 0 && steps_ % sort_every == 0) {
-    finish_kick();  // the particles move in memory
     const auto r0 = Clock::now();
     if (domain_ != nullptr) {
       domain_->reorder(*this);
@@ -753,20 +738,12 @@ void Simulation::step_deferring(bool defer_kick) {
   }
   const auto t0 = Clock::now();
   // The body acceleration at the step's start and at its end (the carrier turns in between).
-  const double moved = kick_drift(0.5 * dt_, body_acceleration_at(carrier_angle_),
-                                  impl_->kick_pending ? &impl_->closing_g : nullptr);
-  impl_->kick_pending = false;
+  const double moved = kick_drift(0.5 * dt_, body_acceleration_at(carrier_angle_));
   if (domain_ != nullptr) domain_->refresh_ghosts(*this, moved);
   const auto t1 = Clock::now();
   compute_forces(dt_, true);
   const auto t2 = Clock::now();
-  const Vec3 closing_g = body_acceleration_at(carrier_angle_ + carrier_omega_ * dt_);
-  if (defer_kick) {
-    impl_->kick_pending = true;
-    impl_->closing_g = closing_g;
-  } else {
-    kick(0.5 * dt_, closing_g);
-  }
+  kick(0.5 * dt_, body_acceleration_at(carrier_angle_ + carrier_omega_ * dt_));
   const auto t3 = Clock::now();
   timers_.integration += seconds_between(t0, t1) + seconds_between(t2, t3);
   work_.particles += particles_.size();
@@ -786,28 +763,11 @@ void Simulation::step_deferring(bool defer_kick) {
 
 void Simulation::advance(std::uint64_t n) {
   const std::uint64_t every = scene_.output.diagnostics_every;
-  // A step's closing half kick and the next step's opening one share a pass over the particles
-  // (the same operations in the same order: the same bits) where nothing looks at the particles
-  // in between: not before a stability check or the end of the call, and not on a decomposed run
-  // (its exchanges between steps carry the velocities).
-  const bool fuse = domain_ == nullptr;
-  try {
-    for (std::uint64_t k = 0; k < n; ++k) {
-      const bool check = every > 0 && (steps_ + 1) % every == 0;
-      step_deferring(fuse && !check && k + 1 < n);
-      if (check) check_stability();
-    }
-  } catch (...) {
-    finish_kick();
-    throw;
+  for (std::uint64_t k = 0; k < n; ++k) {
+    step();
+    if (every > 0 && steps_ % every == 0) check_stability();
   }
   check_stability();
-}
-
-void Simulation::finish_kick() {
-  if (!impl_->kick_pending) return;
-  impl_->kick_pending = false;
-  kick(0.5 * dt_, impl_->closing_g);
 }
 
 void Simulation::set_search_method(std::string_view name) {

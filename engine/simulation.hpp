@@ -228,14 +228,7 @@ class Simulation {
   void kick(double h, const Vec3& g);
   /// kick(h, g), then positions advanced by dt (the forces are cleared on the way); returns a
   /// bound on how far any particle moved (over all ranks with a domain; infinite if not finite).
-  /// With `closing` non-null, the previous step's deferred closing kick(h, *closing) comes first
-  /// in the same pass.
-  double kick_drift(double h, const Vec3& g, const Vec3* closing = nullptr);
-  /// One step; with `defer_kick` its closing half kick is left to the next step's first pass
-  /// (advance()), or to finish_kick().
-  void step_deferring(bool defer_kick);
-  /// Applies a deferred closing half kick, if any.
-  void finish_kick();
+  double kick_drift(double h, const Vec3& g);
   /// gravity + Omega^2 c for the carrier at angle `angle` (gravity alone without an orbit): the
   /// frame that translates with the drum's centre is accelerated by c'' = -Omega^2 c.
   Vec3 body_acceleration_at(double angle) const;

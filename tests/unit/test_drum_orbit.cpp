@@ -199,9 +199,9 @@ TEST(DrumOrbit, ARestartCarriesTheCarrierBitForBit) {
 }
 
 TEST(DrumOrbit, OneRunOfStepsIsStepByStepBitForBit) {
-  // advance(n) leaves each step's closing half kick to the next step's first pass (one pass over
-  // the particles fewer); the carrier turns between the two kicks and the particles are re-ordered
-  // every 100 steps (sort_every), and the bits are those of n single steps.
+  // advance(n) is n single steps, bit for bit: the carrier turns between a step's two half kicks
+  // and the particles are re-ordered every 100 steps (sort_every) on the way. (A version that
+  // made each closing half kick in the next step's first pass was held to this.)
   const SceneConfig scene =
       parse_scene(scene_text("radius = 0.3\nomega = 6.0\n", "omega = 2.0\n"), "p.toml");
   ASSERT_EQ(scene.performance.sort_every, 100u);
