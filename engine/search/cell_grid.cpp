@@ -229,14 +229,16 @@ void CellGridSearch::visit_all(const Cells& cells, const SearchInput& in,
   const std::vector<CellOffset>& offsets = stencil_.offsets;
   const SortedParticles sorted{sorted_position_.data(), sorted_radius_.data(), order_.data()};
   std::uint64_t cells_visited = 0, pairs_tested = 0;
-  // Blocks of slots are dealt to the threads (block_dealer.hpp); each block collects its pairs
-  // in its own slice and the slices are joined in block order. Counters per particle are written
-  // by the one thread that takes the particle's block.
-  slices_.prepare((n + kSlotsPerBlock - 1) / kSlotsPerBlock);
-#pragma omp parallel num_threads(max_threads()) reduction(+ : cells_visited, pairs_tested)
-  deal_ranges(dealer_, n, kSlotsPerBlock, [&](std::size_t first, std::size_t last) {
-    std::vector<IndexPair>& mine = slices_.slice(first / kSlotsPerBlock);
-    for (std::size_t s = first; s < last; ++s) {
+  // Each thread takes a contiguous block of slots and collects its pairs; the blocks are joined
+  // in order. Counters per particle are written by the one thread that owns the particle.
+  const int threads = slices_.prepare(max_threads());
+  const auto slots = static_cast<std::int64_t>(n);
+#pragma omp parallel num_threads(threads) reduction(+ : cells_visited, pairs_tested)
+  {
+    std::vector<IndexPair>& mine = slices_.slice(thread_number());
+#pragma omp for schedule(static)
+    for (std::int64_t ss = 0; ss < slots; ++ss) {
+      const auto s = static_cast<std::size_t>(ss);
       const Vec3 xi = sorted_position_[s];
       const double ri = sorted_radius_[s];
       const Index pi = order_[s];
@@ -291,7 +293,7 @@ void CellGridSearch::visit_all(const Cells& cells, const SearchInput& in,
       cells_visited += my_cells;
       pairs_tested += my_tests;
     }
-  });
+  }
   slices_.join(out);
   counters_.cells_visited = cells_visited;
   counters_.pairs_tested = pairs_tested;

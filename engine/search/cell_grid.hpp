@@ -26,7 +26,6 @@
 #include <cstdint>
 #include <vector>
 
-#include "engine/block_dealer.hpp"
 #include "engine/search/cell_index.hpp"
 #include "engine/search/contact_search.hpp"
 #include "engine/search/half_stencil.hpp"
@@ -106,9 +105,7 @@ class CellGridSearch final : public ContactSearch {
   std::vector<Vec3> sorted_position_;
   std::vector<double> sorted_radius_;
   std::vector<std::uint32_t> scratch_;
-  static constexpr std::size_t kSlotsPerBlock = 512;  ///< slots a dealt block of visit_all()
-  PairSlices slices_;                                 ///< pairs of visit_all(), per block
-  BlockDealer dealer_;                                ///< deals visit_all()'s blocks
+  PairSlices slices_;  ///< per-thread pairs of visit_all
   DenseCellIndex dense_;
   HashedCellIndex hashed_;
 };

@@ -252,16 +252,17 @@ void MultiLevelGridSearch::visit_level(const Level& level, const Cells& cells,
   const double margin = in.margin + kTouchTolerance;
   const std::size_t l = static_cast<std::size_t>(&level - levels_.data());
   std::uint64_t cells_visited = 0, pairs_tested = 0;
-  // Blocks of slots are dealt to the threads (block_dealer.hpp); each block collects its pairs
-  // in its own slice and the slices are joined in block order, so the output does not depend on
-  // the thread count or on which thread took a block. Counters per particle are written by the
-  // one thread that takes the particle's block.
-  const std::size_t slots = level.order.size();
-  slices_.prepare((slots + kSlotsPerBlock - 1) / kSlotsPerBlock);
-#pragma omp parallel num_threads(max_threads()) reduction(+ : cells_visited, pairs_tested)
-  deal_ranges(dealer_, slots, kSlotsPerBlock, [&](std::size_t first, std::size_t last) {
-    std::vector<IndexPair>& mine = slices_.slice(first / kSlotsPerBlock);
-    for (std::size_t s = first; s < last; ++s) {
+  // Each thread takes a contiguous block of slots and collects its pairs; the blocks are joined
+  // in order, so the output does not depend on the thread count. Counters per particle are
+  // written by the one thread that owns the particle.
+  const int threads = slices_.prepare(max_threads());
+  const auto slots = static_cast<std::int64_t>(level.order.size());
+#pragma omp parallel num_threads(threads) reduction(+ : cells_visited, pairs_tested)
+  {
+    std::vector<IndexPair>& mine = slices_.slice(thread_number());
+#pragma omp for schedule(static)
+    for (std::int64_t ss = 0; ss < slots; ++ss) {
+      const auto s = static_cast<std::size_t>(ss);
       const Vec3& xi = level.position[s];
       const double ri = level.radius[s];
       const Index pi = level.order[s];
@@ -309,7 +310,7 @@ void MultiLevelGridSearch::visit_level(const Level& level, const Cells& cells,
       cells_visited += cells_per_particle_[pi];
       pairs_tested += tests_per_particle_[pi];
     }
-  });
+  }
   slices_.join(out);
   counters_.cells_visited += cells_visited;
   counters_.pairs_tested += pairs_tested;

@@ -11,7 +11,6 @@
 #include <string>
 #include <vector>
 
-#include "engine/block_dealer.hpp"
 #include "engine/search/cell_index.hpp"
 #include "engine/search/contact_search.hpp"
 #include "engine/search/half_stencil.hpp"
@@ -84,10 +83,8 @@ class MultiLevelGridSearch final : public ContactSearch {
                    const SearchInput& in, std::vector<IndexPair>& out);
 
   std::vector<Level> levels_;
-  static constexpr std::size_t kSlotsPerBlock = 512;  ///< slots a dealt block of visit_level()
-  PairSlices slices_;                                 ///< pairs of visit_level(), per block
-  BlockDealer dealer_;                                ///< deals visit_level()'s blocks
-  std::vector<double> distinct_;                      ///< assign_levels' buffers
+  PairSlices slices_;             ///< per-thread pairs of visit_level()
+  std::vector<double> distinct_;  ///< assign_levels' buffers
   std::vector<int> raw_;
   std::vector<int> compact_;
   double slack_ = 0.0;

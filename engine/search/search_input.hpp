@@ -21,37 +21,29 @@ void sort_pairs(std::vector<IndexPair>& pairs, std::size_t n, std::vector<IndexP
 
 using SearchClock = std::chrono::steady_clock;
 
-/// The output of a parallel pair search in slices: each share of the work (a thread's contiguous
-/// part, or a block of slots dealt to whichever thread is free) appends to its own slice, and
-/// join() appends them in slice order, so the output is the same for any thread count and any
-/// dealing.
+/// Seconds from `since` to now.
+/// Per-thread output of a parallel pair search. Each thread appends to its own slice; with each
+/// thread taking a contiguous block of the work in order (OpenMP static schedule, or an explicit
+/// split), join() gives the same sequence for any thread count.
 class PairSlices {
  public:
-  /// `count` empty slices (their storage is kept between calls); returns count.
-  std::size_t prepare(std::size_t count) {
-    if (slices_.size() < count) slices_.resize(count);
-    count_ = count;
-    for (std::size_t k = 0; k < count; ++k) slices_[k].clear();
-    return count;
+  /// One empty slice per thread of the next parallel region; returns the thread count.
+  int prepare(int threads) {
+    slices_.resize(static_cast<std::size_t>(threads));
+    for (auto& s : slices_) s.clear();
+    return threads;
   }
-  /// Slice k.
-  std::vector<IndexPair>& slice(std::size_t k) { return slices_[k]; }
-  /// Appends the slices to `out` in order.
+  /// The slice of thread t.
+  std::vector<IndexPair>& slice(int t) { return slices_[static_cast<std::size_t>(t)]; }
+  /// Appends the slices to `out` in thread order.
   void join(std::vector<IndexPair>& out) const {
-    std::size_t total = out.size();
-    for (std::size_t k = 0; k < count_; ++k) total += slices_[k].size();
-    out.reserve(total);
-    for (std::size_t k = 0; k < count_; ++k) {
-      out.insert(out.end(), slices_[k].begin(), slices_[k].end());
-    }
+    for (const auto& s : slices_) out.insert(out.end(), s.begin(), s.end());
   }
 
  private:
   std::vector<std::vector<IndexPair>> slices_;
-  std::size_t count_ = 0;
 };
 
-/// Seconds from `since` to now.
 inline double seconds_since(SearchClock::time_point since) {
   return std::chrono::duration<double>(SearchClock::now() - since).count();
 }

@@ -31,14 +31,13 @@ void VerletListSearch::filter(const SearchInput& in, std::vector<IndexPair>& out
   const double margin = in.margin + kTouchTolerance;
   // Slices by number, not by thread: a team smaller than asked for (a nested region,
   // OMP_DYNAMIC on a busy machine) still filters every slice.
-  const int threads = max_threads();
-  const std::size_t shares = slices_.prepare(static_cast<std::size_t>(threads));
+  const int threads = slices_.prepare(max_threads());
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (int share = 0; share < threads; ++share) {
     const auto t = static_cast<std::size_t>(share);
-    std::vector<IndexPair>& slice = slices_.slice(t);
-    const std::size_t begin = m * t / shares;
-    const std::size_t end = m * (t + 1) / shares;
+    std::vector<IndexPair>& slice = slices_.slice(share);
+    const std::size_t begin = m * t / static_cast<std::size_t>(threads);
+    const std::size_t end = m * (t + 1) / static_cast<std::size_t>(threads);
     for (std::size_t k = begin; k < end; ++k) {
       const IndexPair p = list_[k];
       const double cut = in.radius[p.i] + in.radius[p.j] + margin;
