@@ -2,9 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <vector>
 
 #include "engine/contact/contact_history.hpp"
+#include "engine/threads.hpp"
 
 namespace drumlab {
 namespace {
@@ -129,6 +131,62 @@ TEST(ContactList, EntryRowsFollowTheListThroughUpdateAndRenumber) {
   EXPECT_EQ(c.entry_rows()[3], 2u);
   c.update(std::vector<IndexPair>{}, 11);
   expect_entry_rows(c);
+}
+
+// The cross-block index against its definition, on a list long enough for the parallel counting
+// sort to cut it in shares (at least 32,768 contacts a share), on teams of 1 to 3 threads, and
+// with row keys (an MPI rank's blocks).
+void expect_cross_block_index(const ContactList& c) {
+  std::vector<std::vector<std::size_t>> by_receiver(c.rows());
+  for (std::size_t i = 0; i < c.rows(); ++i) {
+    for (std::size_t k = c.row_start()[i]; k < c.row_start()[i + 1]; ++k) {
+      if (c.col()[k] >= c.row_block_end()[i]) by_receiver[c.col()[k]].push_back(k);
+    }
+  }
+  std::vector<Index> receivers;
+  std::vector<std::size_t> start{0}, contacts;
+  for (std::size_t j = 0; j < c.rows(); ++j) {
+    if (by_receiver[j].empty()) continue;
+    receivers.push_back(static_cast<Index>(j));
+    contacts.insert(contacts.end(), by_receiver[j].begin(), by_receiver[j].end());
+    start.push_back(contacts.size());
+  }
+  EXPECT_TRUE(std::ranges::equal(c.cross_receivers(), receivers));
+  EXPECT_TRUE(std::ranges::equal(c.cross_start(), start));
+  EXPECT_TRUE(std::ranges::equal(c.cross_contacts(), contacts));
+}
+
+TEST(ContactList, CrossBlockIndexIsItsDefinitionOnAnyTeam) {
+  const std::size_t n = 30000;
+  std::vector<IndexPair> pairs;
+  std::uint64_t state = 12345;
+  for (Index i = 0; i + 1 < n; ++i) {
+    for (int q = 0; q < 6; ++q) {  // partners near (most in the row's block) and far
+      state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+      const std::uint64_t reach = q < 4 ? 40 : 3000;
+      const auto j =
+          static_cast<Index>(std::min<std::uint64_t>(n - 1, i + 1 + (state >> 33) % reach));
+      pairs.push_back({i, j});
+    }
+  }
+  std::ranges::sort(pairs);
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  ASSERT_GT(pairs.size(), 2u * 32768u);
+  std::vector<std::uint64_t> keys(n);
+  for (std::size_t i = 0; i < n; ++i) keys[i] = 3 * i + 100;
+  const int before = max_threads();
+  for (int threads = 1; threads <= 3; ++threads) {
+    set_thread_count(threads);
+    ContactList c;
+    c.update(pairs, n);
+    c.index_cross_block(512);
+    expect_cross_block_index(c);
+    EXPECT_GT(c.cross_contacts().size(), 1000u);
+    c.set_row_keys(keys);
+    c.index_cross_block(512);
+    expect_cross_block_index(c);
+  }
+  set_thread_count(before);
 }
 
 }  // namespace
