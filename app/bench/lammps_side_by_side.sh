@@ -26,7 +26,10 @@
 # (OMP_WAIT_POLICY=active, as the MPI ranks poll: both cores are the run's; WAIT=passive runs
 # drumlab's default for a shared machine, "Threads on a shared machine"). LMP picks the LAMMPS
 # executable: Debian's `lmp` (default; apt-get install lammps), or the one build_lammps.sh builds
-# from Debian's source with drumlab's compiler and flags (the fair peer).
+# from Debian's source with drumlab's compiler and flags (the fair peer). METHOD=NAME times
+# drumlab with that search method instead of the one `auto` resolves to: `auto` times the grids
+# on the state and can pick another on a noisy host (the deep drum: verlet:mlgrid or verlet:m5),
+# which a comparison of two binaries must not let in.
 set -euo pipefail
 drum=${1:?demo, deep, tilted or periodic}
 rounds=${2:-1}
@@ -98,14 +101,14 @@ case "$drum" in
 esac
 info=$("$bin" info "$scene")
 # `auto` resolved as `drumlab info` resolves it ("search method  auto -> M").
-method=$(awk '/^search method/ {print ($3 == "auto" ? $5 : $3); exit}' <<<"$info")
+method=${METHOD:-$(awk '/^search method/ {print ($3 == "auto" ? $5 : $3); exit}' <<<"$info")}
 dt=$(awk '/^time step/ {print $3; exit}' <<<"$info")
 case "${LAMMPS_DT:-scene}" in
   scene) lvars+=(-var dt "$dt") ;;
   peer) ;;
   *) echo "lammps_side_by_side: LAMMPS_DT must be scene or peer, not '$LAMMPS_DT'" >&2; exit 2 ;;
 esac
-echo "drumlab: $scene, $(awk '/^particles/ {print $2; exit}' <<<"$info") particles, dt $dt s"
+echo "drumlab: $scene, $(awk '/^particles/ {print $2; exit}' <<<"$info") particles, dt $dt s, $method${METHOD:+ (METHOD)}"
 echo "LAMMPS:  ${gen[*]:-(default drum)} ${lvars[*]}"
 [ "$cores" = 1 ] || echo "drumlab's threads wait: OMP_WAIT_POLICY=$wait_policy"
 printf '%-6s %-9s %-14s %14s  %s\n' round engine "method ($cores core(s))" "p-steps/s" load
