@@ -9,6 +9,7 @@
 #include <type_traits>
 
 #include "engine/contact/bridge_batch.hpp"
+#include "engine/contact/touch_sift.hpp"
 #include "engine/periodic.hpp"
 
 namespace drumlab {
@@ -127,38 +128,39 @@ double event_liquid(const CohesiveParts& parts, const double* state) {
 // Visits, by increasing k, the listed pairs of the rows of cohesion block `block` on which a
 // cohesive part may act: take(mark[k], live(k)). Most listed pairs are apart, with no live part
 // state: nothing acts (a bridge forms only on contact; sjkr acts only while overlapping). The
-// block's entries are contiguous in k, so they are sifted in chunks of kChunk across row ends by a
-// loop without branches on the touch marks the contact pair loop left (no partner is gathered for
-// it); visit(i, k) then runs on the pairs that remain, each pair's row i read from entry_rows()
-// (the pair loop indexed it this step). Sifting row by row paid each short row's loop exits, ~8
-// entries a row; a cursor over the row starts, a mispredicted exit for most pairs.
+// block's entries are contiguous in k, so they are sifted in chunks of kSiftChunk across row ends
+// as bit masks (touch_sift.hpp) of the touch marks the contact pair loop left (no partner is
+// gathered for it) and of live_mask(k0, n), bit q: entry k0 + q live; visit(i, k) then runs on the
+// pairs that remain, each pair's row i read from entry_rows() (the pair loop indexed it this step).
+// Sifting row by row paid each short row's loop exits, ~8 entries a row; a cursor over the row
+// starts, a mispredicted exit for most pairs; a scalar sift, a dozen instructions an entry.
 // kPulled: the pair loop has done the overlapping pairs with live state (take_not_pulled).
-template <bool kPulled = false, class Live, class Visit>
+template <bool kPulled = false, class LiveMask, class Visit>
 [[gnu::always_inline]] inline void for_each_acting_pair(const ContactList& contacts,
                                                         const std::uint8_t* mark, std::size_t block,
-                                                        Live&& live, Visit&& visit) {
-  constexpr std::size_t kChunk = 64;
-  std::uint32_t sel[kChunk];
+                                                        LiveMask&& live_mask, Visit&& visit) {
   const auto row = contacts.row_start();
   const auto row_of = contacts.entry_rows();
   const std::size_t begin = block * kCohesionBlockRows;
   const std::size_t end = std::min(contacts.rows(), begin + kCohesionBlockRows);
-  for (std::size_t k0 = row[begin]; k0 < row[end]; k0 += kChunk) {
-    const std::size_t k1 = std::min(row[end], k0 + kChunk);
-    std::size_t m = 0;
-    for (std::size_t k = k0; k < k1; ++k) {
-      sel[m] = static_cast<std::uint32_t>(k - k0);
-      if constexpr (kPulled) {
-        m += take_not_pulled(mark[k], live(k));
-      } else {
-        m += take(mark[k], live(k));
-      }
-    }
-    for (std::size_t q = 0; q < m; ++q) {
-      const std::size_t k = k0 + sel[q];
-      visit(row_of[k], k);
-    }
+  for (std::size_t k0 = row[begin]; k0 < row[end]; k0 += kSiftChunk) {
+    const std::size_t n = std::min(row[end] - k0, kSiftChunk);
+    const MarkMasks marks = mark_masks(mark + k0, n);
+    const std::uint64_t live = live_mask(k0, n);
+    const std::uint64_t taken =
+        kPulled ? take_not_pulled_mask(marks, live) : take_mask(marks, live);
+    for_each_bit(taken, [&](std::size_t q) { visit(row_of[k0 + q], k0 + q); });
   }
+}
+
+// live_mask of for_each_acting_pair by a test of each entry's state: bit q is live(k0 + q).
+template <class Live>
+[[gnu::always_inline]] inline auto live_mask_of(Live&& live) {
+  return [live](std::size_t k0, std::size_t n) {
+    std::uint64_t m = 0;
+    for (std::size_t q = 0; q < n; ++q) m |= static_cast<std::uint64_t>(live(k0 + q)) << q;
+    return m;
+  };
 }
 
 // Pass 1 (cohesion_pass_one) over the rows of block `block`, any composition of parts: every
@@ -172,13 +174,14 @@ template <bool kPulled = false, class Live, class Visit>
   CohesionBuffers::Entry* out =
       buffers.entries.data() + contacts.row_start()[block * kCohesionBlockRows];
   std::size_t n = 0;
-  for_each_acting_pair(
-      contacts, buffers.mark.data(), block, [&](std::size_t k) { return live(&state[k * stride]); },
-      [&](std::size_t i, std::size_t k) {
-        const Index j = col[k];
-        cohesion_entry(parts, p, &state[k * stride], static_cast<Index>(i), j, k,
-                       nearest_image(p.position[i], p.position[j], period), dt, out, n);
-      });
+  for_each_acting_pair(contacts, buffers.mark.data(), block,
+                       live_mask_of([&](std::size_t k) { return live(&state[k * stride]); }),
+                       [&](std::size_t i, std::size_t k) {
+                         const Index j = col[k];
+                         cohesion_entry(parts, p, &state[k * stride], static_cast<Index>(i), j, k,
+                                        nearest_image(p.position[i], p.position[j], period), dt,
+                                        out, n);
+                       });
   buffers.count[block] = n;
 }
 
@@ -208,9 +211,17 @@ template <class Law>
     }
     batch.count = 0;
   };
+  // A plain liquid bridge alone (state size 2, live while its volume s[0] > 0): its live flags
+  // by SIMD compares.
+  constexpr bool kBridge = std::is_same_v<Law, LiquidBridge>;
+  const bool bridge_only = kBridge && stride == 2 && off == 0;
+  const auto by_entry =
+      live_mask_of([&](std::size_t k) { return Law::live(&state[k * stride + off]); });
   for_each_acting_pair<Batch::kTouchingInPairLoop>(
       contacts, buffers.mark.data(), block,
-      [&](std::size_t k) { return Law::live(&state[k * stride + off]); },
+      [&](std::size_t k0, std::size_t n) {
+        return bridge_only ? positive_even_mask(&state[k0 * 2], n) : by_entry(k0, n);
+      },
       [&](std::size_t i, std::size_t k) {
         const Index j = col[k];
         batch.add(static_cast<Index>(i), j, static_cast<std::uint32_t>(k),
