@@ -57,22 +57,6 @@ struct LiveTest {
   }
 };
 
-// 1 if a cohesive part may act on a listed pair with touch mark `mark` (touch_mark): touching,
-// or `live` (some part's state is live), and with distinct centres.
-[[gnu::always_inline]] inline std::size_t take(std::uint8_t mark, bool live) {
-  const unsigned m = mark;
-  return ((m & kTouchOrEqual) | static_cast<unsigned>(live)) & (m >> 1);
-}
-// take() without the overlapping pairs whose state is live: the pair loop has added their pull
-// (TouchingPull). What remains: touching without live state (a bridge may form), or live and not
-// overlapping (apart, or touching with |d| = r_i + r_j exactly).
-[[gnu::always_inline]] inline std::size_t take_not_pulled(std::uint8_t mark, bool live) {
-  const bool touch = (mark & kTouchOrEqual) != 0;
-  const bool apart = (mark & kApartCentres) != 0;
-  const bool overlapping = (mark & kOverlapping) != 0;
-  return static_cast<std::size_t>(((touch & !live) | (live & !overlapping)) & apart);
-}
-
 // One listed pair: advances every part's state, returns the sum of their attractions (N, > 0
 // pulls i towards j), added in the parts' order. film: nullptr in pass 1 (no event there).
 double pair_attraction(const CohesiveParts& parts, const PairGap& g, double* state, double* film,
@@ -126,15 +110,16 @@ double event_liquid(const CohesiveParts& parts, const double* state) {
 }
 
 // Visits, by increasing k, the listed pairs of the rows of cohesion block `block` on which a
-// cohesive part may act: take(mark[k], live(k)). Most listed pairs are apart, with no live part
-// state: nothing acts (a bridge forms only on contact; sjkr acts only while overlapping). The
-// block's entries are contiguous in k, so they are sifted in chunks of kSiftChunk across row ends
-// as bit masks (touch_sift.hpp) of the touch marks the contact pair loop left (no partner is
-// gathered for it) and of live_mask(k0, n), bit q: entry k0 + q live; visit(i, k) then runs on the
-// pairs that remain, each pair's row i read from entry_rows() (the pair loop indexed it this step).
-// Sifting row by row paid each short row's loop exits, ~8 entries a row; a cursor over the row
-// starts, a mispredicted exit for most pairs; a scalar sift, a dozen instructions an entry.
-// kPulled: the pair loop has done the overlapping pairs with live state (take_not_pulled).
+// cohesive part may act (take_mask of touch_sift.hpp: distinct centres, and touching or live). Most
+// listed pairs are apart, with no live part state: nothing acts (a bridge forms only on contact;
+// sjkr acts only while overlapping). The block's entries are contiguous in k, so they are sifted in
+// chunks of kSiftChunk across row ends as bit masks (touch_sift.hpp) of the touch marks the contact
+// pair loop left (no partner is gathered for it) and of live_mask(k0, n), bit q: entry k0 + q live;
+// visit(i, k) then runs on the pairs that remain, each pair's row i read from entry_rows() (the
+// pair loop indexed it this step). Sifting row by row paid each short row's loop exits, ~8 entries
+// a row; a cursor over the row starts, a mispredicted exit for most pairs; a scalar sift, a dozen
+// instructions an entry. kPulled: the pair loop has done the overlapping pairs with live state
+// (take_not_pulled_mask).
 template <bool kPulled = false, class LiveMask, class Visit>
 [[gnu::always_inline]] inline void for_each_acting_pair(const ContactList& contacts,
                                                         const std::uint8_t* mark, std::size_t block,

@@ -91,13 +91,14 @@ inline std::uint64_t positive_even_mask(const double* s, std::size_t n) {
   return m;
 }
 
-/// The entries a part may act on (take() of cohesion_loops.cpp): distinct centres, and touching
-/// or live.
+/// The entries a cohesive part may act on: distinct centres, and touching (a part may act without
+/// live state: a bridge forms on contact, sjkr acts while overlapping) or live.
 inline std::uint64_t take_mask(const MarkMasks& m, std::uint64_t live) {
   return (m.touch | live) & m.apart;
 }
-/// Without the overlapping pairs whose state is live (take_not_pulled: the contact pair loop has
-/// added their pull): touching without live state, or live and not overlapping; distinct centres.
+/// take_mask without the overlapping pairs whose state is live (the contact pair loop has added
+/// their pull, TouchingPull): touching without live state (a bridge may form), or live and not
+/// overlapping (apart, or touching with |d| = r_i + r_j exactly); distinct centres.
 inline std::uint64_t take_not_pulled_mask(const MarkMasks& m, std::uint64_t live) {
   return ((m.touch & ~live) | (live & ~m.overlapping)) & m.apart;
 }
