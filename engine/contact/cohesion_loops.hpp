@@ -19,6 +19,7 @@
 #include "engine/contact/cohesive_laws.hpp"
 #include "engine/contact/contact_history.hpp"
 #include "engine/contact/liquid_rupture.hpp"
+#include "engine/contact/touch_sift.hpp"
 #include "engine/drum.hpp"
 #include "engine/parallel/bridge_events.hpp"
 #include "engine/particles.hpp"
@@ -52,20 +53,6 @@ struct CohesionBuffers {
   mutable RuptureScratch rupture;
 };
 
-/// A listed pair's touch mark at squared centre distance dist2, radii summing to sum_r:
-/// kTouchOrEqual if |d| <= r_i + r_j (a part may act without live state), kApartCentres if
-/// the centres differ (|d| > 0: the pair has a direction).
-/// kOverlapping if the pair overlaps, |d| < r_i + r_j with |d| > 0 (the pair loop's contact: a
-/// TouchingPull below has added its bridge's pull).
-inline constexpr std::uint8_t kTouchOrEqual = 1;
-inline constexpr std::uint8_t kApartCentres = 2;
-inline constexpr std::uint8_t kOverlapping = 4;
-[[gnu::always_inline]] inline std::uint8_t touch_mark(double dist2, double sum_r) {
-  const auto touch = static_cast<unsigned>(!(dist2 > sum_r * sum_r));
-  const auto apart = static_cast<unsigned>(dist2 != 0.0);
-  const auto overlapping = static_cast<unsigned>(dist2 < sum_r * sum_r) & apart;
-  return static_cast<std::uint8_t>(touch | (apart << 1) | (overlapping << 2));
-}
 inline constexpr std::size_t kCohesionBlockRows = 256;
 
 /// The live bridges of overlapping pairs, whose pull the contact pair loop adds (a scene whose only

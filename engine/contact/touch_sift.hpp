@@ -1,9 +1,10 @@
 #pragma once
-// The cohesive pass's sift (cohesion_loops.cpp): which listed pairs of a chunk of at most 64 a
-// cohesive part may act on, as a 64-bit mask (bit q: entry k0 + q), built from the contact pair
-// loop's touch marks and the parts' live flags. Per entry the scalar sift paid about a dozen
-// instructions and a store (most entries are apart with no live state: nothing to do); with SIMD
-// the masks of 64 entries take a few dozen instructions. The same entries in the same order.
+// The touch marks the contact pair loop writes for every listed pair of a scene with cohesive
+// parts, and the cohesive pass's sift of them (cohesion_loops.cpp): which listed pairs of a chunk
+// of at most 64 a cohesive part may act on, as a 64-bit mask (bit q: entry k0 + q), from the marks
+// and the parts' live flags. Per entry the scalar sift paid about a dozen instructions and a store
+// (most entries are apart with no live state: nothing to do); with SIMD the masks of 64 entries
+// take a few dozen instructions. The same entries in the same order.
 
 #include <bit>
 #include <cstddef>
@@ -15,6 +16,21 @@
 
 namespace drumlab {
 
+/// A listed pair's touch mark at squared centre distance dist2, radii summing to sum_r:
+/// kTouchOrEqual if |d| <= r_i + r_j (a part may act without live state), kApartCentres if
+/// the centres differ (|d| > 0: the pair has a direction).
+/// kOverlapping if the pair overlaps, |d| < r_i + r_j with |d| > 0 (the pair loop's contact: a
+/// TouchingPull, cohesion_loops.hpp, has added its bridge's pull).
+inline constexpr std::uint8_t kTouchOrEqual = 1;
+inline constexpr std::uint8_t kApartCentres = 2;
+inline constexpr std::uint8_t kOverlapping = 4;
+[[gnu::always_inline]] inline std::uint8_t touch_mark(double dist2, double sum_r) {
+  const auto touch = static_cast<unsigned>(!(dist2 > sum_r * sum_r));
+  const auto apart = static_cast<unsigned>(dist2 != 0.0);
+  const auto overlapping = static_cast<unsigned>(dist2 < sum_r * sum_r) & apart;
+  return static_cast<std::uint8_t>(touch * kTouchOrEqual | apart * kApartCentres |
+                                   overlapping * kOverlapping);
+}
 inline constexpr std::size_t kSiftChunk = 64;
 
 /// Bit q set where mark[q] has the bit `flag` (one of touch_mark's flags), for q < n <= 64.
@@ -31,31 +47,33 @@ struct MarkMasks {
   std::uint64_t overlapping = 0;
 };
 
-/// mark_mask_scalar of flags (touch, apart, overlapping) = (1, 2, 4), touch_mark's.
+/// mark_mask_scalar of touch_mark's three flags.
 inline MarkMasks mark_masks(const std::uint8_t* mark, std::size_t n) {
 #if defined(__AVX512BW__)
   if (n == kSiftChunk) {
     const __m512i v = _mm512_loadu_si512(mark);
-    return {_mm512_test_epi8_mask(v, _mm512_set1_epi8(1)),
-            _mm512_test_epi8_mask(v, _mm512_set1_epi8(2)),
-            _mm512_test_epi8_mask(v, _mm512_set1_epi8(4))};
+    const auto bits = [&](std::uint8_t flag) {
+      return _mm512_test_epi8_mask(v, _mm512_set1_epi8(static_cast<char>(flag)));
+    };
+    return {bits(kTouchOrEqual), bits(kApartCentres), bits(kOverlapping)};
   }
 #elif defined(__AVX2__) && defined(__BMI2__)
   if (n == kSiftChunk) {
     const __m256i lo = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(mark));
     const __m256i hi = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(mark + 32));
-    // Flag bit b of every byte moved to the byte's sign bit (a 16-bit shift keeps each byte's
-    // own bit b there), then one bit a byte.
-    const auto bits = [&](int b) {
-      const __m128i s = _mm_cvtsi32_si128(7 - b);
+    // The flag's bit of every byte moved to the byte's sign bit (a 16-bit shift keeps each byte's
+    // own bit there), then one bit a byte.
+    const auto bits = [&](std::uint8_t flag) {
+      const __m128i s = _mm_cvtsi32_si128(7 - std::countr_zero(flag));
       const auto l = static_cast<std::uint32_t>(_mm256_movemask_epi8(_mm256_sll_epi16(lo, s)));
       const auto h = static_cast<std::uint32_t>(_mm256_movemask_epi8(_mm256_sll_epi16(hi, s)));
       return static_cast<std::uint64_t>(l) | (static_cast<std::uint64_t>(h) << 32);
     };
-    return {bits(0), bits(1), bits(2)};
+    return {bits(kTouchOrEqual), bits(kApartCentres), bits(kOverlapping)};
   }
 #endif
-  return {mark_mask_scalar(mark, n, 1), mark_mask_scalar(mark, n, 2), mark_mask_scalar(mark, n, 4)};
+  return {mark_mask_scalar(mark, n, kTouchOrEqual), mark_mask_scalar(mark, n, kApartCentres),
+          mark_mask_scalar(mark, n, kOverlapping)};
 }
 
 /// Bit q set where s[2 q] > 0 (false for NaN), q < n <= 64: the live flags of a plain liquid

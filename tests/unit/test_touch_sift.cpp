@@ -10,7 +10,6 @@
 #include <random>
 #include <vector>
 
-#include "engine/contact/cohesion_loops.hpp"
 #include "engine/contact/touch_sift.hpp"
 
 namespace drumlab {
