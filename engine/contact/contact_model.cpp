@@ -11,6 +11,7 @@
 #include "engine/contact/contact_kernel.hpp"
 #include "engine/contact/law_dispatch.hpp"
 #include "engine/contact/mesh_wall_history.hpp"
+#include "engine/contact/touch_sift.hpp"
 #include "engine/periodic.hpp"
 #include "engine/scene/scene_validation.hpp"
 #ifdef _OPENMP
@@ -34,8 +35,9 @@ namespace {
 // per entry (measured +10 % p-steps/s). The chunks run across row ends: a row holds ~7 entries,
 // and loops row by row paid three short loops' exits a row.
 // `touching` counts the entries within the touching tolerance (what a search with margin 0 finds).
-// kMark (a scene with cohesive parts): also writes each entry's touch mark (cohesion_loops.hpp)
-// to mark[k], so the cohesive pass need not gather the partners again.
+// kMark (a scene with cohesive parts): also writes each entry's touch mark (touch_sift.hpp)
+// to mark[k], so the cohesive pass need not gather the partners again; a chunk's marks by SIMD
+// compares of the squares the loop keeps (write_touch_marks).
 template <bool kMark, class Overlap, class Apart>
 [[gnu::always_inline]] inline void split_entries(const Particles& p, std::span<const Index> col,
                                                  std::span<const Index> row_of, std::size_t begin,
@@ -44,6 +46,9 @@ template <bool kMark, class Overlap, class Apart>
                                                  Overlap&& overlap, Apart&& apart) {
   constexpr std::size_t kChunk = 64;
   std::uint32_t sel[kChunk];
+  // kMark: each entry's squared distance and radii's sum, marked for the chunk by SIMD compares.
+  alignas(64) double dist2_of[kMark ? kChunk : 1];
+  alignas(64) double sum_r2_of[kMark ? kChunk : 1];
   for (std::size_t k0 = begin; k0 < end; k0 += kChunk) {
     const std::size_t k1 = std::min(end, k0 + kChunk);
     std::size_t front = 0, back = k1 - k0;  // sel[0, front): overlapping; sel[back, n): apart
@@ -56,13 +61,17 @@ template <bool kMark, class Overlap, class Apart>
       const double cut = sum_r + kTouchTolerance;
       const auto overlapping = static_cast<std::size_t>((dist2 < sum_r * sum_r) & (dist2 != 0.0));
       touching += static_cast<std::size_t>(dist2 <= cut * cut);
-      if constexpr (kMark) mark[k] = touch_mark(dist2, sum_r);
       const auto entry = static_cast<std::uint32_t>(k - k0);
+      if constexpr (kMark) {
+        dist2_of[entry] = dist2;
+        sum_r2_of[entry] = sum_r * sum_r;
+      }
       sel[front] = entry;
       sel[back - 1] = entry;  // if overlapping, a free slot, claimed later from either end
       front += overlapping;
       back -= 1 - overlapping;
     }
+    if constexpr (kMark) write_touch_marks(dist2_of, sum_r2_of, k1 - k0, mark + k0);
     for (std::size_t q = back; q < k1 - k0; ++q) apart(k0 + sel[q]);
     for (std::size_t q = 0; q < front; ++q) {
       const std::size_t k = k0 + sel[q];
