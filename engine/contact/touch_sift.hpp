@@ -9,7 +9,6 @@
 #include <bit>
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 
 #if defined(__AVX2__) && defined(__BMI2__)
 #include <immintrin.h>
@@ -25,58 +24,14 @@ namespace drumlab {
 inline constexpr std::uint8_t kTouchOrEqual = 1;
 inline constexpr std::uint8_t kApartCentres = 2;
 inline constexpr std::uint8_t kOverlapping = 4;
-/// touch_mark with the radii's sum squared: sum_r2 = sum_r * sum_r.
-[[gnu::always_inline]] inline std::uint8_t touch_mark_of_squares(double dist2, double sum_r2) {
-  const auto touch = static_cast<unsigned>(!(dist2 > sum_r2));
+[[gnu::always_inline]] inline std::uint8_t touch_mark(double dist2, double sum_r) {
+  const auto touch = static_cast<unsigned>(!(dist2 > sum_r * sum_r));
   const auto apart = static_cast<unsigned>(dist2 != 0.0);
-  const auto overlapping = static_cast<unsigned>(dist2 < sum_r2) & apart;
+  const auto overlapping = static_cast<unsigned>(dist2 < sum_r * sum_r) & apart;
   return static_cast<std::uint8_t>(touch * kTouchOrEqual | apart * kApartCentres |
                                    overlapping * kOverlapping);
 }
-[[gnu::always_inline]] inline std::uint8_t touch_mark(double dist2, double sum_r) {
-  return touch_mark_of_squares(dist2, sum_r * sum_r);
-}
 inline constexpr std::size_t kSiftChunk = 64;
-
-/// mark[q] = touch_mark(dist2[q], sum_r2[q]) for q < n, where sum_r2[q] is the square of the
-/// radii's sum (as touch_mark computes it). The pair loop stores each entry's two squares and marks
-/// a chunk here: per group of 8 (AVX-512) or 4 (AVX2) entries three compares and a byte each by
-/// pdep, instead of three compares, their combination and a store in its loop per entry.
-inline void write_touch_marks(const double* dist2, const double* sum_r2, std::size_t n,
-                              std::uint8_t* mark) {
-  std::size_t q = 0;
-#if defined(__AVX512F__) && defined(__BMI2__)
-  // The flags of 8 entries as bits, each set into its entry's byte (bit b of the flag's mask to
-  // byte b).
-  constexpr std::uint64_t kBytes = 0x0101010101010101ULL;
-  for (; q + 8 <= n; q += 8) {
-    const __m512d d = _mm512_loadu_pd(dist2 + q);
-    const __m512d s = _mm512_loadu_pd(sum_r2 + q);
-    const unsigned touch = _mm512_cmp_pd_mask(d, s, _CMP_NGT_UQ);                    // !(d > s)
-    const unsigned apart = _mm512_cmp_pd_mask(d, _mm512_setzero_pd(), _CMP_NEQ_UQ);  // d != 0
-    const unsigned overlapping = _mm512_cmp_pd_mask(d, s, _CMP_LT_OQ) & apart;
-    const std::uint64_t bytes = _pdep_u64(touch, kBytes * kTouchOrEqual) |
-                                _pdep_u64(apart, kBytes * kApartCentres) |
-                                _pdep_u64(overlapping, kBytes * kOverlapping);
-    std::memcpy(mark + q, &bytes, 8);
-  }
-#elif defined(__AVX2__) && defined(__BMI2__)
-  constexpr std::uint32_t kBytes = 0x01010101U;
-  for (; q + 4 <= n; q += 4) {
-    const __m256d d = _mm256_loadu_pd(dist2 + q);
-    const __m256d s = _mm256_loadu_pd(sum_r2 + q);
-    const auto bits = [](__m256d c) { return static_cast<unsigned>(_mm256_movemask_pd(c)); };
-    const unsigned touch = bits(_mm256_cmp_pd(d, s, _CMP_NGT_UQ));
-    const unsigned apart = bits(_mm256_cmp_pd(d, _mm256_setzero_pd(), _CMP_NEQ_UQ));
-    const unsigned overlapping = bits(_mm256_cmp_pd(d, s, _CMP_LT_OQ)) & apart;
-    const std::uint32_t bytes = _pdep_u32(touch, kBytes * kTouchOrEqual) |
-                                _pdep_u32(apart, kBytes * kApartCentres) |
-                                _pdep_u32(overlapping, kBytes * kOverlapping);
-    std::memcpy(mark + q, &bytes, 4);
-  }
-#endif
-  for (; q < n; ++q) mark[q] = touch_mark_of_squares(dist2[q], sum_r2[q]);
-}
 
 /// Bit q set where mark[q] has the bit `flag` (one of touch_mark's flags), for q < n <= 64.
 inline std::uint64_t mark_mask_scalar(const std::uint8_t* mark, std::size_t n, std::uint8_t flag) {

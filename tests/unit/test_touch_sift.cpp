@@ -62,51 +62,6 @@ TEST(TouchSift, MasksAreTheirDefinitionsEntryByEntry) {
   EXPECT_GT(pulled, 100u);
 }
 
-// The pair loop's marks of a chunk by SIMD compares (write_touch_marks) against touch_mark entry by
-// entry: squares below, equal to and above the radii's, zero, negative zero, NaN on either side,
-// infinities; chunk lengths 64 (the full SIMD groups), 63 and 5 (a scalar tail), 1 and 0.
-TEST(TouchSift, ChunkMarksAreTouchMarkEntryByEntry) {
-  std::mt19937_64 rng(17);
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  const double inf = std::numeric_limits<double>::infinity();
-  std::uniform_int_distribution<int> pick(0, 9);
-  std::uniform_real_distribution<double> sum(1e-4, 2e-3);
-  std::size_t flags[3] = {0, 0, 0};
-  for (int round = 0; round < 400; ++round) {
-    std::vector<double> dist2(64), sum_r(64), sum_r2(64);
-    for (std::size_t q = 0; q < 64; ++q) {
-      sum_r[q] = sum(rng);
-      const double s2 = sum_r[q] * sum_r[q];
-      const double cases[] = {0.5 * s2,
-                              s2,
-                              2.0 * s2,
-                              0.0,
-                              -0.0,
-                              nan,
-                              inf,
-                              std::nextafter(s2, 0.0),
-                              std::nextafter(s2, inf),
-                              1e-300};
-      dist2[q] = cases[pick(rng)];
-      if (pick(rng) == 0) sum_r[q] = pick(rng) < 5 ? nan : 0.0;
-      sum_r2[q] = sum_r[q] * sum_r[q];
-    }
-    for (const std::size_t n :
-         {std::size_t{64}, std::size_t{63}, std::size_t{5}, std::size_t{1}, std::size_t{0}}) {
-      std::vector<std::uint8_t> mark(65, 0xEE);  // one past n untouched
-      write_touch_marks(dist2.data(), sum_r2.data(), n, mark.data());
-      for (std::size_t q = 0; q < n; ++q) {
-        ASSERT_EQ(mark[q], touch_mark(dist2[q], sum_r[q]))
-            << "round " << round << " n " << n << " q " << q << " dist2 " << dist2[q] << " sum_r "
-            << sum_r[q];
-        for (int f = 0; f < 3; ++f) flags[f] += (mark[q] >> f) & 1;
-      }
-      EXPECT_EQ(mark[n], 0xEE) << "n " << n;
-    }
-  }
-  for (int f = 0; f < 3; ++f) EXPECT_GT(flags[f], 1000u) << "flag " << f;
-}
-
 TEST(TouchSift, BitsAreVisitedInIncreasingOrder) {
   std::vector<std::size_t> seen;
   for_each_bit((std::uint64_t{1} << 63) | (std::uint64_t{1} << 40) | 0b1011u,
