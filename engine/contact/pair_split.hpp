@@ -26,9 +26,9 @@ struct PairSplit {
   std::size_t touching = 0;
 };
 
-/// One entry's tests, the definition the SIMD paths reproduce.
+/// One entry's tests, the definitions the SIMD paths reproduce (overlapping: touch_mark's).
 [[gnu::always_inline]] inline bool split_overlaps(double dist2, double sum_r) {
-  return (dist2 < sum_r * sum_r) & (dist2 != 0.0);
+  return (touch_mark(dist2, sum_r) & kOverlapping) != 0;
 }
 [[gnu::always_inline]] inline bool split_touches(double dist2, double sum_r, double tolerance) {
   const double cut = sum_r + tolerance;
