@@ -27,16 +27,16 @@ namespace {
   return nearest_image(p.position[i], p.position[j], period);
 }
 
-// Visits the entries k in [begin, end) (rows in order; entry k is row row_of[k]'s):
-// apart(k) for those that do not overlap (in any order), then overlap(i, k) for those that do, by
-// increasing k. Most entries of a Verlet list do not overlap, in no predictable pattern; so each
-// chunk of 64 is first gathered by a loop without branches (each entry's squared distance and
-// radii's sum), split by SIMD compares into a mask of the overlapping entries (pair_split.hpp),
-// and the force kernel then runs over the mask's bits without a mispredicted branch per entry
-// (measured +10 % p-steps/s against a branch per entry). The chunks run across row ends: a row
-// holds ~7 entries, and loops row by row paid three short loops' exits a row.
-// `touching` counts the entries within the touching tolerance (what a search with margin 0 finds).
-// kMark (a scene with cohesive parts): also writes each entry's touch mark (touch_sift.hpp)
+// Visits the entries k in [begin, end) (rows in order; entry k is row row_of[k]'s), by chunks:
+// apart(k0, bits) with bit q set for each entry k0 + q of the chunk that does not overlap, then
+// overlap(i, k) for those that do, by increasing k. Most entries of a Verlet list do not overlap,
+// in no predictable pattern; so each chunk of 64 is first gathered by a loop without branches (each
+// entry's squared distance and radii's sum), split by SIMD compares into a mask of the overlapping
+// entries (pair_split.hpp), and the force kernel then runs over the mask's bits without a
+// mispredicted branch per entry (measured +10 % p-steps/s against a branch per entry). The chunks
+// run across row ends: a row holds ~7 entries, and loops row by row paid three short loops' exits a
+// row. `touching` counts the entries within the touching tolerance (what a search with margin 0
+// finds). kMark (a scene with cohesive parts): also writes each entry's touch mark (touch_sift.hpp)
 // to mark[k], so the cohesive pass need not gather the partners again.
 template <bool kMark, class Overlap, class Apart>
 [[gnu::always_inline]] inline void split_entries(const Particles& p, std::span<const Index> col,
@@ -58,7 +58,7 @@ template <bool kMark, class Overlap, class Apart>
     const PairSplit split =
         split_pairs<kMark>(dist2, sum_r, n, kTouchTolerance, kMark ? mark + k0 : nullptr);
     touching += split.touching;
-    for_each_bit(first_bits(n) & ~split.overlapping, [&](std::size_t q) { apart(k0 + q); });
+    apart(k0, first_bits(n) & ~split.overlapping);
     for_each_bit(split.overlapping, [&](std::size_t q) { overlap(row_of[k0 + q], k0 + q); });
   }
 }
@@ -106,9 +106,14 @@ template <class Normal, bool Tangential, RollingKind Rolling, bool kMark, class 
         if constexpr (kSpring) batch.set_rolling(roll + k * stride);
         if (batch.full()) flush();
       },
-      [&](std::size_t k) {  // not (or no longer) overlapping
-        hist[k].setZero();
-        if constexpr (kSpring) std::fill_n(roll + k * stride, kRollingStateSize, 0.0);
+      [&](std::size_t k0, std::uint64_t apart) {  // not (or no longer) overlapping
+        static_assert(sizeof(Vec3) == 3 * sizeof(double));
+        zero_triples(hist[k0].data(), apart);
+        if constexpr (kSpring) {
+          for_each_bit(apart, [&](std::size_t q) {
+            std::fill_n(roll + (k0 + q) * stride, kRollingStateSize, 0.0);
+          });
+        }
       });
   if (batch.count > 0) flush();
   return touching;

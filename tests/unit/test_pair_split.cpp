@@ -1,7 +1,8 @@
 // The pair loop's split of a chunk (engine/contact/pair_split.hpp) against its scalar definitions,
 // entry by entry: in the AVX-512 or AVX2 build groups of 8 or 4 take the SIMD path, a tail the
 // scalar loop. Squared distances below, equal to and just around the radii's squared sum, zero,
-// negative zero, NaN on either side, infinity; chunk lengths 64, 63, 5, 1 and 0.
+// negative zero, NaN on either side, infinity; chunk lengths 64, 63, 5, 1 and 0. And the zeroing of
+// the entries that do not overlap (zero_triples).
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -73,6 +74,37 @@ TEST(PairSplit, ChunkIsItsEntriesTestsEntryByEntry) {
     }
   }
   for (const std::size_t c : counts) EXPECT_GT(c, 1000u);
+}
+
+// zero_triples against its definition: exactly the triples of the set bits become +0.0, every
+// other double (and the guard doubles around the 64 triples) keeps its bits; masks of none, all,
+// single bits, the last chunk's first bits and random ones.
+TEST(PairSplit, ZeroTriplesZeroesTheMarkedEntriesAndNothingElse) {
+  std::mt19937_64 rng(29);
+  std::vector<std::uint64_t> masks = {0,
+                                      ~std::uint64_t{0},
+                                      1,
+                                      std::uint64_t{1} << 63,
+                                      first_bits(5),
+                                      first_bits(63),
+                                      0x8000000000000001};
+  for (int q = 0; q < 64; ++q) masks.push_back(std::uint64_t{1} << q);
+  for (int r = 0; r < 200; ++r) masks.push_back(rng() & rng());
+  constexpr std::size_t kGuard = 8;
+  for (const std::uint64_t mask : masks) {
+    std::vector<double> v(kGuard + 3 * 64 + kGuard);
+    for (std::size_t d = 0; d < v.size(); ++d)
+      v[d] = d == kGuard ? -0.0 : 1.0 + static_cast<double>(d);
+    const std::vector<double> before = v;
+    zero_triples(v.data() + kGuard, mask);
+    for (std::size_t d = 0; d < v.size(); ++d) {
+      const bool inside = d >= kGuard && d < kGuard + 3 * 64;
+      const bool marked = inside && ((mask >> ((d - kGuard) / 3)) & 1) != 0;
+      const double want = marked ? 0.0 : before[d];
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(v[d]), std::bit_cast<std::uint64_t>(want))
+          << "mask " << std::hex << mask << std::dec << " double " << d;
+    }
+  }
 }
 
 }  // namespace
