@@ -566,8 +566,9 @@ void Simulation::compute_forces(double history_dt, bool count) {
   impl_->walls.refresh(particles_, impl_->drum, impl_->wall_reach, impl_->wall_history,
                        impl_->moved);
   impl_->moved = 0.0;
-  std::size_t wall_contacts = impl_->model.add_wall_forces(
-      particles_, impl_->walls.list(), impl_->drum, omega_, impl_->wall_history, dt_, history_dt);
+  std::size_t wall_contacts =
+      impl_->model.add_wall_forces(particles_, impl_->walls.list(), impl_->drum, omega_,
+                                   impl_->wall_history, dt_, history_dt, impl_->walls.parts());
   if (!impl_->meshes.empty()) {
     // The drum's angle where the particles now stand: a step's forces come after its drift.
     wall_contacts += impl_->model.add_mesh_forces(

@@ -420,7 +420,8 @@ void cohesion_ordered_pass(const CohesiveParts& parts, Particles& p, ContactList
 }
 
 void cohesion_wall_loop(const CohesiveParts& parts, Particles& p, std::span<const Index> candidates,
-                        const Drum& drum, double omega, double dt) {
+                        std::span<const std::uint8_t> near_parts, const Drum& drum, double omega,
+                        double dt) {
   const std::size_t n_parts = drum.periodic() ? 1 : kWallParts;
   // Each registered part that acts at the wall (else nullptr), with the view of its per-particle
   // wall state.
@@ -452,7 +453,9 @@ void cohesion_wall_loop(const CohesiveParts& parts, Particles& p, std::span<cons
       const Index i = candidates[static_cast<std::size_t>(c)];
       const Vec3& x = p.position[i];
       const double r = p.radius[i];
+      const unsigned near = near_parts.empty() ? ~0u : near_parts[static_cast<std::size_t>(c)];
       for (std::size_t w = 0; w < n_parts; ++w) {
+        if (((near >> w) & 1u) == 0) continue;  // beyond every link since the last build
         const WallGap g = wall_gap(drum, static_cast<WallPart>(w), x, r);
         bool live = false;
         CohesiveParts::for_each_law([&]<std::size_t K, class Law>() {

@@ -91,10 +91,12 @@ void cohesion_ordered_pass(const CohesiveParts& parts, Particles& p, ContactList
                            const BridgeEventFilms* replay);
 
 /// The same for the particles `candidates` (increasing) against the drum wall turning at omega
-/// (each part's advance_wall; its state in p's arrays). In parallel over the candidates: a
-/// particle's wall state changes only its own film and force.
+/// (each part's advance_wall; its state in p's arrays), each against the wall parts of its
+/// `near_parts` bits (empty: all; a part beyond them holds no link, WallCandidates::parts). In
+/// parallel over the candidates: a particle's wall state changes only its own film and force.
 void cohesion_wall_loop(const CohesiveParts& parts, Particles& p, std::span<const Index> candidates,
-                        const Drum& drum, double omega, double dt);
+                        std::span<const std::uint8_t> near_parts, const Drum& drum, double omega,
+                        double dt);
 
 /// The live links among `contacts`: one Bond per pair that some part says is bonded (a live
 /// bridge, an adhesive contact); its shares added in the parts' order, the age the first part's.

@@ -351,9 +351,9 @@ class WallRollingView {
 // Returns how many there were (the contacts the kernel evaluated).
 template <class Normal, bool Tangential, RollingKind Rolling>
 std::size_t wall_rows(const ContactLaw<Normal>& law, Particles& p,
-                      std::span<const Index> candidates, std::size_t begin, std::size_t end,
-                      const Drum& drum, double omega, WallHistory& history, double dt,
-                      double history_dt, WallBatch& batch) {
+                      std::span<const Index> candidates, std::span<const std::uint8_t> near_parts,
+                      std::size_t begin, std::size_t end, const Drum& drum, double omega,
+                      WallHistory& history, double dt, double history_dt, WallBatch& batch) {
   const Vec3 wall_spin(0.0, 0.0, omega);
   const std::size_t parts = drum.periodic() ? 1 : kWallParts;
   constexpr bool kSpring = Rolling == RollingKind::spring;
@@ -375,7 +375,9 @@ std::size_t wall_rows(const ContactLaw<Normal>& law, Particles& p,
     const Index i = candidates[q];
     const Vec3& x = p.position[i];
     const double r = p.radius[i];
+    const unsigned near = near_parts.empty() ? ~0u : near_parts[q];
     for (std::size_t part = 0; part < parts; ++part) {
+      if (((near >> part) & 1u) == 0) continue;  // apart since the last build: history zero
       const WallContact c = drum.contact(static_cast<WallPart>(part), x, r);
       if (c.overlap <= 0.0) {
         history[i][part].setZero();
@@ -398,8 +400,9 @@ std::size_t wall_rows(const ContactLaw<Normal>& law, Particles& p,
 
 template <class Normal, bool Tangential, RollingKind Rolling>
 std::size_t wall_loop(const ContactLaw<Normal>& law, Particles& p,
-                      std::span<const Index> candidates, const Drum& drum, double omega,
-                      WallHistory& history, double dt, double history_dt, BlockDealer& dealer) {
+                      std::span<const Index> candidates, std::span<const std::uint8_t> near_parts,
+                      const Drum& drum, double omega, WallHistory& history, double dt,
+                      double history_dt, BlockDealer& dealer) {
   constexpr std::size_t kPerTask = 256;
   std::size_t contacts = 0;
   // Each candidate's forces and history are its own: who takes a task does not change the bits.
@@ -407,8 +410,8 @@ std::size_t wall_loop(const ContactLaw<Normal>& law, Particles& p,
   {
     WallBatch batch;
     deal_ranges(dealer, candidates.size(), kPerTask, [&](std::size_t begin, std::size_t end) {
-      contacts += wall_rows<Normal, Tangential, Rolling>(law, p, candidates, begin, end, drum,
-                                                         omega, history, dt, history_dt, batch);
+      contacts += wall_rows<Normal, Tangential, Rolling>(
+          law, p, candidates, near_parts, begin, end, drum, omega, history, dt, history_dt, batch);
     });
   }
   return contacts;
@@ -550,15 +553,20 @@ void ContactModel::add_pair_forces_ordered(Particles& p, ContactList& contacts,
 
 std::size_t ContactModel::add_wall_forces(Particles& p, std::span<const Index> candidates,
                                           const Drum& drum, double omega, WallHistory& history,
-                                          double dt, double history_dt) const {
+                                          double dt, double history_dt,
+                                          std::span<const std::uint8_t> near_parts) const {
+  if (!near_parts.empty() && near_parts.size() != candidates.size()) {
+    throw std::logic_error("add_wall_forces: near_parts does not match the candidates");
+  }
   std::size_t contacts = 0;
   with_law(wall_, wall_tangential_, rolling_kind(wall_rolling_, spring_),
            [&]<class N, bool Tangential, RollingKind Rolling>(const ContactLaw<N>& law) {
-             contacts = wall_loop<N, Tangential, Rolling>(law, p, candidates, drum, omega, history,
-                                                          dt, history_dt, wall_blocks_);
+             contacts =
+                 wall_loop<N, Tangential, Rolling>(law, p, candidates, near_parts, drum, omega,
+                                                   history, dt, history_dt, wall_blocks_);
            });
   if (cohesive_.any()) {
-    cohesion_wall_loop(cohesive_, p, candidates, drum, omega, history_dt);
+    cohesion_wall_loop(cohesive_, p, candidates, near_parts, drum, omega, history_dt);
   }
   return contacts;
 }

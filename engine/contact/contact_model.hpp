@@ -159,11 +159,12 @@ class ContactModel {
                                double period, double history_dt,
                                const BridgeEventFilms* replay) const;
   /// Adds the wall forces of the drum turning at omega (rad/s) on the particles `candidates`
-  /// (increasing; the others must not touch the wall, see WallCandidates).
+  /// (increasing; the others must not touch the wall, see WallCandidates), each against the wall
+  /// parts of its `near_parts` bits (WallCandidates::parts; empty: every part).
   /// history.size() == p.size(). Returns the wall contacts (overlaps) the kernel evaluated.
   std::size_t add_wall_forces(Particles& p, std::span<const Index> candidates, const Drum& drum,
-                              double omega, WallHistory& history, double dt,
-                              double history_dt) const;
+                              double omega, WallHistory& history, double dt, double history_dt,
+                              std::span<const std::uint8_t> near_parts = {}) const;
 
   /// The laws of the scene's triangle walls, in the order of engine/mesh/wall_meshes.hpp
   /// ([[wall.mesh]], then [[wall.lifters]]); empty without.

@@ -35,16 +35,33 @@ bool WallCandidates::refresh(const Particles& p, const Drum& drum, double reach,
   const std::size_t n = p.size();
   keep_.resize(n);
   const auto count = static_cast<std::int64_t>(n);
+  const std::size_t wall_parts = drum.periodic() ? 1 : kWallParts;
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < count; ++i) {
-    // Not `gap > reach`: a NaN gap keeps the particle, so the wall loop sees it.
-    keep_[i] = !(drum.gap(p.position[i], p.radius[i]) > reach);
-    if (keep_[i] == 0) history[i].fill(Vec3::Zero());
+    const Vec3& x = p.position[i];
+    const double r = p.radius[i];
+    // Drum::gap's terms, part by part. Not `gap > reach`: a NaN gap keeps the part, so the wall
+    // loop sees it.
+    const double gaps[kWallParts] = {drum.radius() - std::sqrt(x.x() * x.x() + x.y() * x.y()) - r,
+                                     x.z() - r, drum.depth() - x.z() - r};
+    std::uint8_t near = 0;
+    for (std::size_t w = 0; w < wall_parts; ++w) {
+      if (!(gaps[w] > reach)) {
+        near |= static_cast<std::uint8_t>(1u << w);
+      } else {
+        history[i][w].setZero();
+      }
+    }
+    keep_[i] = near;
   }
   list_.reserve(n);  // once: later builds never allocate
+  parts_.reserve(n);
   list_.clear();
+  parts_.clear();
   for (std::size_t i = 0; i < n; ++i) {
-    if (keep_[i] != 0) list_.push_back(static_cast<Index>(i));
+    if (keep_[i] == 0) continue;
+    list_.push_back(static_cast<Index>(i));
+    parts_.push_back(keep_[i]);
   }
   reference_.assign(p.position.begin(), p.position.end());
   reach_ = reach;
@@ -58,8 +75,14 @@ void WallCandidates::renumber(std::span<const Index> order, std::span<const Inde
     invalidate();
     return;
   }
-  for (Index& i : list_) i = new_index[i];
-  std::sort(list_.begin(), list_.end());
+  scratch_pairs_.resize(list_.size());
+  for (std::size_t k = 0; k < list_.size(); ++k)
+    scratch_pairs_[k] = {new_index[list_[k]], parts_[k]};
+  std::sort(scratch_pairs_.begin(), scratch_pairs_.end());
+  for (std::size_t k = 0; k < list_.size(); ++k) {
+    list_[k] = scratch_pairs_[k].first;
+    parts_[k] = scratch_pairs_[k].second;
+  }
   apply_order(reference_, order, scratch_);
 }
 

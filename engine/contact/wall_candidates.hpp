@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <limits>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "engine/contact/contact_model.hpp"
@@ -28,6 +29,10 @@ class WallCandidates {
                double moved = std::numeric_limits<double>::infinity());
   /// The candidates, increasing.
   std::span<const Index> list() const { return list_; }
+  /// For each candidate (list()[k]), the wall parts it can touch: bit w set where its gap to part
+  /// w (WallPart) was within `reach` at the last build. A part's gap changes by no more than the
+  /// particle moves too, so the wall loops skip the others (their history was zeroed then).
+  std::span<const std::uint8_t> parts() const { return parts_; }
   /// Follows a re-ordering of the particles (slot k now holds the particle that was at order[k];
   /// particle i moved to new_index[i]): the list stays valid without a rebuild.
   void renumber(std::span<const Index> order, std::span<const Index> new_index);
@@ -41,8 +46,10 @@ class WallCandidates {
   bool needs_rebuild(const Particles& p, const Drum& drum, double reach);
 
   std::vector<Index> list_;
-  std::vector<std::uint8_t> keep_;  ///< scratch of a rebuild: particle i is a candidate
-  std::vector<Vec3> reference_;     ///< positions at the last build
+  std::vector<std::uint8_t> parts_;
+  std::vector<std::uint8_t> keep_;  ///< scratch of a rebuild: the parts particle i can touch
+  std::vector<std::pair<Index, std::uint8_t>> scratch_pairs_;  ///< of renumber
+  std::vector<Vec3> reference_;                                ///< positions at the last build
   std::vector<Vec3> scratch_;
   double reach_ = 0.0;
   /// Bound on the largest displacement since the last build (m): the measured one after a check,

@@ -1,11 +1,13 @@
 // WallCandidates, the wall's Verlet list: checked against a full scan of every particle and
 // wall part (the oracle), through random moves below and above the reach, motion bounds,
-// re-ordering and periodic ends.
+// re-ordering and periodic ends; and each candidate's wall parts within the reach.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <limits>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include "engine/contact/wall_candidates.hpp"
 #include "engine/spatial_order.hpp"
@@ -46,11 +48,31 @@ bool listed(const WallCandidates& w, Index i) {
   return std::binary_search(w.list().begin(), w.list().end(), i);
 }
 
-// Every particle that touches the wall now is a candidate.
+// The wall parts candidate i may touch (WallCandidates::parts), 0 if it is not listed.
+unsigned near_parts(const WallCandidates& w, Index i) {
+  const auto at = std::lower_bound(w.list().begin(), w.list().end(), i);
+  if (at == w.list().end() || *at != i) return 0;
+  return w.parts()[static_cast<std::size_t>(at - w.list().begin())];
+}
+
+// Every particle that touches the wall now is a candidate, with the part it touches among its
+// parts.
 void expect_touching_listed(const WallCandidates& w, const Particles& p, const Drum& drum) {
   for (const Index i : touching_wall(p, drum)) {
     EXPECT_TRUE(listed(w, i)) << "particle " << i << " touches the wall but is not listed";
+    for (std::size_t part = 0; part < kWallParts; ++part) {
+      if (drum.contact(static_cast<WallPart>(part), p.position[i], p.radius[i]).overlap > 0.0) {
+        EXPECT_NE((near_parts(w, i) >> part) & 1u, 0u) << "particle " << i << " part " << part;
+      }
+    }
   }
+}
+
+// Particle i's gap to each wall part (Drum::contact's overlap, negated).
+double part_gap(const Drum& drum, const Particles& p, std::size_t i, std::size_t part) {
+  const Vec3& x = p.position[i];
+  if (part == 0) return drum.radius() - x.head<2>().norm() - p.radius[i];
+  return part == 1 ? x.z() - p.radius[i] : drum.depth() - x.z() - p.radius[i];
 }
 
 // A drum, particles in it and their wall list, built.
@@ -84,20 +106,27 @@ TEST(WallCandidates, ListIsExactlyTheParticlesWithinReachAtABuild) {
   WallCandidates w;
   ASSERT_TRUE(w.refresh(p, drum, kReach, history));
   ASSERT_TRUE(std::is_sorted(w.list().begin(), w.list().end()));
+  ASSERT_EQ(w.parts().size(), w.list().size());
   std::size_t near = 0;
+  std::size_t one_part = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     const bool within = drum.gap(p.position[i], kRadius) <= kReach;
     near += within;
     EXPECT_EQ(listed(w, static_cast<Index>(i)), within) << "particle " << i;
-    if (!within) {  // history of particles left out is zeroed, the others kept
-      EXPECT_EQ(history[i][0], Vec3::Zero());
-      EXPECT_EQ(history[i][2], Vec3::Zero());
-    } else {
-      EXPECT_EQ(history[i][1], Vec3(1, 2, 3));
+    unsigned bits = 0;
+    for (std::size_t part = 0; part < kWallParts; ++part) {
+      // A part within reach keeps its history; the history of any other is zeroed.
+      const bool part_within = part_gap(drum, p, i, part) <= kReach;
+      bits |= part_within ? 1u << part : 0u;
+      EXPECT_EQ(history[i][part], part_within ? Vec3(1, 2, 3) : Vec3::Zero())
+          << "particle " << i << " part " << part;
     }
+    EXPECT_EQ(near_parts(w, static_cast<Index>(i)), bits) << "particle " << i;
+    one_part += bits == 1u || bits == 2u || bits == 4u;
   }
   EXPECT_GT(near, 100u);
   EXPECT_LT(near, p.size() / 2) << "the list should leave out the interior";
+  EXPECT_GT(one_part, near / 2) << "most candidates are near one part only";
 }
 
 TEST(WallCandidates, EveryTouchingParticleIsListedWhileMovesStayWithinTheReach) {
@@ -147,19 +176,30 @@ TEST(WallCandidates, FollowsAReorderingWithoutARebuild) {
   WallHistory history(p.size());
   WallCandidates w;
   w.refresh(p, drum, kReach, history);
-  std::vector<Index> ids_before;
-  for (const Index i : w.list()) ids_before.push_back(p.id[i]);
+  // Each candidate's id with its parts: the parts move with the particle.
+  std::vector<std::pair<Index, unsigned>> ids_before;
+  for (std::size_t k = 0; k < w.list().size(); ++k) {
+    ids_before.emplace_back(p.id[w.list()[k]], w.parts()[k]);
+  }
   ReorderBuffers b;
   morton_order(p.position, 2.0 * kRadius, b);
   p.reorder(b.order, b);
   w.renumber(b.order, b.new_index);
   EXPECT_FALSE(w.refresh(p, drum, kReach, history)) << "nothing moved: no rebuild";
   ASSERT_TRUE(std::is_sorted(w.list().begin(), w.list().end()));
-  std::vector<Index> ids_after;
-  for (const Index i : w.list()) ids_after.push_back(p.id[i]);
+  ASSERT_EQ(w.parts().size(), w.list().size());
+  std::vector<std::pair<Index, unsigned>> ids_after;
+  for (std::size_t k = 0; k < w.list().size(); ++k) {
+    ids_after.emplace_back(p.id[w.list()[k]], w.parts()[k]);
+  }
   std::sort(ids_before.begin(), ids_before.end());
   std::sort(ids_after.begin(), ids_after.end());
   EXPECT_EQ(ids_after, ids_before);
+  EXPECT_NE(std::vector<Index>(w.list().begin(), w.list().end()), [&] {
+    std::vector<Index> before;
+    for (const auto& [id, bits] : ids_before) before.push_back(id);
+    return before;
+  }()) << "the re-ordering should move the candidates";
 }
 
 TEST(WallCandidates, PeriodicEndsIgnoreTheAxialMotion) {
@@ -172,7 +212,9 @@ TEST(WallCandidates, PeriodicEndsIgnoreTheAxialMotion) {
   for (std::size_t i = 0; i < p.size(); ++i) {
     // No caps: only the cylinder decides.
     const double rho = p.position[i].head<2>().norm();
-    EXPECT_EQ(listed(w, static_cast<Index>(i)), drum.radius() - rho - kRadius <= kReach);
+    const bool within = drum.radius() - rho - kRadius <= kReach;
+    EXPECT_EQ(listed(w, static_cast<Index>(i)), within);
+    EXPECT_EQ(near_parts(w, static_cast<Index>(i)), within ? 1u : 0u);
   }
   for (Vec3& x : p.position) x.z() = drum.wrap_z(x.z() + 0.3 * drum.depth());
   EXPECT_FALSE(w.refresh(p, drum, kReach, history));
