@@ -53,12 +53,19 @@ class Drum {
     return part == WallPart::cylinder ? cylinder_contact(x, r) : cap_contact(part, x, r);
   }
 
+  /// Gap (m) between a sphere and one wall part (a cap as if the ends were closed); negative
+  /// when they overlap.
+  double part_gap(WallPart part, const Vec3& x, double r) const {
+    if (part == WallPart::cap_low) return x.z() - r;
+    if (part == WallPart::cap_high) return depth_ - x.z() - r;
+    return radius_ - std::sqrt(x.x() * x.x() + x.y() * x.y()) - r;
+  }
   /// Smallest gap (m) between a sphere and the wall parts: the cylinder and, unless periodic,
   /// both caps; negative when it overlaps one of them.
   double gap(const Vec3& x, double r) const {
-    const double g = radius_ - std::sqrt(x.x() * x.x() + x.y() * x.y()) - r;
+    const double g = part_gap(WallPart::cylinder, x, r);
     if (periodic_) return g;
-    return std::min({g, x.z() - r, depth_ - x.z() - r});
+    return std::min({g, part_gap(WallPart::cap_low, x, r), part_gap(WallPart::cap_high, x, r)});
   }
 
   /// Velocity of the wall surface (cylinder or caps) at point p (m/s): omega z_hat x p.

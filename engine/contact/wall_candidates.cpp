@@ -38,15 +38,10 @@ bool WallCandidates::refresh(const Particles& p, const Drum& drum, double reach,
   const std::size_t wall_parts = drum.periodic() ? 1 : kWallParts;
 #pragma omp parallel for schedule(static)
   for (std::int64_t i = 0; i < count; ++i) {
-    const Vec3& x = p.position[i];
-    const double r = p.radius[i];
-    // Drum::gap's terms, part by part. Not `gap > reach`: a NaN gap keeps the part, so the wall
-    // loop sees it.
-    const double gaps[kWallParts] = {drum.radius() - std::sqrt(x.x() * x.x() + x.y() * x.y()) - r,
-                                     x.z() - r, drum.depth() - x.z() - r};
+    // Not `gap > reach`: a NaN gap keeps the part, so the wall loop sees it.
     std::uint8_t near = 0;
     for (std::size_t w = 0; w < wall_parts; ++w) {
-      if (!(gaps[w] > reach)) {
+      if (!(drum.part_gap(static_cast<WallPart>(w), p.position[i], p.radius[i]) > reach)) {
         near |= static_cast<std::uint8_t>(1u << w);
       } else {
         history[i][w].setZero();

@@ -68,7 +68,7 @@ void expect_touching_listed(const WallCandidates& w, const Particles& p, const D
   }
 }
 
-// Particle i's gap to each wall part (Drum::contact's overlap, negated).
+// Particle i's gap to each wall part, computed here (not by Drum::part_gap).
 double part_gap(const Drum& drum, const Particles& p, std::size_t i, std::size_t part) {
   const Vec3& x = p.position[i];
   if (part == 0) return drum.radius() - x.head<2>().norm() - p.radius[i];
@@ -195,11 +195,9 @@ TEST(WallCandidates, FollowsAReorderingWithoutARebuild) {
   std::sort(ids_before.begin(), ids_before.end());
   std::sort(ids_after.begin(), ids_after.end());
   EXPECT_EQ(ids_after, ids_before);
-  EXPECT_NE(std::vector<Index>(w.list().begin(), w.list().end()), [&] {
-    std::vector<Index> before;
-    for (const auto& [id, bits] : ids_before) before.push_back(id);
-    return before;
-  }()) << "the re-ordering should move the candidates";
+  std::size_t moved = 0;
+  for (std::size_t k = 0; k < w.list().size(); ++k) moved += p.id[w.list()[k]] != w.list()[k];
+  EXPECT_GT(moved, 0u) << "the re-ordering should move the candidates";
 }
 
 TEST(WallCandidates, PeriodicEndsIgnoreTheAxialMotion) {
