@@ -145,15 +145,14 @@ struct RowSum {
 };
 
 // The order of the sums, the same for any number of threads. Rows are grouped in fixed blocks of
-// kBlockRows particles. Particle j's force (and torque) is
+// rows_per_block particles (performance.pair_block_rows). Particle j's force (and torque) is
 //     (its shares as the partner of contacts in its own block, by k, from zero
 //      + its own row's sum, from zero)
 //     + its shares as the partner of contacts from earlier blocks ("cross-block"), by k, from zero.
 // A block's rows and partners are all its own, so a thread that takes a whole block adds the first
 // two parts straight into the particles; only the cross-block shares (about a fifth to a third of
 // the contacts, with particles in Morton order) pass through buffers and a second pass.
-// The blocks are ContactList's (index_cross_block): i / kBlockRows in a serial run.
-constexpr std::size_t kBlockRows = kPairBlockRows;
+// The blocks are ContactList's (index_cross_block): i / rows_per_block in a serial run.
 // Receivers of cross-block shares a block of the second pass (BlockDealer).
 constexpr std::size_t kReceiverBlock = 1024;
 
@@ -161,10 +160,10 @@ constexpr std::size_t kReceiverBlock = 1024;
 // cross_torque (by k, as the rows come in order) and added at the end.
 template <class Normal, bool Tangential, RollingKind Rolling, bool kMark>
 std::size_t pair_loop_serial(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts,
-                             PairForceBuffers& buf, double period, double dt, double history_dt,
-                             const TouchingPull& pull) {
+                             PairForceBuffers& buf, std::size_t rows_per_block, double period,
+                             double dt, double history_dt, const TouchingPull& pull) {
   constexpr bool kTorque = Tangential || rolls(Rolling);
-  contacts.index_cross_block(kBlockRows);
+  contacts.index_cross_block(rows_per_block);
   const auto receivers = contacts.cross_receivers();
   const auto block_end = contacts.row_block_end();
   buf.cross_force.resize(p.size());
@@ -242,15 +241,15 @@ template <class Normal, bool Tangential, RollingKind Rolling, bool kMark>
 // buffer buf.cohesion.mark is sized here).
 template <class Normal, bool Tangential, RollingKind Rolling, bool kMark>
 std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts,
-                      PairForceBuffers& buf, double period, double dt, double history_dt,
-                      const TouchingPull& pull) {
+                      PairForceBuffers& buf, std::size_t rows_per_block, double period, double dt,
+                      double history_dt, const TouchingPull& pull) {
   if constexpr (kMark) buf.cohesion.mark.resize(contacts.size());
 #ifdef _OPENMP
   if (omp_get_max_threads() == 1)
 #endif
   {
-    return pair_loop_serial<Normal, Tangential, Rolling, kMark>(law, p, contacts, buf, period, dt,
-                                                                history_dt, pull);
+    return pair_loop_serial<Normal, Tangential, Rolling, kMark>(
+        law, p, contacts, buf, rows_per_block, period, dt, history_dt, pull);
   }
   constexpr bool kTorque = Tangential || rolls(Rolling);
   const std::size_t zero = contacts.size();  // the slot of the pairs that do not overlap
@@ -261,7 +260,7 @@ std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& 
     buf.torque_j.resize(contacts.size() + 1);
     buf.torque_j[zero].setZero();
   }
-  contacts.index_cross_block(kBlockRows);
+  contacts.index_cross_block(rows_per_block);
   const std::size_t blocks = contacts.block_start().size() - 1;
   std::size_t touching = 0;
   // Dealt from both ends of each thread pair's segment (BlockDealer): a block writes only its
@@ -464,6 +463,7 @@ ContactModel::ContactModel(const SceneConfig& scene) {
   wall_rolling_ = scene.wall.rolling_friction > 0.0;
   cohesive_ = CohesiveParts(scene);
   pair_range_ = cohesive_.range();
+  pair_block_rows_ = static_cast<std::size_t>(scene.performance.pair_block_rows);
   const auto add_mesh_law = [&](const MeshMaterial& m) {
     const Material material{scene.wall.density, m.youngs_modulus, m.poisson_ratio,
                             m.restitution,      m.friction,       m.rolling_friction};
@@ -532,10 +532,13 @@ std::size_t ContactModel::add_pair_forces_parallel(Particles& p, ContactList& co
       cohesive ? touching_pull(cohesive_, contacts, history_dt) : TouchingPull{};
   with_law(pair_, pair_tangential_, rolling_kind(pair_rolling_, spring_),
            [&]<class N, bool Tangential, RollingKind Rolling>(const ContactLaw<N>& law) {
-             touching = cohesive ? pair_loop<N, Tangential, Rolling, true>(
-                                       law, p, contacts, buffers, period, dt, history_dt, pull)
-                                 : pair_loop<N, Tangential, Rolling, false>(
-                                       law, p, contacts, buffers, period, dt, history_dt, pull);
+             touching = cohesive
+                            ? pair_loop<N, Tangential, Rolling, true>(law, p, contacts, buffers,
+                                                                      pair_block_rows_, period, dt,
+                                                                      history_dt, pull)
+                            : pair_loop<N, Tangential, Rolling, false>(law, p, contacts, buffers,
+                                                                       pair_block_rows_, period, dt,
+                                                                       history_dt, pull);
            });
   if (cohesive) {
     cohesion_pass_one(cohesive_, p, contacts, period, history_dt, buffers.cohesion, list_events);

@@ -74,8 +74,6 @@ using WallHistory = std::vector<std::array<Vec3, kWallParts>>;
 /// (cross_force, cross_torque). Several threads: the partner's share (force on i, torque on j) of
 /// each such overlapping contact, packed per block, and for each listed pair k the slot that holds
 /// it (the last slot, zeros, for a pair that does not overlap).
-/// The pair loop's fixed blocks of rows (particles i / kPairBlockRows): see contact_model.cpp.
-inline constexpr std::size_t kPairBlockRows = 512;
 
 struct PairForceBuffers {
   std::vector<Vec3> cross_force;
@@ -211,6 +209,7 @@ class ContactModel {
   bool spring_ = false;  ///< RollingLaw::spring
   CohesiveParts cohesive_;
   double pair_range_ = 0.0;
+  std::size_t pair_block_rows_ = 0;  ///< performance.pair_block_rows
   std::vector<MeshLaw> mesh_laws_;
   bool mesh_torque_ = false;  ///< some mesh law has a tangential or rolling part
   /// Deals the wall loop's tasks to the threads: scratch of one call at a time (a model belongs

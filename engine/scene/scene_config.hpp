@@ -37,6 +37,9 @@ enum class RollingLaw { constant_torque, spring };
 /// [time] max_overlap: its default and the largest value accepted (radii of the smaller body).
 /// Beyond one radius the overlap lens of a small sphere on a large one is no longer a lens.
 inline constexpr double kDefaultMaxOverlap = 0.5;
+/// Bounds of performance.pair_block_rows.
+inline constexpr std::int64_t kMinPairBlockRows = 64;
+inline constexpr std::int64_t kMaxPairBlockRows = std::int64_t{1} << 20;
 inline constexpr double kMaxOverlapBound = 1.0;
 
 struct ContactConfig {
@@ -159,6 +162,10 @@ struct PerformanceConfig {
   /// so that neighbours sit close in memory. Trajectories do not depend on it beyond round-off
   /// of the summation order.
   std::uint64_t sort_every = 100;
+  /// The pair loop's fixed blocks of rows, in particles (engine/contact/contact_model.cpp): a
+  /// particle's force is summed block by block, so trajectories depend on it at round-off, never
+  /// on the thread or rank count. A block's particles should fit the L2 cache.
+  std::uint64_t pair_block_rows = 512;
 
   friend bool operator==(const PerformanceConfig&, const PerformanceConfig&) = default;
 };

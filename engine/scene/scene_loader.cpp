@@ -666,13 +666,20 @@ void read_wall_lifters(const Scope& wall, SceneConfig& scene) {
 void read_performance(const Scope& root, SceneConfig& scene) {
   const auto s = root.table("performance");
   if (!s) return;
-  s->allow_only({"verlet_skin", "sort_every"});
+  s->allow_only({"verlet_skin", "sort_every", "pair_block_rows"});
   PerformanceConfig& p = scene.performance;
   p.verlet_skin = s->number_or("verlet_skin", p.verlet_skin);
   const std::int64_t every =
       s->integer("sort_every").value_or(static_cast<std::int64_t>(p.sort_every));
   if (every < 0) s->fail("sort_every", fmt::format("must be >= 0 (0: never), got {}", every));
   p.sort_every = static_cast<std::uint64_t>(every);
+  const std::int64_t rows =
+      s->integer("pair_block_rows").value_or(static_cast<std::int64_t>(p.pair_block_rows));
+  if (rows < kMinPairBlockRows || rows > kMaxPairBlockRows) {
+    s->fail("pair_block_rows",
+            fmt::format("must be in [{}, {}], got {}", kMinPairBlockRows, kMaxPairBlockRows, rows));
+  }
+  p.pair_block_rows = static_cast<std::uint64_t>(rows);
 }
 
 void read_top_level(const Scope& root, SceneConfig& scene) {

@@ -414,6 +414,13 @@ Problem check_performance(const SceneConfig& s) {
     return fail("performance.verlet_skin",
                 fmt::format("must be in (0, 10] (units of the smallest radius), got {}", skin));
   }
+  const std::uint64_t rows = s.performance.pair_block_rows;
+  if (rows < static_cast<std::uint64_t>(kMinPairBlockRows) ||
+      rows > static_cast<std::uint64_t>(kMaxPairBlockRows)) {
+    return fail(
+        "performance.pair_block_rows",
+        fmt::format("must be in [{}, {}], got {}", kMinPairBlockRows, kMaxPairBlockRows, rows));
+  }
   return std::nullopt;
 }
 

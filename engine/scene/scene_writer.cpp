@@ -310,7 +310,9 @@ toml::table scene_table(const SceneConfig& s, const fs::path& folder) {
       {"time", time_table(s.time)},
       {"performance",
        toml::table{{"verlet_skin", s.performance.verlet_skin},
-                   {"sort_every", integer(s.performance.sort_every, "performance.sort_every")}}},
+                   {"sort_every", integer(s.performance.sort_every, "performance.sort_every")},
+                   {"pair_block_rows",
+                    integer(s.performance.pair_block_rows, "performance.pair_block_rows")}}},
       {"output", output_table(s)}};
   toml::table wall = wall_table(s.wall, s.material);
   if (!s.meshes.empty()) wall.insert("mesh", mesh_array(s, folder));

@@ -23,10 +23,10 @@
 namespace drumlab::test {
 namespace {
 
-/// 700 particles (two of the pair loop's blocks of 512 rows), settling 0.004 s (41 steps),
-/// re-ordered every 30 steps, a small Verlet skin so that particles migrate often. (Short: ranks
-/// oversubscribed on a busy 2-core machine take tens of milliseconds a step, each one waiting for
-/// the others to be scheduled.)
+/// 700 particles (three of the pair loop's blocks of 256 rows, pair_block_rows), settling 0.004 s
+/// (41 steps), re-ordered every 30 steps, a small Verlet skin so that particles migrate often.
+/// (Short: ranks oversubscribed on a busy 2-core machine take tens of milliseconds a step, each one
+/// waiting for the others to be scheduled.)
 std::string scene_text(const std::string& search, const std::string& drum_extra,
                        const std::string& ends) {
   SmallDrumText t;
@@ -38,7 +38,7 @@ std::string scene_text(const std::string& search, const std::string& drum_extra,
   t.depth = "0.1";
   t.fill = "count = 700\nsettle_time = 0.004\nseed = 3";
   t.gravity = "[0.0, -150.0, 0.0]";  // packs the loose fill into a bed within these few steps
-  return t.text() + "[performance]\nsort_every = 30\nverlet_skin = 0.1\n";
+  return t.text() + "[performance]\nsort_every = 30\nverlet_skin = 0.1\npair_block_rows = 256\n";
 }
 
 /// The contacts of a state: the listed pairs that overlap, as (id, id) with their tangential

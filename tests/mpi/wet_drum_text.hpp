@@ -8,9 +8,9 @@ namespace drumlab::test {
 
 inline constexpr double kLiquidContent = 0.02;
 
-/// 700 particles (two of the pair loop's blocks of 512 rows) packed by strong gravity in a few
-/// steps, re-ordered every 30 steps, a small Verlet skin so that particles migrate often; `law`:
-/// the [liquid] or [cohesion] table; `ends`: "" (caps) or "periodic".
+/// 700 particles (three of the pair loop's blocks of 256 rows, pair_block_rows) packed by strong
+/// gravity in a few steps, re-ordered every 30 steps, a small Verlet skin so that particles migrate
+/// often; `law`: the [liquid] or [cohesion] table; `ends`: "" (caps) or "periodic".
 inline std::string scene_text(const std::string& law, const std::string& ends = "") {
   SmallDrumText t;
   t.ends = ends;
@@ -21,7 +21,8 @@ inline std::string scene_text(const std::string& law, const std::string& ends = 
   t.depth = "0.1";
   t.fill = "count = 700\nsettle_time = 0.004\nseed = 3";
   t.gravity = "[0.0, -150.0, 0.0]";
-  return t.text() + "[performance]\nsort_every = 30\nverlet_skin = 0.1\n" + law;
+  return t.text() + "[performance]\nsort_every = 30\nverlet_skin = 0.1\npair_block_rows = 256\n" +
+         law;
 }
 
 /// Migration (films), wall bridges (on by default), half the liquid seeded in the bridges of the

@@ -74,14 +74,14 @@ TEST(ContactListRowKeys, KeyedRowsFormTheSerialBlocksCutToTheSubset) {
   // Serial slots 10, 511 | 512, 2000: the serial blocks [0, 512), [512, 1024), [1536, 2048).
   const std::vector<std::uint64_t> keys = {10, 511, 512, 2000};
   c.set_row_keys(keys);
-  c.index_cross_block(kPairBlockRows);
+  c.index_cross_block(512);
   EXPECT_EQ(std::vector<std::size_t>(c.block_start().begin(), c.block_start().end()),
             (std::vector<std::size_t>{0, 2, 3, 4}));
   // Pairs (1, 2) and (2, 3) cross blocks: partners 2 and 3 receive cross-block shares.
   EXPECT_EQ(std::vector<Index>(c.cross_receivers().begin(), c.cross_receivers().end()),
             (std::vector<Index>{2, 3}));
   c.set_row_keys({});  // serial: rows 0..3 are one block
-  c.index_cross_block(kPairBlockRows);
+  c.index_cross_block(512);
   EXPECT_EQ(c.block_start().size(), 2u);
   EXPECT_TRUE(c.cross_receivers().empty());
 }

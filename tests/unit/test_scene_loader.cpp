@@ -287,6 +287,11 @@ TEST(SceneLoader, BadInputGivesOneLineNamingFileAndKey) {
        "performance.sort_every"},
       {"zero skin", edited("[output]", "[performance]\nverlet_skin = 0\n[output]"),
        "performance.verlet_skin"},
+      {"tiny row blocks", edited("[output]", "[performance]\npair_block_rows = 63\n[output]"),
+       "performance.pair_block_rows"},
+      {"negative row blocks",
+       edited("[output]", "[performance]\npair_block_rows = -2048\n[output]"),
+       "performance.pair_block_rows"},
       {"unknown performance key", edited("[output]", "[performance]\nsort = 5\n[output]"),
        "performance.sort"},
   };
@@ -304,10 +309,14 @@ TEST(SceneLoader, PerformanceKnobs) {
   const SceneConfig defaults = parse_scene(kGoodScene, "good.toml");
   EXPECT_EQ(defaults.performance.sort_every, 100u);
   EXPECT_DOUBLE_EQ(defaults.performance.verlet_skin, 1.0);
+  EXPECT_EQ(defaults.performance.pair_block_rows, 512u);
   const SceneConfig s = parse_scene(
-      edited("[output]", "[performance]\nsort_every = 0\nverlet_skin = 0.8\n[output]"), "p.toml");
+      edited("[output]",
+             "[performance]\nsort_every = 0\nverlet_skin = 0.8\npair_block_rows = 64\n[output]"),
+      "p.toml");
   EXPECT_EQ(s.performance.sort_every, 0u);
   EXPECT_DOUBLE_EQ(s.performance.verlet_skin, 0.8);
+  EXPECT_EQ(s.performance.pair_block_rows, 64u);
 }
 
 TEST(SceneLoader, LiquidBridgeKeys) {

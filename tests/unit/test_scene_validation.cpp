@@ -66,6 +66,7 @@ TEST(SceneValidation, ValuesSetInCodeNameTheirKey) {
       {"time.dt", [](SceneConfig& s) { s.time.dt = -1e-5; }},
       {"time.max_overlap", [](SceneConfig& s) { s.time.max_overlap = 1.5; }},
       {"performance.verlet_skin", [](SceneConfig& s) { s.performance.verlet_skin = 0.0; }},
+      {"performance.pair_block_rows", [](SceneConfig& s) { s.performance.pair_block_rows = 0; }},
       {"search", [](SceneConfig& s) { s.search_method = "m9"; }},
       {"output.diagnostics_every", [](SceneConfig& s) { s.output.diagnostics_every = 0; }},
       {"contact.collision_time",

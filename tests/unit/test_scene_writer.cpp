@@ -100,6 +100,7 @@ duration = 1.5
 [performance]
 verlet_skin = 0.7
 sort_every = 50
+pair_block_rows = 1024
 
 [output]
 directory = "elsewhere/x"
@@ -281,7 +282,7 @@ TEST(SceneWriter, SeedBeyondTomlIntegersIsRefusedNamingTheKey) {
 constexpr int kSceneFields = 19, kMeshFields = 8, kLifterFields = 9, kMeshMaterialFields = 5,
               kDrumFields = 6, kOrbitFields = 4, kClassFields = 8, kMaterialFields = 6,
               kContactFields = 9, kLiquidFields = 16, kCohesionFields = 2, kSprayFields = 12,
-              kFillFields = 7, kTimeFields = 5, kPerformanceFields = 2, kOutputFields = 2;
+              kFillFields = 7, kTimeFields = 5, kPerformanceFields = 3, kOutputFields = 2;
 
 [[maybe_unused]] void field_counts(const SceneConfig& s) {
   [[maybe_unused]] const auto& [name, source, description, gravity, drum, classes, material, wall,
@@ -312,7 +313,7 @@ constexpr int kSceneFields = 19, kMeshFields = 8, kLifterFields = 9, kMeshMateri
       s.sprays.front();
   [[maybe_unused]] const auto& [kind, count, fraction, seed, settle, box, file] = s.fill;
   [[maybe_unused]] const auto& [dt, dt_factor, duration, revolutions, max_overlap] = s.time;
-  [[maybe_unused]] const auto& [skin, sort_every] = s.performance;
+  [[maybe_unused]] const auto& [skin, sort_every, pair_block_rows] = s.performance;
   [[maybe_unused]] const auto& [directory, diagnostics] = s.output;
 }
 
@@ -659,6 +660,8 @@ std::vector<FieldSetter> field_setters(const fs::path& other_csv, const fs::path
        [](SceneConfig& s) { s.performance.verlet_skin = 0.3; }},
       {"performance.sort_every", B::every_key,
        [](SceneConfig& s) { s.performance.sort_every = 0; }},
+      {"performance.pair_block_rows", B::every_key,
+       [](SceneConfig& s) { s.performance.pair_block_rows = 4096; }},
       {"output.directory", B::every_key, [](SceneConfig& s) { s.output.directory = "o u t"; }},
       {"output.diagnostics_every", B::every_key,
        [](SceneConfig& s) { s.output.diagnostics_every = 1; }},

@@ -160,9 +160,8 @@ std::size_t expect_same_for_any_thread_count(const SceneConfig& scene, std::uint
       reference = sim.particles().position;
       std::vector<ContactForce> contacts;
       sim.contact_forces(contacts);
-      for (const ContactForce& c : contacts) {
-        cross_block += c.i / kPairBlockRows != c.j / kPairBlockRows;
-      }
+      const std::size_t rows = scene.performance.pair_block_rows;
+      for (const ContactForce& c : contacts) cross_block += c.i / rows != c.j / rows;
     } else {
       EXPECT_EQ(sim.particles().position, reference) << threads << " threads";
     }
@@ -192,6 +191,7 @@ TEST(Threads, ResultsAreIdenticalWithContactsAcrossRowBlocks) {
   scene.fill.volume_fraction = 0.55;  // dense: contacts from the first steps
   scene.search_method = "verlet:mlgrid";
   scene.performance.sort_every = 50;
+  scene.performance.pair_block_rows = 512;
   EXPECT_GT(expect_same_for_any_thread_count(scene, 1000), 200u);
 }
 
