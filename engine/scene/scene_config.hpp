@@ -164,8 +164,10 @@ struct PerformanceConfig {
   std::uint64_t sort_every = 100;
   /// The pair loop's fixed blocks of rows, in particles (engine/contact/contact_model.cpp): a
   /// particle's force is summed block by block, so trajectories depend on it at round-off, never
-  /// on the thread or rank count. A block's particles should fit the L2 cache.
-  std::uint64_t pair_block_rows = 512;
+  /// on the thread or rank count. A block's particles should fit the L2 cache: 2048 (about
+  /// 300 KB of particle arrays) was the fastest of 512-8192 on the demo and deep drums
+  /// (app/bench/README.md, "What paid").
+  std::uint64_t pair_block_rows = 2048;
 
   friend bool operator==(const PerformanceConfig&, const PerformanceConfig&) = default;
 };
