@@ -164,10 +164,10 @@ struct PerformanceConfig {
   std::uint64_t sort_every = 100;
   /// The pair loop's fixed blocks of rows, in particles (engine/contact/contact_model.cpp): a
   /// particle's force is summed block by block, so trajectories depend on it at round-off, never
-  /// on the thread or rank count. A block's particles should fit the L2 cache: 2048 (about
-  /// 300 KB of particle arrays) was the fastest of 512-8192 on the demo and deep drums
-  /// (app/bench/README.md, "What paid").
-  std::uint64_t pair_block_rows = 2048;
+  /// on the thread or rank count. Threads take whole blocks, so a scene needs several blocks a
+  /// thread (512 keeps a 2000-particle drum on two threads); a large drum runs faster with
+  /// 2048, whose particles (about 300 KB of arrays) still fit the L2 cache (app/bench/README.md).
+  std::uint64_t pair_block_rows = 512;
 
   friend bool operator==(const PerformanceConfig&, const PerformanceConfig&) = default;
 };

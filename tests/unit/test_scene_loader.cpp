@@ -309,7 +309,7 @@ TEST(SceneLoader, PerformanceKnobs) {
   const SceneConfig defaults = parse_scene(kGoodScene, "good.toml");
   EXPECT_EQ(defaults.performance.sort_every, 100u);
   EXPECT_DOUBLE_EQ(defaults.performance.verlet_skin, 1.0);
-  EXPECT_EQ(defaults.performance.pair_block_rows, 2048u);
+  EXPECT_EQ(defaults.performance.pair_block_rows, 512u);
   const SceneConfig s = parse_scene(
       edited("[output]",
              "[performance]\nsort_every = 0\nverlet_skin = 0.8\npair_block_rows = 64\n[output]"),
