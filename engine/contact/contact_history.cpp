@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "engine/counting_sort.hpp"
+#include "engine/parallel_copy.hpp"
 #include "engine/threads.hpp"
 
 namespace drumlab {
@@ -155,19 +156,25 @@ void ContactList::set_row_keys(std::span<const std::uint64_t> keys) {
 
 void ContactList::build_blocks(std::size_t block_rows) {
   const std::size_t n = rows();
-  const bool keyed = row_keys_.size() == n && n > 0;
-  const auto block_of = [&](std::size_t i) {
-    return (keyed ? row_keys_[i] : static_cast<std::uint64_t>(i)) / block_rows;
-  };
   block_start_.assign(1, 0);
-  for (std::size_t i = 1; i < n; ++i) {
-    if (block_of(i) != block_of(i - 1)) block_start_.push_back(i);
+  if (row_keys_.size() == n && n > 0) {  // keyed rows: a block is a run of rows of one key block
+    std::uint64_t current = row_keys_[0] / block_rows;
+    for (std::size_t i = 1; i < n; ++i) {
+      const std::uint64_t block = row_keys_[i] / block_rows;
+      if (block != current) block_start_.push_back(i);
+      current = block;
+    }
+  } else {
+    for (std::size_t i = block_rows; i < n; i += block_rows) block_start_.push_back(i);
   }
   if (n > 0) block_start_.push_back(n);
   row_block_end_.resize(n);
-  for (std::size_t b = 0; b + 1 < block_start_.size(); ++b) {
-    for (std::size_t i = block_start_[b]; i < block_start_[b + 1]; ++i) {
-      row_block_end_[i] = block_start_[b + 1];
+  const auto blocks = static_cast<std::int64_t>(block_start_.size()) - 1;
+#pragma omp parallel for schedule(static) if (static_cast <std::int64_t>(n) >= kParallelMinElements)
+  for (std::int64_t b = 0; b < blocks; ++b) {
+    const std::size_t end = block_start_[static_cast<std::size_t>(b) + 1];
+    for (std::size_t i = block_start_[static_cast<std::size_t>(b)]; i < end; ++i) {
+      row_block_end_[i] = end;
     }
   }
 }

@@ -1,5 +1,7 @@
 #include "engine/search/cell_index.hpp"
 
+#include "engine/parallel_copy.hpp"
+
 namespace drumlab {
 
 void DenseCellIndex::reset(std::int64_t nx, std::int64_t ny, std::int64_t nz) {
@@ -9,7 +11,10 @@ void DenseCellIndex::reset(std::int64_t nx, std::int64_t ny, std::int64_t nz) {
   // grid takes half as many cells again, so that the steps after it do not allocate again.
   const auto size = static_cast<std::size_t>(nx * ny * nz);
   if (size > cells_.capacity()) cells_.reserve(size + size / 2);
-  cells_.assign(size, CellRange{});
+  cells_.resize(size);
+  const auto count = static_cast<std::int64_t>(size);
+#pragma omp parallel for schedule(static) if (count >= kParallelMinElements)
+  for (std::int64_t c = 0; c < count; ++c) cells_[static_cast<std::size_t>(c)] = CellRange{};
 }
 
 void HashedCellIndex::reset(std::size_t occupied) {

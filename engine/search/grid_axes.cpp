@@ -2,6 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cstdint>
+
+#include "engine/parallel_copy.hpp"
+
 namespace drumlab {
 
 namespace {
@@ -16,11 +21,26 @@ Box search_bounds(const SearchInput& in) {
   if (in.domain) {
     box = *in.domain;
   } else if (!in.position.empty()) {
-    box.lo = box.hi = in.position[0];
-    for (const Vec3& x : in.position) {
-      box.lo = box.lo.cwiseMin(x);
-      box.hi = box.hi.cwiseMax(x);
+    // The extremes of each coordinate, on every thread (a minimum does not depend on the order
+    // of the comparisons; the positions were checked finite).
+    double lx = in.position[0].x(), ly = in.position[0].y(), lz = in.position[0].z();
+    double hx = lx, hy = ly, hz = lz;
+    const auto n = static_cast<std::int64_t>(in.position.size());
+#pragma omp parallel for schedule(static) if (n >= kParallelMinElements) reduction(min           \
+                                                                                   : lx, ly, lz) \
+    reduction(max                                                                                \
+              : hx, hy, hz)
+    for (std::int64_t i = 0; i < n; ++i) {
+      const Vec3& x = in.position[static_cast<std::size_t>(i)];
+      lx = std::min(lx, x.x());
+      ly = std::min(ly, x.y());
+      lz = std::min(lz, x.z());
+      hx = std::max(hx, x.x());
+      hy = std::max(hy, x.y());
+      hz = std::max(hz, x.z());
     }
+    box.lo = Vec3(lx, ly, lz);
+    box.hi = Vec3(hx, hy, hz);
   }
   if (in.period_z) {
     box.lo.z() = 0.0;

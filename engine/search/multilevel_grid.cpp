@@ -1,12 +1,15 @@
 #include "engine/search/multilevel_grid.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <type_traits>
 
 #include <fmt/format.h>
 
+#include "engine/counting_sort.hpp"
+#include "engine/parallel_copy.hpp"
 #include "engine/search/grid_axes.hpp"
 #include "engine/search/search_input.hpp"
 #include "engine/search/search_methods.hpp"
@@ -18,6 +21,29 @@ namespace {
 
 constexpr double kDenseCellsPerParticle = 64.0;
 constexpr double kDenseCellFloor = 1048576.0;  // 2^20
+
+/// Up to kMaxExactLevels distinct values, or the news that there are more.
+struct DistinctRadii {
+  std::array<double, kMaxExactLevels> value{};
+  std::size_t size = 0;
+  bool overflow = false;
+  void add(double r) {
+    if (overflow) return;
+    for (std::size_t k = 0; k < size; ++k) {
+      if (value[k] == r) return;
+    }
+    if (size == kMaxExactLevels) {
+      overflow = true;
+      return;
+    }
+    value[size++] = r;
+  }
+  void merge(const DistinctRadii& o) {
+    overflow = overflow || o.overflow;
+    for (std::size_t k = 0; k < o.size; ++k) add(o.value[k]);
+  }
+};
+#pragma omp declare reduction(distinct_radii:DistinctRadii : omp_out.merge(omp_in))
 
 }  // namespace
 
@@ -58,24 +84,30 @@ void MultiLevelGridSearch::find_pairs(const SearchInput& in, std::vector<IndexPa
 
 void MultiLevelGridSearch::assign_levels(const SearchInput& in) {
   const std::size_t n = in.position.size();
+  const auto count = static_cast<std::int64_t>(n);
   // The distinct radii, by a scan that gives up after kMaxExactLevels of them: beds have a few
-  // size classes, and sorting every radius cost more than the rest of the level assignment.
-  distinct_.clear();
-  bool exact = true;
-  for (const double r : in.radius) {
-    if (std::find(distinct_.begin(), distinct_.end(), r) != distinct_.end()) continue;
-    if (distinct_.size() == kMaxExactLevels) {
-      exact = false;
-      break;
-    }
-    distinct_.push_back(r);
+  // size classes, and sorting every radius cost more than the rest of the level assignment. Each
+  // thread scans its share; the set (sorted below) does not depend on the team.
+  DistinctRadii found;
+  double rmin = in.radius[0];
+#pragma omp parallel for schedule(static) if (count >= kParallelMinElements) \
+    reduction(distinct_radii                                                 \
+              : found) reduction(min                                         \
+                                 : rmin)
+  for (std::int64_t i = 0; i < count; ++i) {
+    const double r = in.radius[static_cast<std::size_t>(i)];
+    found.add(r);
+    rmin = std::min(rmin, r);
   }
+  const bool exact = !found.overflow;
+  distinct_.assign(found.value.begin(), found.value.begin() + found.size);
   std::sort(distinct_.begin(), distinct_.end());
-  const double rmin = *std::min_element(in.radius.begin(), in.radius.end());
   std::vector<int>& raw = raw_;
   raw.resize(n);
   int top = 0;
-  for (std::size_t i = 0; i < n; ++i) {
+#pragma omp parallel for schedule(static) if (count >= kParallelMinElements) reduction(max : top)
+  for (std::int64_t ii = 0; ii < count; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
     const double r = in.radius[i];
     raw[i] = exact ? static_cast<int>(std::lower_bound(distinct_.begin(), distinct_.end(), r) -
                                       distinct_.begin())
@@ -91,14 +123,30 @@ void MultiLevelGridSearch::assign_levels(const SearchInput& in) {
     if (c == 0) c = next++;
   }
   levels_.resize(static_cast<std::size_t>(next));
-  for (Level& level : levels_) {
-    level.order.clear();
-    level.rmax = 0.0;
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    Level& level = levels_[compact[raw[i]]];
-    level.order.push_back(static_cast<Index>(i));
-    level.rmax = std::max(level.rmax, in.radius[i]);
+  // Each level's members in particle order: a stable counting sort by level, then copies.
+  const auto level_of = [&](std::size_t i) {
+    return static_cast<std::size_t>(compact[static_cast<std::size_t>(raw[i])]);
+  };
+  std::vector<Index>& by_level = level_members_;
+  by_level.resize(n);
+  constexpr std::size_t kParticlesPerShare = 32768;  // below this, one thread
+  const std::size_t t_count = counting_sort_by_row(
+      n, levels_.size(), kParticlesPerShare, level_fill_, level_of,
+      [&](std::size_t i, std::uint32_t slot) { by_level[slot] = static_cast<Index>(i); });
+  std::uint32_t begin = 0;
+  for (std::size_t l = 0; l < levels_.size(); ++l) {
+    Level& level = levels_[l];
+    const std::uint32_t end = level_fill_[l * t_count + t_count - 1];
+    parallel_assign<Index>(level.order,
+                           std::span<const Index>(by_level).subspan(begin, end - begin));
+    double rmax = 0.0;
+    const auto members = static_cast<std::int64_t>(end - begin);
+#pragma omp parallel for schedule(static) if (members >= kParallelMinElements) reduction(max : rmax)
+    for (std::int64_t k = 0; k < members; ++k) {
+      rmax = std::max(rmax, in.radius[level.order[static_cast<std::size_t>(k)]]);
+    }
+    level.rmax = rmax;
+    begin = end;
   }
 }
 
@@ -150,7 +198,10 @@ void MultiLevelGridSearch::bin_members(Level& level, const GridAxes& axes, const
   const bool three_d = level.n[2] > 1;
   std::vector<CellCoord>& cell_of = level.scratch_cell;
   cell_of.resize(level.order.size());
-  for (std::size_t s = 0; s < level.order.size(); ++s) {
+  const auto count = static_cast<std::int64_t>(level.order.size());
+#pragma omp parallel for schedule(static) if (count >= kParallelMinElements)
+  for (std::int64_t ss = 0; ss < count; ++ss) {
+    const auto s = static_cast<std::size_t>(ss);
     const Vec3& x = in.position[level.order[s]];
     CellCoord c{axes.coord(x.x(), 0), axes.coord(x.y(), 1), 0};
     if (three_d) {
@@ -201,12 +252,15 @@ void MultiLevelGridSearch::gather_members(Level& level, const SearchInput& in) {
   const std::vector<CellCoord>& cell_of = level.scratch_cell;
   const std::vector<std::size_t>& perm = level.scratch_perm;
   std::vector<Index>& members = level.scratch_order;
-  members.assign(level.order.begin(), level.order.end());
+  parallel_assign<Index>(members, level.order);
   const std::size_t count = members.size();
   level.position.resize(count);
   level.radius.resize(count);
   level.cell.resize(count);
-  for (std::size_t s = 0; s < count; ++s) {
+  const auto slots = static_cast<std::int64_t>(count);
+#pragma omp parallel for schedule(static) if (slots >= kParallelMinElements)
+  for (std::int64_t ss = 0; ss < slots; ++ss) {
+    const auto s = static_cast<std::size_t>(ss);
     level.order[s] = members[perm[s]];
     level.cell[s] = cell_of[perm[s]];
     level.position[s] = in.position[level.order[s]];

@@ -87,6 +87,8 @@ class MultiLevelGridSearch final : public ContactSearch {
   std::vector<double> distinct_;  ///< assign_levels' buffers
   std::vector<int> raw_;
   std::vector<int> compact_;
+  std::vector<Index> level_members_;  ///< the particles by level (assign_levels)
+  std::vector<std::uint32_t> level_fill_;
   double slack_ = 0.0;
   double margin_ = 0.0;  ///< margin and z period of the last call (for visit())
   double period_ = 0.0;

@@ -3,17 +3,53 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
 
 #include "engine/counting_sort.hpp"
+#include "engine/parallel_copy.hpp"
 #include "engine/threads.hpp"
 
 namespace drumlab {
 
 void ContactSearch::reset_counters(std::size_t n) {
   counters_ = SearchCounters{};
-  cells_per_particle_.assign(n, 0);
-  tests_per_particle_.assign(n, 0);
+  cells_per_particle_.resize(n);
+  tests_per_particle_.resize(n);
+  const auto count = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static) if (count >= kParallelMinElements)
+  for (std::int64_t i = 0; i < count; ++i) {
+    cells_per_particle_[i] = 0;
+    tests_per_particle_[i] = 0;
+  }
 }
+
+namespace {
+
+/// What is wrong with particle i of a search's input, or nothing.
+std::optional<std::string> particle_error(const SearchInput& in, std::size_t i, double period) {
+  const Vec3& x = in.position[i];
+  if (!x.allFinite()) return fmt::format("search: particle {} has a non-finite position", i);
+  const double r = in.radius[i];
+  if (!(r > 0.0) || !std::isfinite(r)) {
+    return fmt::format("search: particle {} has radius {} (must be positive)", i, r);
+  }
+  if (in.domain) {
+    const Box& b = *in.domain;
+    if ((x.array() < b.lo.array()).any() || (x.array() >= b.hi.array()).any()) {
+      return fmt::format("search: particle {} at ({}, {}, {}) lies outside the domain", i, x.x(),
+                         x.y(), x.z());
+    }
+  }
+  if (in.period_z && (x.z() < 0.0 || x.z() >= period)) {
+    return fmt::format("search: particle {} has z = {} outside the period [0, {})", i, x.z(),
+                       period);
+  }
+  return std::nullopt;
+}
+
+}  // namespace
 
 void validate_search_input(const SearchInput& in) {
   if (in.position.size() != in.radius.size()) {
@@ -27,26 +63,14 @@ void validate_search_input(const SearchInput& in) {
   if (in.period_z && !(period > 0.0 && std::isfinite(period))) {
     throw InputError(fmt::format("search: period_z must be positive, got {}", period));
   }
-  for (std::size_t i = 0; i < in.position.size(); ++i) {
-    const Vec3& x = in.position[i];
-    if (!x.allFinite())
-      throw InputError(fmt::format("search: particle {} has a non-finite position", i));
-    const double r = in.radius[i];
-    if (!(r > 0.0) || !std::isfinite(r)) {
-      throw InputError(fmt::format("search: particle {} has radius {} (must be positive)", i, r));
-    }
-    if (in.domain) {
-      const Box& b = *in.domain;
-      if ((x.array() < b.lo.array()).any() || (x.array() >= b.hi.array()).any()) {
-        throw InputError(fmt::format("search: particle {} at ({}, {}, {}) lies outside the domain",
-                                     i, x.x(), x.y(), x.z()));
-      }
-    }
-    if (in.period_z && (x.z() < 0.0 || x.z() >= period)) {
-      throw InputError(fmt::format("search: particle {} has z = {} outside the period [0, {})", i,
-                                   x.z(), period));
-    }
+  // Every thread checks its share; the first particle at fault is reported, whatever the team.
+  const auto n = static_cast<std::int64_t>(in.position.size());
+  std::int64_t first = n;
+#pragma omp parallel for schedule(static) reduction(min : first) if (n >= kParallelMinElements)
+  for (std::int64_t i = 0; i < n; ++i) {
+    if (i < first && particle_error(in, static_cast<std::size_t>(i), period)) first = i;
   }
+  if (first < n) throw InputError(*particle_error(in, static_cast<std::size_t>(first), period));
 }
 
 void sort_pairs(std::vector<IndexPair>& pairs, std::size_t n, std::vector<IndexPair>& scratch,

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "engine/parallel_copy.hpp"
 #include "engine/search/search_input.hpp"
 #include "engine/search/search_methods.hpp"
 #include "engine/spatial_order.hpp"
@@ -71,12 +72,35 @@ struct TopTwo {
 };
 #pragma omp declare reduction(top_two:TopTwo : omp_out.merge(omp_in))
 
+/// The entries of each first index of a list sorted by i, in parallel: each chunk of rows finds
+/// its first entry by bisection and walks its rows from there.
+void count_rows(std::span<const IndexPair> list, std::size_t n, std::vector<std::uint32_t>& out) {
+  constexpr std::size_t kRowsPerChunk = 4096;
+  out.resize(n);
+  const std::size_t m = list.size();
+  const auto chunks = static_cast<std::int64_t>((n + kRowsPerChunk - 1) / kRowsPerChunk);
+#pragma omp parallel for schedule(static) if (chunks > 1)
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    const std::size_t begin = static_cast<std::size_t>(c) * kRowsPerChunk;
+    const std::size_t end = std::min(n, begin + kRowsPerChunk);
+    std::size_t k = static_cast<std::size_t>(
+        std::lower_bound(list.begin(), list.end(), begin,
+                         [](const IndexPair& p, std::size_t i) { return p.i < i; }) -
+        list.begin());
+    for (std::size_t i = begin; i < end; ++i) {
+      const std::size_t start = k;
+      while (k < m && list[k].i == i) ++k;
+      out[i] = static_cast<std::uint32_t>(k - start);
+    }
+  }
+}
+
 }  // namespace
 
 bool VerletListSearch::needs_rebuild(const SearchInput& in) {
   const std::size_t n = in.position.size();
   if (n != reference_.size() || in.margin != margin_ || in.period_z.value_or(0.0) != period_ ||
-      !std::equal(radius_.begin(), radius_.end(), in.radius.begin())) {
+      !parallel_equal<double>(radius_, in.radius)) {
     return true;
   }
   // No particle moved more than half the skin: no pair can have closed it.
@@ -105,10 +129,9 @@ void VerletListSearch::rebuild(const SearchInput& in) {
   builder_->find_pairs(wide, list_);
   // Sorted by (i, j), the filtered output is sorted too, which the contact list builds fastest.
   sort_pairs(list_, n, scratch_pairs_, scratch_counts_);
-  listed_per_particle_.assign(n, 0);
-  for (const IndexPair& p : list_) ++listed_per_particle_[p.i];
-  reference_.assign(in.position.begin(), in.position.end());
-  radius_.assign(in.radius.begin(), in.radius.end());
+  count_rows(list_, n, listed_per_particle_);
+  parallel_assign<Vec3>(reference_, in.position);
+  parallel_assign<double>(radius_, in.radius);
   margin_ = in.margin;
   period_ = in.period_z.value_or(0.0);
   moved_ = 0.0;
@@ -133,8 +156,7 @@ void VerletListSearch::renumber(std::span<const Index> order, std::span<const In
   sort_pairs(list_, n, scratch_pairs_, scratch_counts_);
   apply_order(reference_, order, scratch_positions_);
   apply_order(radius_, order, scratch_radii_);
-  listed_per_particle_.assign(n, 0);
-  for (const IndexPair& p : list_) ++listed_per_particle_[p.i];
+  count_rows(list_, n, listed_per_particle_);
   listed_only_ = false;  // the per-particle counters follow at the next call
   builder_current_ = false;
 }
@@ -154,17 +176,22 @@ bool VerletListSearch::refresh(const SearchInput& in, double moved) {
     counters_ = builder_->counters();
     const auto cells = builder_->cells_visited_per_particle();
     const auto tests = builder_->pairs_tested_per_particle();
-    cells_per_particle_.assign(cells.begin(), cells.end());
-    tests_per_particle_.assign(tests.begin(), tests.end());
-    for (std::size_t i = 0; i < tests_per_particle_.size(); ++i) {
-      tests_per_particle_[i] += listed_per_particle_[i];
+    parallel_assign<std::uint32_t>(cells_per_particle_, cells);
+    tests_per_particle_.resize(tests.size());
+    const auto count = static_cast<std::int64_t>(tests.size());
+#pragma omp parallel for schedule(static) if (count >= kParallelMinElements)
+    for (std::int64_t i = 0; i < count; ++i) {
+      tests_per_particle_[i] = tests[i] + listed_per_particle_[i];
     }
     listed_only_ = false;
   } else {
     counters_ = SearchCounters{};
     if (!listed_only_) {
-      cells_per_particle_.assign(in.position.size(), 0);
-      tests_per_particle_.assign(listed_per_particle_.begin(), listed_per_particle_.end());
+      cells_per_particle_.resize(in.position.size());
+      const auto count = static_cast<std::int64_t>(in.position.size());
+#pragma omp parallel for schedule(static) if (count >= kParallelMinElements)
+      for (std::int64_t i = 0; i < count; ++i) cells_per_particle_[i] = 0;
+      parallel_assign<std::uint32_t>(tests_per_particle_, listed_per_particle_);
       listed_only_ = true;
     }
   }

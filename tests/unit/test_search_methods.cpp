@@ -11,6 +11,7 @@
 #include "engine/search/cell_grid.hpp"
 #include "engine/search/contact_search.hpp"
 #include "engine/search/half_stencil.hpp"
+#include "engine/search/search_input.hpp"
 #include "engine/threads.hpp"
 
 namespace drumlab {
@@ -43,6 +44,17 @@ std::vector<IndexPair> sorted_pairs(ContactSearch& s, const Cloud& c, double mar
   s.find_pairs(in, out);
   std::sort(out.begin(), out.end());
   return out;
+}
+
+/// A fresh `method`'s pairs of `in` on `threads` threads; the search, for its counters.
+std::unique_ptr<ContactSearch> find_on(int threads, const std::string& method,
+                                       const SearchInput& in, std::vector<IndexPair>& out) {
+  auto search = make_search(method);
+  const int saved = max_threads();
+  set_thread_count(threads);
+  search->find_pairs(in, out);
+  set_thread_count(saved);
+  return search;
 }
 
 class SearchMethod : public ::testing::TestWithParam<std::string> {
@@ -175,14 +187,8 @@ TEST_P(SearchMethod, SameOutputAndCountersForOneAndTwoThreads) {
   const Cloud c = random_box(4000, 3.0, Vec3(0, 0, 0), Vec3(0.3, 0.3, 0.1), 21);
   const SearchInput in{c.x, c.r, 0.002, std::nullopt, std::nullopt};
   std::vector<IndexPair> one, two;
-  auto a = make_search(GetParam());
-  auto b = make_search(GetParam());
-  const int saved = max_threads();
-  set_thread_count(1);
-  a->find_pairs(in, one);
-  set_thread_count(2);
-  b->find_pairs(in, two);
-  set_thread_count(saved);
+  const auto a = find_on(1, GetParam(), in, one);
+  const auto b = find_on(2, GetParam(), in, two);
   EXPECT_EQ(one, two);
   EXPECT_EQ(a->counters().pairs_tested, b->counters().pairs_tested);
   EXPECT_EQ(a->counters().cells_visited, b->counters().cells_visited);
@@ -245,6 +251,46 @@ TEST(MultiLevelGrid, OneSizeVisitsTheThreeByThreeHalfShell) {
   sorted_pairs(*ml, c);
   const auto cells = ml->cells_visited_per_particle();
   EXPECT_EQ(*std::max_element(cells.begin(), cells.end()), 14u);  // fewer only at the edges
+}
+
+TEST(MultiLevelGrid, LargeInputTheSameOnOneAndTwoThreads) {
+  // Enough particles that the level assignment, binning and bounds run on two threads and the
+  // counting sort by level in two shares; three radii (exact levels) and then twelve (log2
+  // levels): the same pairs in the same order, the same counters.
+  for (const std::size_t sizes : {3u, 12u}) {
+    Cloud c = random_box(70000, 3.0, Vec3(-0.4, -0.2, 0.0), Vec3(0.8, 0.4, 0.3), 8);
+    for (std::size_t i = 0; i < c.r.size(); ++i) {
+      c.r[i] = 0.002 * (1.0 + static_cast<double>(i % sizes) / static_cast<double>(sizes));
+    }
+    const SearchInput in{c.x, c.r, 0.001, std::nullopt, std::nullopt};
+    std::vector<IndexPair> one, two;
+    const auto a = find_on(1, "mlgrid", in, one);
+    const auto b = find_on(2, "mlgrid", in, two);
+    ASSERT_FALSE(one.empty());
+    EXPECT_EQ(one, two) << sizes << " radii";
+    EXPECT_TRUE(std::ranges::equal(a->pairs_tested_per_particle(), b->pairs_tested_per_particle()));
+    EXPECT_TRUE(
+        std::ranges::equal(a->cells_visited_per_particle(), b->cells_visited_per_particle()));
+  }
+}
+
+TEST(SearchInputCheck, NamesTheFirstBadParticleOnAnyTeam) {
+  // Particles 5000 (a negative radius) and 9000 (a non-finite position) of 12000 are at fault: the
+  // check runs on every thread, and it names the first whatever the team.
+  Cloud c = random_box(12000, 1.0, Vec3(0, 0, 0), Vec3(1, 1, 1), 3);
+  c.x[9000].y() = std::nan("");
+  c.r[5000] = -0.01;
+  const int saved = max_threads();
+  for (const int threads : {1, 2}) {
+    set_thread_count(threads);
+    try {
+      validate_search_input(SearchInput{c.x, c.r, 0.0, std::nullopt, std::nullopt});
+      ADD_FAILURE() << "expected InputError";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()), "search: particle 5000 has radius -0.01 (must be positive)");
+    }
+  }
+  set_thread_count(saved);
 }
 
 TEST(SearchFactory, UnknownMethodNamesTheValidOnes) {
