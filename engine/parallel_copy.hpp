@@ -1,6 +1,6 @@
 #pragma once
-// Element-wise copies and comparisons of per-particle arrays on every thread: the Verlet list's
-// rebuild and its per-step check otherwise ran them on one thread while the others waited.
+// Element-wise copies, fills and comparisons of per-particle arrays on every thread: the Verlet
+// list's rebuild and its per-step check otherwise ran them on one thread while the others waited.
 // Each element is copied or compared on its own, so the results do not depend on the team.
 #include <cstddef>
 #include <cstdint>
@@ -21,6 +21,16 @@ void parallel_assign(std::vector<T>& to, std::span<const T> from) {
   const T* in = from.data();
 #pragma omp parallel for schedule(static) if (n >= kParallelMinElements)
   for (std::int64_t i = 0; i < n; ++i) out[i] = in[i];
+}
+
+/// to = n copies of value.
+template <class T>
+void parallel_fill(std::vector<T>& to, std::size_t n, const T& value) {
+  to.resize(n);
+  const auto count = static_cast<std::int64_t>(n);
+  T* out = to.data();
+#pragma omp parallel for schedule(static) if (count >= kParallelMinElements)
+  for (std::int64_t i = 0; i < count; ++i) out[i] = value;
 }
 
 /// The same sizes and every element equal (==).

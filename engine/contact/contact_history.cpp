@@ -170,7 +170,8 @@ void ContactList::build_blocks(std::size_t block_rows) {
   if (n > 0) block_start_.push_back(n);
   row_block_end_.resize(n);
   const auto blocks = static_cast<std::int64_t>(block_start_.size()) - 1;
-#pragma omp parallel for schedule(static) if (static_cast <std::int64_t>(n) >= kParallelMinElements)
+  const auto row_count = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static) if (row_count >= kParallelMinElements)
   for (std::int64_t b = 0; b < blocks; ++b) {
     const std::size_t end = block_start_[static_cast<std::size_t>(b) + 1];
     for (std::size_t i = block_start_[static_cast<std::size_t>(b)]; i < end; ++i) {

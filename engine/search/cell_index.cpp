@@ -11,10 +11,7 @@ void DenseCellIndex::reset(std::int64_t nx, std::int64_t ny, std::int64_t nz) {
   // grid takes half as many cells again, so that the steps after it do not allocate again.
   const auto size = static_cast<std::size_t>(nx * ny * nz);
   if (size > cells_.capacity()) cells_.reserve(size + size / 2);
-  cells_.resize(size);
-  const auto count = static_cast<std::int64_t>(size);
-#pragma omp parallel for schedule(static) if (count >= kParallelMinElements)
-  for (std::int64_t c = 0; c < count; ++c) cells_[static_cast<std::size_t>(c)] = CellRange{};
+  parallel_fill(cells_, size, CellRange{});
 }
 
 void HashedCellIndex::reset(std::size_t occupied) {

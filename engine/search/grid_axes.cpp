@@ -23,24 +23,22 @@ Box search_bounds(const SearchInput& in) {
   } else if (!in.position.empty()) {
     // The extremes of each coordinate, on every thread (a minimum does not depend on the order
     // of the comparisons; the positions were checked finite).
-    double lx = in.position[0].x(), ly = in.position[0].y(), lz = in.position[0].z();
-    double hx = lx, hy = ly, hz = lz;
+    double lo[3] = {in.position[0].x(), in.position[0].y(), in.position[0].z()};
+    double hi[3] = {lo[0], lo[1], lo[2]};
     const auto n = static_cast<std::int64_t>(in.position.size());
-#pragma omp parallel for schedule(static) if (n >= kParallelMinElements) reduction(min           \
-                                                                                   : lx, ly, lz) \
-    reduction(max                                                                                \
-              : hx, hy, hz)
+    // clang-format off
+#pragma omp parallel for schedule(static) if (n >= kParallelMinElements) \
+    reduction(min : lo[:3]) reduction(max : hi[:3])
+    // clang-format on
     for (std::int64_t i = 0; i < n; ++i) {
       const Vec3& x = in.position[static_cast<std::size_t>(i)];
-      lx = std::min(lx, x.x());
-      ly = std::min(ly, x.y());
-      lz = std::min(lz, x.z());
-      hx = std::max(hx, x.x());
-      hy = std::max(hy, x.y());
-      hz = std::max(hz, x.z());
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = std::min(lo[a], x[a]);
+        hi[a] = std::max(hi[a], x[a]);
+      }
     }
-    box.lo = Vec3(lx, ly, lz);
-    box.hi = Vec3(hx, hy, hz);
+    box.lo = Vec3(lo[0], lo[1], lo[2]);
+    box.hi = Vec3(hi[0], hi[1], hi[2]);
   }
   if (in.period_z) {
     box.lo.z() = 0.0;

@@ -15,14 +15,8 @@ namespace drumlab {
 
 void ContactSearch::reset_counters(std::size_t n) {
   counters_ = SearchCounters{};
-  cells_per_particle_.resize(n);
-  tests_per_particle_.resize(n);
-  const auto count = static_cast<std::int64_t>(n);
-#pragma omp parallel for schedule(static) if (count >= kParallelMinElements)
-  for (std::int64_t i = 0; i < count; ++i) {
-    cells_per_particle_[i] = 0;
-    tests_per_particle_[i] = 0;
-  }
+  parallel_fill<std::uint32_t>(cells_per_particle_, n, 0);
+  parallel_fill<std::uint32_t>(tests_per_particle_, n, 0);
 }
 
 namespace {

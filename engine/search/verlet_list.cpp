@@ -187,10 +187,7 @@ bool VerletListSearch::refresh(const SearchInput& in, double moved) {
   } else {
     counters_ = SearchCounters{};
     if (!listed_only_) {
-      cells_per_particle_.resize(in.position.size());
-      const auto count = static_cast<std::int64_t>(in.position.size());
-#pragma omp parallel for schedule(static) if (count >= kParallelMinElements)
-      for (std::int64_t i = 0; i < count; ++i) cells_per_particle_[i] = 0;
+      parallel_fill<std::uint32_t>(cells_per_particle_, in.position.size(), 0);
       parallel_assign<std::uint32_t>(tests_per_particle_, listed_per_particle_);
       listed_only_ = true;
     }
