@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -142,10 +144,26 @@ double print_time_scales(const SceneConfig& scene, std::size_t total) {
   return dt;
 }
 
-/// What the engine allocates for a settled bed (engine/memory_estimate.hpp), with the grid of the
-/// scene's method (or its Verlet list's builder) if it has one cell side.
-void print_memory(const SceneConfig& scene, std::size_t total) {
-  const std::string estimated = scene.search_method == "auto" ? "m5" : scene.search_method;
+/// The search method a run of the scene uses: the scene's own, or auto's pick on the filled scene
+/// (`choice`; a static packing is not searched by a run: m5 stands for it).
+struct RunSearch {
+  std::string method;
+  std::optional<SearchChoice> choice;
+};
+
+RunSearch run_search(const SceneConfig& scene, double dt) {
+  if (scene.search_method != "auto") return {scene.search_method, std::nullopt};
+  if (!scene.dynamic()) return {"m5", std::nullopt};
+  const Particles fill = initial_fill(scene);
+  SearchChoice choice = choose_search_method(scene, dt, fill.position, fill.radius);
+  std::string method = choice.method;
+  return {std::move(method), std::move(choice)};
+}
+
+/// What the engine allocates for a settled bed (engine/memory_estimate.hpp) with the run's search
+/// method, and the grid of that method (or of its Verlet list's builder) if it has one cell side.
+void print_memory(const SceneConfig& scene, std::size_t total, const RunSearch& search) {
+  const std::string& estimated = search.method;
   const auto parsed = parse_search_method(estimated);
   double cells = 0.0;
   std::string grid;
@@ -173,7 +191,9 @@ void print_memory(const SceneConfig& scene, std::size_t total) {
       "B/particle with {:.1f} listed pairs each{}{})\n",
       memory.total() / 1048576.0, parallel.total() / 1048576.0, memory.per_particle,
       parallel.per_particle, shape.listed_pairs_per_particle, grid,
-      scene.search_method == "auto" ? "; auto: for m5" : "");
+      search.choice                   ? fmt::format("; for auto's pick {}", estimated)
+      : scene.search_method == "auto" ? "; for m5"
+                                      : "");
 }
 
 /// How `method` bins the scene's radii (engine/search/search_binning.hpp).
@@ -191,10 +211,9 @@ void print_binning(const SceneConfig& scene, std::string_view method) {
 }
 
 /// The search method: auto's choice on the filled scene and why, or the scene's own.
-void print_search_method(const SceneConfig& scene, double dt) {
-  if (scene.search_method == "auto" && scene.dynamic()) {
-    const Particles fill = initial_fill(scene);
-    const SearchChoice choice = choose_search_method(scene, dt, fill.position, fill.radius);
+void print_search_method(const SceneConfig& scene, const RunSearch& search) {
+  if (search.choice) {
+    const SearchChoice& choice = *search.choice;
     fmt::print("search method     auto -> {} (paper's rule: {})\n", choice.method,
                choice.paper_rule);
     fmt::print("why               {}\n", choice.reason);
@@ -290,8 +309,9 @@ void print_info(const std::string& file, const std::string& mesh_dir) {
   }
   const std::size_t total = print_particles_and_drum(scene, file);
   const double dt = print_time_scales(scene, total);
-  print_memory(scene, total);
-  print_search_method(scene, dt);
+  const RunSearch search = run_search(scene, dt);
+  print_memory(scene, total, search);
+  print_search_method(scene, search);
   print_cohesion(scene);
   print_sprays(scene);
   print_orbit(scene);

@@ -93,5 +93,21 @@ TEST(CliInfo, EveryShippedSceneHasInfo) {
   EXPECT_NE(demo.output.find("Froude number     0.04587"), std::string::npos) << demo.output;
 }
 
+// With `search = "auto"` the memory estimate is for the method auto picks (the one a run uses),
+// not for a fixed stand-in.
+TEST(CliInfo, MemoryEstimateIsForAutosPick) {
+  const auto r = run_cli(std::string("info ") + DRUMLAB_SCENES_DIR + "/mercury_wet_drum.toml");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string picked = "search method     auto -> ";
+  const std::size_t at = r.output.find(picked);
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const std::size_t from = at + picked.size();
+  const std::string method = r.output.substr(from, r.output.find(' ', from) - from);
+  const std::size_t line = r.output.find("memory estimate");
+  ASSERT_NE(line, std::string::npos) << r.output;
+  const std::string memory = r.output.substr(line, r.output.find('\n', line) - line);
+  EXPECT_NE(memory.find("; for auto's pick " + method + ")"), std::string::npos) << r.output;
+}
+
 }  // namespace
 }  // namespace drumlab::test
