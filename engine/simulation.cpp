@@ -508,6 +508,9 @@ SearchInput Simulation::search_input() const {
   // The composed law's interaction range (0 for a dry law): every method lists the pairs up to it.
   in.margin = impl_->model.max_pair_range();
   if (impl_->drum.periodic()) in.period_z = impl_->drum.depth();
+  // A Verlet list measures the moves that close its skin in the drum's frame (a bed turning
+  // with the drum stands still there); the pairs it lists do not depend on it.
+  in.frame_angle = drum_angle_;
   return in;
 }
 

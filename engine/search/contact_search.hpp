@@ -43,6 +43,10 @@ struct SearchInput {
   /// If set, z is periodic with this period: positions must lie in [0, period_z) and distances use
   /// the minimum image along z (periodic drum ends).
   std::optional<double> period_z;
+  /// The angle (rad) of a frame turning about the z axis (a drum's own angle): a Verlet list
+  /// measures the displacements that may close its skin in that frame, where a bed turning with
+  /// its drum stands still. Pair distances do not depend on it; the other methods ignore it.
+  double frame_angle = 0.0;
 };
 
 struct SearchCounters {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
 
 #include <fmt/format.h>
@@ -53,9 +54,25 @@ void VerletListSearch::filter(const SearchInput& in, std::vector<IndexPair>& out
 
 namespace {
 
-/// The two largest of a set of squared displacements; NaN counts as infinite.
+/// x as seen from a frame turned by `angle` about the z axis.
+struct FrameTurn {
+  double c = 1.0, s = 0.0;
+  explicit FrameTurn(double angle) : c(std::cos(angle)), s(std::sin(angle)) {}
+  Vec3 operator()(const Vec3& x) const {
+    return {c * x.x() + s * x.y(), c * x.y() - s * x.x(), x.z()};
+  }
+};
+
+/// The skin the displacements may close, a hair under the skin: the references, turned into the
+/// frame, carry a rounding of ~1e-16 of their distance from the axis.
+double usable_skin(double skin) {
+  return skin * (1.0 - 1e-9);
+}
+
+/// The two largest of a set of squared displacements (NaN counts as infinite), and the largest
+/// squared distance from the z axis.
 struct TopTwo {
-  double first = 0.0, second = 0.0;
+  double first = 0.0, second = 0.0, axis2 = 0.0;
   void add(double d2) {
     if (std::isnan(d2)) d2 = std::numeric_limits<double>::infinity();
     if (d2 > first) {
@@ -68,6 +85,7 @@ struct TopTwo {
   void merge(const TopTwo& o) {
     add(o.first);
     add(o.second);
+    axis2 = std::max(axis2, o.axis2);
   }
 };
 #pragma omp declare reduction(top_two:TopTwo : omp_out.merge(omp_in))
@@ -97,26 +115,70 @@ void count_rows(std::span<const IndexPair> list, std::size_t n, std::vector<std:
 
 }  // namespace
 
-bool VerletListSearch::needs_rebuild(const SearchInput& in) {
+VerletListSearch::Need VerletListSearch::needs_rebuild(const SearchInput& in) {
   const std::size_t n = in.position.size();
   if (n != reference_.size() || in.margin != margin_ || in.period_z.value_or(0.0) != period_ ||
       !parallel_equal<double>(radius_, in.radius)) {
-    return true;
+    return Need::rebuild;
   }
   // No particle moved more than half the skin: no pair can have closed it.
-  if (moved_ <= 0.5 * skin_) return false;
+  if (moved_ <= 0.5 * usable_skin(skin_)) return Need::nothing;
   ++checks_;
   TopTwo top;
+  const FrameTurn turn(in.frame_angle);
   const auto count = static_cast<std::int64_t>(n);
 #pragma omp parallel for reduction(top_two : top) schedule(static)
   for (std::int64_t i = 0; i < count; ++i) {
-    top.add(distance_squared(in.position[i], reference_[i], period_));
+    const Vec3& x = in.position[i];
+    top.add(distance_squared(turn(x), reference_[i], period_));
+    top.axis2 = std::max(top.axis2, x.x() * x.x() + x.y() * x.y());
   }
-  // A pair left out of the list was more than cut-off + skin apart at the build; it has closed by
-  // at most d_i + d_j <= (largest + second largest displacement). A non-finite position gives an
-  // infinite displacement: the rebuild's input check then reports it.
+  // A pair left out of the list was more than cut-off + skin apart at its references; it has
+  // closed by at most d_i + d_j <= (largest + second largest displacement). A non-finite position
+  // gives an infinite displacement: the rebuild's input check then reports it.
   moved_ = std::sqrt(top.first);
-  return !(std::sqrt(top.first) + std::sqrt(top.second) <= skin_);
+  axis_distance_ = std::sqrt(top.axis2);
+  return std::sqrt(top.first) + std::sqrt(top.second) <= usable_skin(skin_) ? Need::nothing
+                                                                            : Need::motion;
+}
+
+bool VerletListSearch::patch(const SearchInput& in) {
+  // Patched: the particles that moved more than this share of the skin (after the patch the two
+  // largest moves sum to at most half the skin). A full rebuild instead when more than one in
+  // kMostPatched moved that far, or the list has grown by a quarter since the rebuild.
+  constexpr double kShare = 0.25;
+  constexpr std::size_t kMostPatched = 8;
+  const std::size_t n = reference_.size();
+  if (patch_min_particles_ == 0 || n < patch_min_particles_ ||
+      4 * list_.size() > 5 * listed_at_rebuild_) {
+    return false;
+  }
+  const FrameTurn turn(in.frame_angle);
+  const double limit = kShare * usable_skin(skin_);
+  patched_.clear();
+  double rest2 = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double d2 = distance_squared(turn(in.position[i]), reference_[i], period_);
+    if (d2 <= limit * limit) {
+      rest2 = std::max(rest2, d2);
+      continue;
+    }
+    // Not finite: the rebuild's input check names the particle.
+    if (!in.position[i].allFinite() || patched_.size() >= n / kMostPatched) return false;
+    patched_.push_back(static_cast<Index>(i));
+  }
+  for (const Index f : patched_) reference_[f] = turn(in.position[f]);
+  patcher_.find(reference_, radius_, patched_, margin_ + skin_ + kTouchTolerance, period_,
+                patch_pairs_);
+  scratch_pairs_.clear();
+  scratch_pairs_.reserve(list_.size() + patch_pairs_.size());
+  std::set_union(list_.begin(), list_.end(), patch_pairs_.begin(), patch_pairs_.end(),
+                 std::back_inserter(scratch_pairs_));
+  list_.swap(scratch_pairs_);
+  count_rows(list_, n, listed_per_particle_);
+  moved_ = std::sqrt(rest2);
+  ++patches_;
+  return true;
 }
 
 void VerletListSearch::rebuild(const SearchInput& in) {
@@ -130,11 +192,24 @@ void VerletListSearch::rebuild(const SearchInput& in) {
   // Sorted by (i, j), the filtered output is sorted too, which the contact list builds fastest.
   sort_pairs(list_, n, scratch_pairs_, scratch_counts_);
   count_rows(list_, n, listed_per_particle_);
-  parallel_assign<Vec3>(reference_, in.position);
+  // The references in the turning frame (at angle 0 the positions themselves, to the bit).
+  reference_.resize(n);
+  const FrameTurn turn(in.frame_angle);
+  double axis2 = 0.0;
+  const auto count = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static) reduction(max : axis2) if (count >= kParallelMinElements)
+  for (std::int64_t i = 0; i < count; ++i) {
+    const Vec3& x = in.position[i];
+    reference_[i] = turn(x);
+    axis2 = std::max(axis2, x.x() * x.x() + x.y() * x.y());
+  }
   parallel_assign<double>(radius_, in.radius);
   margin_ = in.margin;
   period_ = in.period_z.value_or(0.0);
   moved_ = 0.0;
+  axis_distance_ = std::sqrt(axis2);
+  angle_ = in.frame_angle;
+  listed_at_rebuild_ = list_.size();
   builder_current_ = true;
   ++rebuilds_;
 }
@@ -165,11 +240,21 @@ bool VerletListSearch::refresh(const SearchInput& in, double moved) {
   const auto t0 = SearchClock::now();
   if (in.position.size() != in.radius.size()) validate_search_input(in);  // throws
   ++calls_;
-  moved_ += moved >= 0.0 ? moved : kUnknownMotion;  // NaN or negative: unknown
+  // In the turning frame a particle moves by at most its own move plus the frame's turn times its
+  // distance from the axis (which grows by at most its move).
+  const double step = moved >= 0.0 ? moved : kUnknownMotion;  // NaN or negative: unknown
+  const double turned = std::abs(in.frame_angle - angle_);
+  angle_ = in.frame_angle;
+  axis_distance_ += step;
+  moved_ += step;
+  if (turned > 0.0) moved_ += turned * axis_distance_;
   // The full input check runs with every rebuild (in the builder); between rebuilds the listed
   // pairs stay exact, and a non-finite position forces a rebuild (see needs_rebuild).
-  const bool rebuilt = needs_rebuild(in);
+  const Need need = needs_rebuild(in);
+  const bool patched = need == Need::motion && patch(in);
+  const bool rebuilt = need != Need::nothing && !patched;
   if (rebuilt) rebuild(in);
+  if (patched) listed_only_ = false;  // the listed pairs changed
   // Per particle, a call tests its listed pairs, plus the builder's work on a rebuild. Between
   // rebuilds that does not change: the arrays are rewritten once, not on every call.
   if (rebuilt) {
@@ -195,7 +280,7 @@ bool VerletListSearch::refresh(const SearchInput& in, double moved) {
   counters_.pairs_tested += list_.size();
   counters_.pairs_found = 0;
   timings_ = {seconds_since(t0), 0.0};
-  return rebuilt;
+  return rebuilt || patched;
 }
 
 void VerletListSearch::find_pairs(const SearchInput& in, std::vector<IndexPair>& out) {
@@ -209,11 +294,11 @@ void VerletListSearch::find_pairs(const SearchInput& in, std::vector<IndexPair>&
 std::string VerletListSearch::report() const {
   const double n = std::max<double>(1.0, static_cast<double>(reference_.size()));
   return fmt::format(
-      "Verlet list: {} rebuilds in {} calls (every {:.1f} calls), displacements checked in {} "
-      "calls, {:.2f} listed pairs/particle",
+      "Verlet list: {} rebuilds in {} calls (every {:.1f} calls), {} patches, displacements "
+      "checked in {} calls, {:.2f} listed pairs/particle",
       rebuilds_, calls_,
-      rebuilds_ > 0 ? static_cast<double>(calls_) / static_cast<double>(rebuilds_) : 0.0, checks_,
-      static_cast<double>(list_.size()) / n);
+      rebuilds_ > 0 ? static_cast<double>(calls_) / static_cast<double>(rebuilds_) : 0.0, patches_,
+      checks_, static_cast<double>(list_.size()) / n);
 }
 
 SearchVisit VerletListSearch::visit(Index i, const SearchInput& in) const {

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
+#include <optional>
 #include <random>
 #include <span>
 
@@ -202,6 +204,70 @@ TEST(VerletList, RebuildsWhenTheInputChanges) {
   verlet->find_pairs({x, r, 0.0, std::nullopt, std::nullopt}, out);
   EXPECT_EQ(list->rebuilds(), 3u);
   EXPECT_TRUE(out.empty());
+}
+
+// A bed turning as one body, with a few particles faster than the rest: in the turning frame
+// (SearchInput::frame_angle) only those move, and the list is patched for them instead of
+// rebuilt; it still lists every contact on every call, with and without periodic ends, with the
+// motion bound given (the check skipped while the bound allows) or not. In the fixed frame each
+// turn moves the outer particles by 0.6 skins: a rebuild nearly every call.
+TEST(VerletList, PatchesTheParticlesThatMoveInTheTurningFrame) {
+  const std::size_t n = 5000;
+  ASSERT_GE(n, VerletListSearch::kPatchMinParticles);
+  for (const bool periodic : {false, true}) {
+    for (const bool bounded : {false, true}) {
+      std::mt19937_64 rng(11);
+      std::uniform_real_distribution<double> u(0.0, 1.0);
+      const double depth = 0.1;
+      std::vector<Vec3> x;
+      std::vector<double> r;
+      while (x.size() < n) {
+        const Vec3 p(0.6 * u(rng) - 0.3, 0.6 * u(rng) - 0.3, depth * u(rng));
+        if (p.head<2>().norm() > 0.3) continue;
+        x.push_back(p);
+        r.push_back(x.size() % 4 == 0 ? 0.008 : 0.005);
+      }
+      const auto random_unit = [&] {
+        return Vec3(2 * u(rng) - 1, 2 * u(rng) - 1, 2 * u(rng) - 1).normalized();
+      };
+      std::vector<Vec3> drift(n);
+      for (Vec3& d : drift) d = 5e-4 * random_unit();
+      const std::optional<double> period = periodic ? std::optional<double>(depth) : std::nullopt;
+      for (const bool turning : {true, false}) {
+        auto verlet = make_search("verlet:m2");  // skin 1 x 5 mm
+        auto* list = dynamic_cast<VerletListSearch*>(verlet.get());
+        auto brute = make_search("brute");
+        std::vector<Vec3> pos = x;
+        const double turn = 0.01;  // rad a call: 3 mm at the rim
+        double angle = 0.0;
+        for (int call = 0; call < 40; ++call) {
+          SearchInput in{pos, r, 0.0, std::nullopt, period};
+          in.frame_angle = turning ? angle : 0.0;
+          const double bound = call == 0 || !bounded ? VerletListSearch::kUnknownMotion
+                                                     : 0.35 * turn + 6e-4;  // arc + drift
+          list->refresh(in, bound);
+          ASSERT_TRUE(listed(list->list(), sorted(*brute, in)))
+              << "call " << call << (periodic ? ", periodic" : "") << (turning ? ", turning" : "");
+          const double c = std::cos(turn), s = std::sin(turn);
+          for (std::size_t i = 0; i < n; ++i) {
+            Vec3& p = pos[i];
+            // 1 in 50 drifts 0.1 skin a call along its own direction; the rest jitter a little.
+            const Vec3 own = i % 50 == 0 ? drift[i] : 2e-5 * random_unit();
+            p = Vec3(c * p.x() - s * p.y(), s * p.x() + c * p.y(), p.z()) + own;
+            if (periodic) p.z() -= depth * std::floor(p.z() / depth);
+          }
+          angle += turn;
+        }
+        if (turning) {
+          EXPECT_GT(list->patches(), 2u);
+          EXPECT_LE(list->rebuilds(), 3u);
+        } else {
+          EXPECT_EQ(list->patches(), 0u) << "every particle moves in the fixed frame";
+          EXPECT_GE(list->rebuilds(), 20u);
+        }
+      }
+    }
+  }
 }
 
 }  // namespace
