@@ -5,15 +5,19 @@
 #include <cmath>
 #include <limits>
 
+#include "engine/counting_sort.hpp"
+#include "engine/parallel_copy.hpp"
 #include "engine/search/search_input.hpp"
+#include "engine/threads.hpp"
 
 namespace drumlab {
 
 namespace {
 
 /// A uniform grid over the references: cells at least `h` wide on every axis, so that two
-/// references within h of each other lie in the same or neighbouring cells. Along a periodic z
-/// the cells tile the period (wrapping) when at least three fit, else one cell spans it.
+/// references within k h of each other lie within k cells of each other on every axis. Along a
+/// periodic z the cells tile the period (wrapping) when at least three fit, else one cell spans
+/// it.
 struct PatchGrid {
   std::array<double, 3> origin{};
   std::array<double, 3> width{};
@@ -72,49 +76,83 @@ void VerletPatch::find(std::span<const Vec3> ref, std::span<const double> radius
   if (moved.empty()) return;
   const std::size_t n = ref.size();
   const double r_max = *std::max_element(radius.begin(), radius.end());
-  const PatchGrid grid(ref, 2.0 * r_max + reach, period);
-  // The particles by cell (a counting sort).
+  // Cells half the widest pair's reach: a moved particle visits the cells within its own reach
+  // (five a side at most), about half the volume three cells of the full reach a side would hold.
+  const double widest = 2.0 * r_max + reach;
+  const PatchGrid grid(ref, 0.5 * widest, period);
+  const std::size_t cells = grid.size();
+  // The references by cell, with their radii, in one contiguous copy (a counting sort).
   cell_of_.resize(n);
-  start_.assign(grid.size() + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) {
+  const auto count = static_cast<std::int64_t>(n);
+#pragma omp parallel for schedule(static) if (count >= kParallelMinElements)
+  for (std::int64_t i = 0; i < count; ++i) {
     const Vec3& x = ref[i];
     cell_of_[i] = grid.cell(grid.coord(x, 0), grid.coord(x, 1), grid.coord(x, 2));
-    ++start_[cell_of_[i] + 1];
   }
-  for (std::size_t c = 0; c < grid.size(); ++c) start_[c + 1] += start_[c];
   members_.resize(n);
-  for (std::size_t i = 0; i < n; ++i) members_[start_[cell_of_[i]]++] = static_cast<Index>(i);
-  for (std::size_t c = grid.size(); c > 0; --c) start_[c] = start_[c - 1];
-  start_[0] = 0;
-  // Each moved particle against the members of its cell and its neighbours.
-  for (const Index f : moved) {
-    const Vec3& x = ref[f];
-    const std::int64_t c[3] = {grid.coord(x, 0), grid.coord(x, 1), grid.coord(x, 2)};
-    for (std::int64_t dz = -1; dz <= 1; ++dz) {
-      std::int64_t cz = c[2] + dz;
-      if (grid.wrap_z) {
-        cz = (cz + grid.dims[2]) % grid.dims[2];
-      } else if (cz < 0 || cz >= grid.dims[2]) {
-        continue;
+  sorted_.resize(n);
+  const std::size_t shares = counting_sort_by_row(
+      n, cells, kParallelMinElements, fill_, [&](std::size_t i) { return cell_of_[i]; },
+      [&](std::size_t i, std::uint32_t slot) {
+        members_[slot] = static_cast<Index>(i);
+        sorted_[slot] = {ref[i].x(), ref[i].y(), ref[i].z(), radius[i]};
+      });
+  const auto cell_end = [&](std::size_t c) { return fill_[c * shares + shares - 1]; };
+  const auto cell_begin = [&](std::size_t c) { return c == 0 ? 0u : cell_end(c - 1); };
+  // Each moved particle against the members of its cell and its neighbours, the moved particles
+  // in contiguous shares (the output is sorted after).
+  const int threads = slices_.prepare(moved.size() >= 256 ? max_threads() : 1);
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (int share = 0; share < threads; ++share) {
+    std::vector<IndexPair>& found = slices_.slice(share);
+    const std::size_t m = moved.size();
+    const std::size_t begin =
+        m * static_cast<std::size_t>(share) / static_cast<std::size_t>(threads);
+    const std::size_t end =
+        m * static_cast<std::size_t>(share + 1) / static_cast<std::size_t>(threads);
+    for (std::size_t q = begin; q < end; ++q) {
+      const Index f = moved[q];
+      const Vec3& x = ref[f];
+      const std::int64_t c[3] = {grid.coord(x, 0), grid.coord(x, 1), grid.coord(x, 2)};
+      const double own = radius[f] + r_max + reach;  // the farthest partner f can have
+      std::int64_t range[3];
+      for (int a = 0; a < 3; ++a) {
+        range[a] = static_cast<std::int64_t>(std::ceil(own / grid.width[a]));
       }
-      for (std::int64_t cy = std::max<std::int64_t>(0, c[1] - 1);
-           cy <= std::min(grid.dims[1] - 1, c[1] + 1); ++cy) {
-        for (std::int64_t cx = std::max<std::int64_t>(0, c[0] - 1);
-             cx <= std::min(grid.dims[0] - 1, c[0] + 1); ++cx) {
-          const std::uint32_t cell = grid.cell(cx, cy, cz);
-          for (std::uint32_t s = start_[cell]; s < start_[cell + 1]; ++s) {
-            const Index j = members_[s];
-            if (j == f) continue;
-            const double cut = radius[f] + radius[j] + reach;
-            if (distance_squared(x, ref[j], period) <= cut * cut) {
-              out.push_back(f < j ? IndexPair{f, j} : IndexPair{j, f});
+      // Along a wrapped z, each cell once.
+      const bool all_z = grid.wrap_z && 2 * range[2] + 1 >= grid.dims[2];
+      const std::int64_t z0 = all_z ? 0 : c[2] - range[2];
+      const std::int64_t z1 = all_z ? grid.dims[2] - 1 : c[2] + range[2];
+      for (std::int64_t z = z0; z <= z1; ++z) {
+        std::int64_t cz = z;
+        if (grid.wrap_z) {
+          cz = ((z % grid.dims[2]) + grid.dims[2]) % grid.dims[2];
+        } else if (cz < 0 || cz >= grid.dims[2]) {
+          continue;
+        }
+        for (std::int64_t cy = std::max<std::int64_t>(0, c[1] - range[1]);
+             cy <= std::min(grid.dims[1] - 1, c[1] + range[1]); ++cy) {
+          // The row's cells along x are one contiguous range of slots.
+          const std::int64_t x0 = std::max<std::int64_t>(0, c[0] - range[0]);
+          const std::int64_t x1 = std::min(grid.dims[0] - 1, c[0] + range[0]);
+          const std::uint32_t s0 = cell_begin(grid.cell(x0, cy, cz));
+          const std::uint32_t s1 = cell_end(grid.cell(x1, cy, cz));
+          for (std::uint32_t s = s0; s < s1; ++s) {
+            const PackedSphere& o = sorted_[s];
+            const double cut = radius[f] + o.r + reach;
+            const double dx = x.x() - o.x, dy = x.y() - o.y;
+            const double dz2 = nearest_image_z(x.z() - o.z, period);
+            if (dx * dx + dy * dy + dz2 * dz2 <= cut * cut && members_[s] != f) {
+              const Index j = members_[s];
+              found.push_back(f < j ? IndexPair{f, j} : IndexPair{j, f});
             }
           }
         }
       }
     }
   }
-  std::sort(out.begin(), out.end());
+  slices_.join(out);
+  sort_pairs(out, n, scratch_, counts_);
   out.erase(std::unique(out.begin(), out.end()), out.end());
 }
 

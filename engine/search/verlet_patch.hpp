@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "engine/search/contact_search.hpp"
+#include "engine/search/search_input.hpp"
 
 namespace drumlab {
 
@@ -27,9 +28,17 @@ class VerletPatch {
             double reach, double period, std::vector<IndexPair>& out);
 
  private:
+  /// A reference and its radius, as the visits read them.
+  struct PackedSphere {
+    double x, y, z, r;
+  };
   std::vector<std::uint32_t> cell_of_;  ///< each particle's cell
-  std::vector<std::uint32_t> start_;    ///< each cell's first member, then one past the last
+  std::vector<std::uint32_t> fill_;     ///< the counting sort's counts (cell ends)
   std::vector<Index> members_;          ///< particles by cell
+  std::vector<PackedSphere> sorted_;    ///< their references and radii, by cell
+  PairSlices slices_;                   ///< the pairs each share of the moved particles found
+  std::vector<IndexPair> scratch_;      ///< the pair sort's scratch
+  std::vector<std::uint32_t> counts_;
 };
 
 }  // namespace drumlab
