@@ -38,7 +38,8 @@ struct PatchGrid {
         extent = period;
         origin[a] = 0.0;
       }
-      dims[a] = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::floor(extent / h)));
+      // At most 2^20 a side before the cap below (a particle far out must not overflow it).
+      dims[a] = static_cast<std::int64_t>(std::clamp(std::floor(extent / h), 1.0, 1048576.0));
       if (a == 2 && period > 0.0 && dims[a] < 3) dims[a] = 1;
     }
     wrap_z = period > 0.0 && dims[2] >= 3;
