@@ -168,8 +168,7 @@ bool VerletListSearch::patch(const SearchInput& in) {
     patched_.push_back(static_cast<Index>(i));
   }
   for (const Index f : patched_) reference_[f] = turn(in.position[f]);
-  patcher_.find(reference_, radius_, patched_, margin_ + skin_ + kTouchTolerance, period_,
-                patch_pairs_);
+  patcher_.find(reference_, radius_, patched_, margin_ + skin_, period_, patch_pairs_);
   scratch_pairs_.clear();
   scratch_pairs_.reserve(list_.size() + patch_pairs_.size());
   std::set_union(list_.begin(), list_.end(), patch_pairs_.begin(), patch_pairs_.end(),

@@ -71,15 +71,15 @@ struct PatchGrid {
 }  // namespace
 
 void VerletPatch::find(std::span<const Vec3> ref, std::span<const double> radius,
-                       std::span<const Index> moved, double reach, double period,
+                       std::span<const Index> moved, double margin, double period,
                        std::vector<IndexPair>& out) {
   out.clear();
   if (moved.empty()) return;
   const std::size_t n = ref.size();
   const double r_max = *std::max_element(radius.begin(), radius.end());
-  // Cells half the widest pair's reach: a moved particle visits the cells within its own reach
-  // (five a side at most), about half the volume three cells of the full reach a side would hold.
-  const double widest = 2.0 * r_max + reach;
+  // Cells half the widest pair's cut-off: a moved particle visits the cells within its own reach
+  // (five a side at most), about half the volume three cells of the full cut-off a side would hold.
+  const double widest = pair_cutoff(r_max, r_max, margin);
   const PatchGrid grid(ref, 0.5 * widest, period);
   const std::size_t cells = grid.size();
   // The references by cell, with their radii, in one contiguous copy (a counting sort).
@@ -115,7 +115,7 @@ void VerletPatch::find(std::span<const Vec3> ref, std::span<const double> radius
       const Index f = moved[q];
       const Vec3& x = ref[f];
       const std::int64_t c[3] = {grid.coord(x, 0), grid.coord(x, 1), grid.coord(x, 2)};
-      const double own = radius[f] + r_max + reach;  // the farthest partner f can have
+      const double own = pair_cutoff(radius[f], r_max, margin);  // f's farthest partner
       std::int64_t range[3];
       for (int a = 0; a < 3; ++a) {
         range[a] = static_cast<std::int64_t>(std::ceil(own / grid.width[a]));
@@ -140,7 +140,7 @@ void VerletPatch::find(std::span<const Vec3> ref, std::span<const double> radius
           const std::uint32_t s1 = cell_end(grid.cell(x1, cy, cz));
           for (std::uint32_t s = s0; s < s1; ++s) {
             const PackedSphere& o = sorted_[s];
-            const double cut = radius[f] + o.r + reach;
+            const double cut = pair_cutoff(radius[f], o.r, margin);
             const double dx = x.x() - o.x, dy = x.y() - o.y;
             const double dz2 = nearest_image_z(x.z() - o.z, period);
             if (dx * dx + dy * dy + dz2 * dz2 <= cut * cut && members_[s] != f) {

@@ -1,7 +1,7 @@
 // The Verlet patch's partner search (engine/search/verlet_patch.hpp) against every pair tested
-// by hand: each pair with a moved particle within r_a + r_b + reach, once, sorted; with periodic
-// ends, with radii of three sizes, with a particle far outside the others (the grid must neither
-// overflow nor miss it), and with the moved particles shared out between two threads.
+// by hand: each pair with a moved particle within pair_cutoff(r_a, r_b, margin), once, sorted; with
+// periodic ends, with radii of three sizes, with a particle far outside the others (the grid must
+// neither overflow nor miss it), and with the moved particles shared out between two threads.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,14 +16,14 @@ namespace drumlab {
 namespace {
 
 std::vector<IndexPair> by_hand(const std::vector<Vec3>& x, const std::vector<double>& r,
-                               const std::vector<Index>& moved, double reach, double period) {
+                               const std::vector<Index>& moved, double margin, double period) {
   std::vector<bool> is_moved(x.size(), false);
   for (const Index f : moved) is_moved[f] = true;
   std::vector<IndexPair> out;
   for (Index a = 0; a < x.size(); ++a) {
     for (Index b = a + 1; b < x.size(); ++b) {
       if (!is_moved[a] && !is_moved[b]) continue;
-      const double cut = r[a] + r[b] + reach;
+      const double cut = pair_cutoff(r[a], r[b], margin);
       if (distance_squared(x[a], x[b], period) <= cut * cut) out.push_back({a, b});
     }
   }
