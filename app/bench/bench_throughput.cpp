@@ -30,6 +30,7 @@ struct ThroughputRow {
   std::size_t particles = 0;
   PhaseStats phase;
   std::uint64_t rebuilds = 0;  ///< Verlet rebuilds in the timed steps (0 for other methods)
+  std::uint64_t patches = 0;   ///< Verlet patches (the list mended, not rebuilt) in the timed steps
   double heap_bytes_per_particle = 0.0;
   double speedup = 1.0;  ///< against the same method with 1 thread
 
@@ -61,9 +62,14 @@ struct ThroughputRow {
   }
 };
 
-std::uint64_t verlet_rebuilds(const Simulation& sim) {
+struct ListUpkeep {
+  std::uint64_t rebuilds = 0;
+  std::uint64_t patches = 0;
+};
+
+ListUpkeep verlet_upkeep(const Simulation& sim) {
   const auto* v = dynamic_cast<const VerletListSearch*>(&sim.search());
-  return v != nullptr ? v->rebuilds() : 0;
+  return v != nullptr ? ListUpkeep{v->rebuilds(), v->patches()} : ListUpkeep{};
 }
 
 ThroughputRow measure(const RollingState& rolling, const std::string& method,
@@ -93,11 +99,13 @@ ThroughputRow measure(const RollingState& rolling, const std::string& method,
     Simulation sim(scene, std::move(state));
     row.particles = sim.particles().size();
     warm_up(sim, warmup);
-    const std::uint64_t rebuilds0 = verlet_rebuilds(sim);
+    const ListUpkeep upkeep0 = verlet_upkeep(sim);
     PhaseMeter meter(sim);
     sim.advance(steps);
     row.phase = meter.finish();
-    row.rebuilds = verlet_rebuilds(sim) - rebuilds0;
+    const ListUpkeep upkeep1 = verlet_upkeep(sim);
+    row.rebuilds = upkeep1.rebuilds - upkeep0.rebuilds;
+    row.patches = upkeep1.patches - upkeep0.patches;
     const std::size_t heap1 = heap_bytes_in_use();
     row.heap_bytes_per_particle =
         row.particles > 0 && heap1 > heap0
@@ -115,14 +123,14 @@ void print_row(const ThroughputRow& r) {
   fmt::print(
       "{:<20} {:>3} {:>6} {:>12.4g} {:>10.4g} {:>7.2f} {:>7.1f} {:>7.1f} {:>7.1f} {:>7.1f} "
       "{:>8.2f} "
-      "{:>8} {:>8} {:>8.0f}\n",
+      "{:>8} {:>8} {:>8} {:>8.0f}\n",
       r.label, r.threads, r.phase.steps, r.rate(), r.cpu_rate(), r.speedup,
       100.0 * r.share(r.phase.timers.search), 100.0 * r.share(r.phase.timers.forces),
       100.0 * r.share(r.phase.timers.walls),
       100.0 * r.share(r.phase.timers.integration + r.phase.timers.reorder),
       r.per_particle_step(r.phase.search.pairs_tested),
       std::isfinite(r.tested_per_contact()) ? fmt::format("{:.2f}", r.tested_per_contact()) : "-",
-      r.rebuilds, r.heap_bytes_per_particle);
+      r.rebuilds, r.patches, r.heap_bytes_per_particle);
 }
 
 void write_csv(const std::filesystem::path& file, const std::string& scene,
@@ -132,18 +140,19 @@ void write_csv(const std::filesystem::path& file, const std::string& scene,
           "particle_steps_per_cpu_s,speedup,"
           "search_share,forces_share,walls_share,integration_share,cells_per_particle,"
           "tested_per_particle,contacts_per_particle,tested_per_contact,verlet_rebuilds,"
-          "heap_bytes_per_particle\n";
+          "verlet_patches,heap_bytes_per_particle\n";
     for (const ThroughputRow& r : rows) {
       const auto& t = r.phase.timers;
       os << fmt::format(
           "{},{},{},{},{},{},{:.6g},{:.6g},{:.6g},{:.4g},{:.4f},{:.4f},{:.4f},{:.4f},{:.4g},"
-          "{:.4g},{:.4g},{},{},{:.1f}\n",
+          "{:.4g},{:.4g},{},{},{},{:.1f}\n",
           scene, r.method, r.sort_every, r.threads, r.particles, r.phase.steps, r.stepping(),
           r.rate(), r.cpu_rate(), r.speedup, r.share(t.search), r.share(t.forces), r.share(t.walls),
           r.share(t.integration + t.reorder), r.per_particle_step(r.phase.search.cells_visited),
           r.per_particle_step(r.phase.search.pairs_tested),
           2.0 * r.per_particle_step(r.phase.search.pairs_found),
-          optional_number(r.tested_per_contact()), r.rebuilds, r.heap_bytes_per_particle);
+          optional_number(r.tested_per_contact()), r.rebuilds, r.patches,
+          r.heap_bytes_per_particle);
     }
   });
 }
@@ -219,9 +228,10 @@ void run_bench_throughput(const ThroughputOptions& opt) {
              fmt::join(sorts, " / "),
              opt.repeats > 1 ? fmt::format(", fastest of {} runs per row", opt.repeats) : "");
   fmt::print(
-      "{:<20} {:>3} {:>6} {:>12} {:>10} {:>7} {:>7} {:>7} {:>7} {:>7} {:>8} {:>8} {:>8} {:>8}\n",
+      "{:<20} {:>3} {:>6} {:>12} {:>10} {:>7} {:>7} {:>7} {:>7} {:>7} {:>8} {:>8} {:>8} {:>8} "
+      "{:>8}\n",
       "method", "thr", "steps", "p-steps/s", "per cpu-s", "speedup", "search%", "forces%", "walls%",
-      "integr%", "tested/p", "tst/cont", "rebuilds", "heap B/p");
+      "integr%", "tested/p", "tst/cont", "rebuilds", "patches", "heap B/p");
   std::vector<ThroughputRow> rows;
   std::vector<std::string> labels;
   const bool cohesive = rolling.scene.liquid.enabled || rolling.scene.cohesion.enabled;

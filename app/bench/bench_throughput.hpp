@@ -1,7 +1,7 @@
 #pragma once
 // `drumlab bench throughput`: particle-steps per second of a scene's rolling state for each search
-// method (and thread count), with the time split, search counters, Verlet rebuilds and heap bytes
-// per particle. Table on stdout, CSV + PNG bar chart in the output folder.
+// method (and thread count), with the time split, search counters, Verlet rebuilds and patches,
+// heap bytes per particle. Table on stdout, CSV + PNG bar chart in the output folder.
 #include <cstdint>
 #include <string>
 #include <vector>

@@ -68,7 +68,7 @@ TEST(CliBench, ThroughputWritesOneRowPerMethodAndAChart) {
             "particle_steps_per_cpu_s,speedup,"
             "search_share,forces_share,walls_share,integration_share,cells_per_particle,"
             "tested_per_particle,contacts_per_particle,tested_per_contact,verlet_rebuilds,"
-            "heap_bytes_per_particle");
+            "verlet_patches,heap_bytes_per_particle");
   const std::vector<std::string> methods = {"m5", "verlet", "mlgrid", "brute"};
   for (std::size_t k = 0; k < methods.size(); ++k) {
     EXPECT_EQ(lines[k + 1].rfind("tiny_bench," + methods[k] + ",100,1,300,5,", 0), 0u)
