@@ -113,6 +113,48 @@ void count_rows(std::span<const IndexPair> list, std::size_t n, std::vector<std:
   }
 }
 
+/// out = the sorted union of two sorted lists of distinct pairs (`add` the short one), rows of
+/// first indices in contiguous shares per thread: each share's size (its pairs of `list`, plus
+/// those of `add` not in them) sets its place in `out`, where std::set_union writes it.
+void union_pairs(std::span<const IndexPair> list, std::span<const IndexPair> add, std::size_t n,
+                 std::vector<IndexPair>& out, std::vector<std::size_t>& cuts) {
+  const int threads = list.size() >= kParallelMinElements ? max_threads() : 1;
+  const auto shares = static_cast<std::size_t>(threads);
+  // cuts: [0, shares] the shares' first entries in list, [shares + 1, 2 shares + 1] in add,
+  // [2 shares + 2, 3 shares + 2] in out.
+  cuts.assign(3 * (shares + 1), 0);
+  const auto first_of_row = [](std::span<const IndexPair> pairs, std::size_t row) {
+    return static_cast<std::size_t>(
+        std::lower_bound(pairs.begin(), pairs.end(), row,
+                         [](const IndexPair& p, std::size_t i) { return p.i < i; }) -
+        pairs.begin());
+  };
+  for (std::size_t s = 0; s <= shares; ++s) {
+    const std::size_t row = n * s / shares;
+    cuts[s] = s == shares ? list.size() : first_of_row(list, row);
+    cuts[shares + 1 + s] = s == shares ? add.size() : first_of_row(add, row);
+  }
+  std::size_t* at = cuts.data() + 2 * (shares + 1);
+  for (std::size_t s = 0; s < shares; ++s) {
+    const auto own = list.subspan(cuts[s], cuts[s + 1] - cuts[s]);
+    std::size_t fresh = 0;
+    for (std::size_t k = cuts[shares + 1 + s]; k < cuts[shares + 2 + s]; ++k) {
+      if (!std::binary_search(own.begin(), own.end(), add[k])) ++fresh;
+    }
+    at[s + 1] = at[s] + own.size() + fresh;
+  }
+  out.resize(at[shares]);
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (int share = 0; share < threads; ++share) {
+    const auto s = static_cast<std::size_t>(share);
+    std::set_union(list.begin() + static_cast<std::ptrdiff_t>(cuts[s]),
+                   list.begin() + static_cast<std::ptrdiff_t>(cuts[s + 1]),
+                   add.begin() + static_cast<std::ptrdiff_t>(cuts[shares + 1 + s]),
+                   add.begin() + static_cast<std::ptrdiff_t>(cuts[shares + 2 + s]),
+                   out.begin() + static_cast<std::ptrdiff_t>(at[s]));
+  }
+}
+
 }  // namespace
 
 VerletListSearch::Need VerletListSearch::needs_rebuild(const SearchInput& in) {
@@ -155,24 +197,39 @@ bool VerletListSearch::patch(const SearchInput& in) {
   }
   const FrameTurn turn(in.frame_angle);
   const double limit = kShare * usable_skin(skin_);
-  patched_.clear();
+  // The particles that moved that far, ascending: each thread scans a contiguous share of them,
+  // the shares joined in order (the same set for any thread count).
+  const int threads = n >= kParallelMinElements ? max_threads() : 1;
+  moved_shares_.resize(static_cast<std::size_t>(threads));
   double rest2 = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double d2 = distance_squared(turn(in.position[i]), reference_[i], period_);
-    if (d2 <= limit * limit) {
-      rest2 = std::max(rest2, d2);
-      continue;
+  bool finite = true;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(max : rest2) \
+    reduction(&& : finite)
+  for (int share = 0; share < threads; ++share) {
+    std::vector<Index>& moved = moved_shares_[static_cast<std::size_t>(share)];
+    moved.clear();
+    const std::size_t begin =
+        n * static_cast<std::size_t>(share) / static_cast<std::size_t>(threads);
+    const std::size_t end =
+        n * static_cast<std::size_t>(share + 1) / static_cast<std::size_t>(threads);
+    for (std::size_t i = begin; i < end; ++i) {
+      const double d2 = distance_squared(turn(in.position[i]), reference_[i], period_);
+      if (d2 <= limit * limit) {
+        rest2 = std::max(rest2, d2);
+        continue;
+      }
+      // Not finite (d2 NaN lands here too): the rebuild's input check names the particle.
+      if (!in.position[i].allFinite()) finite = false;
+      if (moved.size() <= n / kMostPatched) moved.push_back(static_cast<Index>(i));
     }
-    // Not finite: the rebuild's input check names the particle.
-    if (!in.position[i].allFinite() || patched_.size() >= n / kMostPatched) return false;
-    patched_.push_back(static_cast<Index>(i));
   }
+  patched_.clear();
+  for (const auto& moved : moved_shares_)
+    patched_.insert(patched_.end(), moved.begin(), moved.end());
+  if (!finite || patched_.size() > n / kMostPatched) return false;
   for (const Index f : patched_) reference_[f] = turn(in.position[f]);
   patcher_.find(reference_, radius_, patched_, margin_ + skin_, period_, patch_pairs_);
-  scratch_pairs_.clear();
-  scratch_pairs_.reserve(list_.size() + patch_pairs_.size());
-  std::set_union(list_.begin(), list_.end(), patch_pairs_.begin(), patch_pairs_.end(),
-                 std::back_inserter(scratch_pairs_));
+  union_pairs(list_, patch_pairs_, n, scratch_pairs_, union_cuts_);
   list_.swap(scratch_pairs_);
   count_rows(list_, n, listed_per_particle_);
   moved_ = std::sqrt(rest2);

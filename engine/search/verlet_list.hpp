@@ -106,14 +106,15 @@ class VerletListSearch final : public ContactSearch {
   /// The frame's angle at the last call, and a bound on every particle's distance from the axis.
   double angle_ = 0.0;
   double axis_distance_ = kUnknownMotion;
-  bool listed_only_ = false;
+  bool listed_only_ = false;      ///< the per-particle counters hold the listed pairs alone
   bool builder_current_ = false;  ///< no renumber() since the last rebuild: the builder's cells
-                                  ///< still refer to the current storage indices  ///< the
-                                  ///< per-particle counters hold the listed pairs alone
+                                  ///< still refer to the current storage indices
   VerletPatch patcher_;
-  std::vector<Index> patched_;          ///< the particles of the last patch
-  std::vector<IndexPair> patch_pairs_;  ///< their pairs within reach
-  std::size_t listed_at_rebuild_ = 0;   ///< the list's size at the last rebuild
+  std::vector<Index> patched_;                    ///< the particles of the last patch
+  std::vector<std::vector<Index>> moved_shares_;  ///< the patch scan's per-thread finds
+  std::vector<std::size_t> union_cuts_;           ///< the merge's shares (union_pairs)
+  std::vector<IndexPair> patch_pairs_;            ///< their pairs within reach
+  std::size_t listed_at_rebuild_ = 0;             ///< the list's size at the last rebuild
   std::size_t patch_min_particles_ = kPatchMinParticles;
   std::uint64_t rebuilds_ = 0, calls_ = 0, checks_ = 0, patches_ = 0;
 };

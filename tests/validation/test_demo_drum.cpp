@@ -9,6 +9,7 @@
 #include "engine/scene/scene_validation.hpp"
 #include "engine/search/verlet_list.hpp"
 #include "engine/simulation.hpp"
+#include "engine/threads.hpp"
 
 namespace drumlab {
 namespace {
@@ -102,13 +103,19 @@ TEST(SearchMethodsInADrum, APatchedVerletListChangesNoBit) {
   Simulation grid(scene, start);
   grid.advance(2500);
   scene.search_method = "verlet:mlgrid";
-  Simulation listed(scene, start);
-  listed.advance(2500);
-  const auto* verlet = dynamic_cast<const VerletListSearch*>(&listed.search());
-  ASSERT_NE(verlet, nullptr);
-  EXPECT_GT(verlet->patches(), 0u) << verlet->report();
-  EXPECT_EQ(listed.particles().position, grid.particles().position);
-  EXPECT_EQ(listed.particles().omega, grid.particles().omega);
+  // One thread and three (uneven shares of the patch's scan and merge).
+  const int saved = max_threads();
+  for (const int threads : {1, 3}) {
+    set_thread_count(threads);
+    Simulation listed(scene, start);
+    listed.advance(2500);
+    const auto* verlet = dynamic_cast<const VerletListSearch*>(&listed.search());
+    ASSERT_NE(verlet, nullptr);
+    EXPECT_GT(verlet->patches(), 0u) << verlet->report();
+    EXPECT_EQ(listed.particles().position, grid.particles().position) << threads << " threads";
+    EXPECT_EQ(listed.particles().omega, grid.particles().omega) << threads << " threads";
+  }
+  set_thread_count(saved);
 }
 
 // The teaching drum with MercuryDPM's law parts (issue 33): the linear law set by a collision time
