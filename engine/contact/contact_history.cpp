@@ -9,6 +9,7 @@
 #include "engine/counting_sort.hpp"
 #include "engine/parallel_copy.hpp"
 #include "engine/threads.hpp"
+#include "engine/vector_room.hpp"
 
 namespace drumlab {
 
@@ -71,14 +72,10 @@ void ContactList::renumber(std::span<const Index> new_index) {
   col_.swap(old_col_);
   history_.swap(old_history_);
   state_.swap(old_state_);
-  // Scratch with headroom: re-ordering is sampled every sort_every steps, so without it a list
-  // slightly longer than at any earlier re-ordering would allocate again.
-  if (renumbered_.capacity() < m) {
-    renumbered_.reserve(2 * m);
-    by_pair_.reserve(2 * m);
-  }
-  renumbered_.resize(m);
-  by_pair_.resize(m);
+  // Scratch with room (vector_room.hpp): re-ordering is sampled every sort_every steps, so without
+  // it a list slightly longer than at any earlier re-ordering would allocate again.
+  resize_with_room(renumbered_, m);
+  resize_with_room(by_pair_, m);
   const auto rows_old = static_cast<std::int64_t>(n);
 #pragma omp parallel for schedule(static)
   for (std::int64_t ii = 0; ii < rows_old; ++ii) {
@@ -104,10 +101,10 @@ void ContactList::renumber(std::span<const Index> new_index) {
     row_start_[i] = i == 0 ? 0 : fill_[(i - 1) * t_count + t_count - 1];
   }
   row_start_[n] = m;
-  col_.resize(m);
-  history_.resize(m);
+  resize_with_room(col_, m);
+  resize_with_room(history_, m);
   const std::size_t s = state_size_;
-  state_.resize(m * s);
+  resize_with_room(state_, m * s);
   const auto count = static_cast<std::int64_t>(n);
 #pragma omp parallel for schedule(static)
   for (std::int64_t ii = 0; ii < count; ++ii) {
@@ -185,7 +182,7 @@ void ContactList::build_cross_block(std::size_t block_rows) {
   const std::size_t n = rows();
   const std::size_t m = col_.size();
   // Each contact's row, and how many contacts reach past their row's block.
-  entry_row_.resize(m);
+  resize_with_room(entry_row_, m);
   std::size_t cross = 0;
 #pragma omp parallel for schedule(static) reduction(+ : cross)
   for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
@@ -203,7 +200,7 @@ void ContactList::build_cross_block(std::size_t block_rows) {
     return j >= row_block_end_[entry_row_[k]] ? j : n;
   };
   constexpr std::size_t kContactsPerShare = 32768;  // below this, one thread
-  cross_k_.resize(cross);
+  resize_with_room(cross_k_, cross);
   const std::size_t t_count = counting_sort_by_row(m, n + 1, kContactsPerShare, fill_, receiver_of,
                                                    [&](std::size_t k, std::size_t slot) {
                                                      if (slot < cross) cross_k_[slot] = k;
@@ -224,7 +221,7 @@ void ContactList::build_rows(std::span<const IndexPair> pairs, std::size_t n) {
   // starts the rows after the previous pair's row up to its own.
   const std::size_t m = pairs.size();
   row_start_.resize(n + 1);
-  col_.resize(m);
+  resize_with_room(col_, m);
   int unsorted = 0;
 #pragma omp parallel for schedule(static) reduction(| : unsorted)
   for (std::int64_t kk = 0; kk < static_cast<std::int64_t>(m); ++kk) {
@@ -300,7 +297,7 @@ void merge_rows(std::span<const std::size_t> row_start, std::span<const Index> c
 }  // namespace
 
 void ContactList::transfer_history() {
-  history_.resize(col_.size());
+  resize_with_room(history_, col_.size());
   merge_rows(
       row_start_, col_, old_row_start_, old_col_,
       [this](std::size_t k, std::size_t ko) { history_[k] = old_history_[ko]; },
@@ -311,7 +308,7 @@ void ContactList::transfer_history() {
 // the one from before). old_state_ still matches old_col_ here.
 void ContactList::transfer_state() {
   const std::size_t s = state_size_;
-  state_.resize(col_.size() * s);
+  resize_with_room(state_, col_.size() * s);
   merge_rows(
       row_start_, col_, old_row_start_, old_col_,
       [this, s](std::size_t k, std::size_t ko) {

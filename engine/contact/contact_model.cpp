@@ -14,6 +14,7 @@
 #include "engine/contact/pair_split.hpp"
 #include "engine/periodic.hpp"
 #include "engine/scene/scene_validation.hpp"
+#include "engine/vector_room.hpp"
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -243,7 +244,7 @@ template <class Normal, bool Tangential, RollingKind Rolling, bool kMark>
 std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& contacts,
                       PairForceBuffers& buf, std::size_t rows_per_block, double period, double dt,
                       double history_dt, const TouchingPull& pull) {
-  if constexpr (kMark) buf.cohesion.mark.resize(contacts.size());
+  if constexpr (kMark) resize_with_room(buf.cohesion.mark, contacts.size());
 #ifdef _OPENMP
   if (omp_get_max_threads() == 1)
 #endif
@@ -253,11 +254,11 @@ std::size_t pair_loop(const ContactLaw<Normal>& law, Particles& p, ContactList& 
   }
   constexpr bool kTorque = Tangential || rolls(Rolling);
   const std::size_t zero = contacts.size();  // the slot of the pairs that do not overlap
-  buf.slot.resize(contacts.size());
-  buf.force.resize(contacts.size() + 1);
+  resize_with_room(buf.slot, contacts.size());
+  resize_with_room(buf.force, contacts.size() + 1);
   buf.force[zero].setZero();
   if constexpr (kTorque) {
-    buf.torque_j.resize(contacts.size() + 1);
+    resize_with_room(buf.torque_j, contacts.size() + 1);
     buf.torque_j[zero].setZero();
   }
   contacts.index_cross_block(rows_per_block);

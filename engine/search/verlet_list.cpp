@@ -12,6 +12,7 @@
 #include "engine/search/search_methods.hpp"
 #include "engine/spatial_order.hpp"
 #include "engine/threads.hpp"
+#include "engine/vector_room.hpp"
 
 namespace drumlab {
 
@@ -143,7 +144,7 @@ void union_pairs(std::span<const IndexPair> list, std::span<const IndexPair> add
     }
     at[s + 1] = at[s] + own.size() + fresh;
   }
-  out.resize(at[shares]);
+  resize_with_room(out, at[shares]);
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (int share = 0; share < threads; ++share) {
     const auto s = static_cast<std::size_t>(share);
