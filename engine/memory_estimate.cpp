@@ -5,6 +5,7 @@
 #include "engine/contact/contact_model.hpp"
 #include "engine/search/cell_index.hpp"
 #include "engine/search/search_methods.hpp"
+#include "engine/search/verlet_list.hpp"
 
 namespace drumlab {
 
@@ -17,6 +18,10 @@ constexpr double kPair = sizeof(IndexPair);
 /// A pair array holds about this much more than it uses: its capacity follows the most pairs it
 /// ever held, and push_back doubles it.
 constexpr double kGrowth = 1.5;
+/// The renumbering's scratch and the pair loop's buffers grow by a quarter (vector_room.hpp; the
+/// contact list's arrays too, but the estimate keeps kGrowth for them: it also stands for what it
+/// does not count in detail, such as the grids' fixed tables).
+constexpr double kRoom = 1.25;
 
 /// Bytes per particle of the search structures of one grid (no Verlet list).
 double grid_bytes_per_particle(const SearchMethodInfo& m, double pairs) {
@@ -58,14 +63,14 @@ MemoryEstimate estimate_memory(std::string_view method, const MemoryShape& s) {
   if (s.reorder) {
     b += sizeof(std::uint64_t) + 3.0 * kIndex + kVec3 + sizeof(double) + sizeof(std::uint8_t) +
          kIndex;
-    b += kGrowth * pairs * (kPair + kSize);
+    b += kRoom * pairs * (kPair + kSize);
   }
   // From two threads on, the parallel pair loop (contact/contact_model.cpp) keeps per pair a
   // force slot, the force and the partner's torque, and the pair's row; per particle its
-  // block's end. Measured (tests/unit/test_memory_estimate.cpp): 42-69 B a particle more on
-  // grids, 302-325 with a Verlet list; 664 in the paper's Table 2 drum (6.53 listed pairs).
+  // block's end. Measured (tests/unit/test_memory_estimate.cpp, 2026-12-07): 38-43 B a particle
+  // more on the grids, 335-350 with a Verlet list.
   if (s.threads > 1) {
-    b += kGrowth * pairs * (sizeof(std::uint32_t) + kVec3 + (s.rotation ? kVec3 : 0.0) + kIndex) +
+    b += kRoom * pairs * (sizeof(std::uint32_t) + kVec3 + (s.rotation ? kVec3 : 0.0) + kIndex) +
          kSize;
   }
   // Wall candidates: flags, positions at the build and scratch, the list.
@@ -76,6 +81,12 @@ MemoryEstimate estimate_memory(std::string_view method, const MemoryShape& s) {
     b += 2.0 * kGrowth * kPair * pairs + 2.0 * (kVec3 + sizeof(double)) +
          2.0 * sizeof(std::uint32_t);
     b += grid_bytes_per_particle(*parsed->method, pairs);
+    // From 4096 particles on, the patch's grid (search/verlet_patch.hpp): each particle's cell,
+    // the members by cell with their references and radii, and about two cells a particle of
+    // counts per thread.
+    if (s.particles >= VerletListSearch::kPatchMinParticles) {
+      b += 2.0 * kIndex + 4.0 * sizeof(double) + 2.0 * s.threads * sizeof(std::uint32_t);
+    }
   } else {
     b += kGrowth * kPair * pairs;  // the simulation's pair list
     b += grid_bytes_per_particle(*parsed->method, pairs);
