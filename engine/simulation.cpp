@@ -455,13 +455,16 @@ void Simulation::validate_particles() {
                       "m, H = {} m)",
                       scene_label(scene_), i, x.x(), x.y(), x.z(), drum.radius(), drum.depth()));
     }
+    // The overlap a run may reach (time.max_overlap, half a radius by default) is also what a
+    // start may hold: a state saved by a run under a raised limit restarts under it.
     for (std::size_t part = 0; part < kWallParts; ++part) {
       const WallContact c = drum.contact(static_cast<WallPart>(part), x, p.radius[i]);
-      if (c.overlap > 0.5 * p.radius[i]) {
+      if (c.overlap > scene_.time.max_overlap * p.radius[i]) {
         throw InputError(fmt::format(
             "{}: particle {} at ({:.6g}, {:.6g}, {:.6g}) m penetrates the drum wall by {:.3g} m "
-            "(more than half its radius)",
-            scene_label(scene_), i, x.x(), x.y(), x.z(), c.overlap));
+            "(more than time.max_overlap = {} of its radius {:.3g} m)",
+            scene_label(scene_), i, x.x(), x.y(), x.z(), c.overlap, scene_.time.max_overlap,
+            p.radius[i]));
       }
     }
   }

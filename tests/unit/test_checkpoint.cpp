@@ -5,6 +5,7 @@
 // InputError and leave nothing under the final name.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -160,6 +161,28 @@ TEST(Checkpoint, RestartAfterNStepsIsBitIdenticalToTwoN) {
   amnesiac.advance(kN);
   EXPECT_FALSE(same_bits(straight->particles().position, amnesiac.particles().position));
   EXPECT_FALSE(same_bits(straight->particles().omega, amnesiac.particles().omega));
+}
+
+// A start may hold the wall overlap a run may reach (time.max_overlap): a state saved under a
+// raised limit restarts under it, and a start deeper in the wall than the limit is refused.
+TEST(Checkpoint, StartTakesTheWallOverlapTheRunMayReach) {
+  SceneConfig scene = output_scene();
+  SimulationState state = settled_simulation(scene, 10)->state();
+  Particles& p = state.particles;
+  // Particle 0 pressed into the mantle by 0.7 of its radius.
+  const double r = p.radius[0];
+  const Vec3 x = p.position[0];
+  const double rho = std::hypot(x.x(), x.y());
+  const double to = 0.5 * scene.drum.diameter - r + 0.7 * r;
+  p.position[0] = Vec3(x.x() * to / rho, x.y() * to / rho, x.z());
+  try {
+    Simulation refused(scene, state);
+    ADD_FAILURE() << "a start 0.7 radii into the wall under time.max_overlap = 0.5";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("time.max_overlap = 0.5"), std::string::npos) << e.what();
+  }
+  scene.time.max_overlap = 1.0;
+  EXPECT_NO_THROW(Simulation(scene, state));
 }
 
 TEST(Checkpoint, RestartIsBitIdenticalWithPeriodicEndsTiltAndSwitchedSearch) {
