@@ -114,11 +114,13 @@ void count_rows(std::span<const IndexPair> list, std::size_t n, std::vector<std:
   }
 }
 
-/// out = the sorted union of two sorted lists of distinct pairs (`add` the short one), rows of
-/// first indices in contiguous shares per thread: each share's size (its pairs of `list`, plus
-/// those of `add` not in them) sets its place in `out`, where std::set_union writes it.
-void union_pairs(std::span<const IndexPair> list, std::span<const IndexPair> add, std::size_t n,
-                 std::vector<IndexPair>& out, std::vector<std::size_t>& cuts) {
+/// out = the pairs of `list` that join no particle marked in `moved`, merged with `add` (both
+/// sorted, distinct; every pair of `add` joins a marked particle, so the two sets are disjoint):
+/// the moved particles' old pairs replaced by their new ones. Rows of first indices in contiguous
+/// shares per thread: each share's size sets its place in `out`.
+void splice_pairs(std::span<const IndexPair> list, std::span<const IndexPair> add,
+                  std::span<const std::uint8_t> moved, std::size_t n, std::vector<IndexPair>& out,
+                  std::vector<std::size_t>& cuts) {
   const int threads = list.size() >= kParallelMinElements ? max_threads() : 1;
   const auto shares = static_cast<std::size_t>(threads);
   // cuts: [0, shares] the shares' first entries in list, [shares + 1, 2 shares + 1] in add,
@@ -136,23 +138,29 @@ void union_pairs(std::span<const IndexPair> list, std::span<const IndexPair> add
     cuts[shares + 1 + s] = s == shares ? add.size() : first_of_row(add, row);
   }
   std::size_t* at = cuts.data() + 2 * (shares + 1);
-  for (std::size_t s = 0; s < shares; ++s) {
-    const auto own = list.subspan(cuts[s], cuts[s + 1] - cuts[s]);
-    std::size_t fresh = 0;
-    for (std::size_t k = cuts[shares + 1 + s]; k < cuts[shares + 2 + s]; ++k) {
-      if (!std::binary_search(own.begin(), own.end(), add[k])) ++fresh;
-    }
-    at[s + 1] = at[s] + own.size() + fresh;
+  const auto kept = [&](const IndexPair& p) { return (moved[p.i] | moved[p.j]) == 0; };
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (int share = 0; share < threads; ++share) {
+    const auto s = static_cast<std::size_t>(share);
+    std::size_t count = cuts[shares + 2 + s] - cuts[shares + 1 + s];
+    for (std::size_t k = cuts[s]; k < cuts[s + 1]; ++k) count += kept(list[k]);
+    at[s + 1] = count;  // the share's size, summed into places below
   }
+  for (std::size_t s = 0; s < shares; ++s) at[s + 1] += at[s];
   resize_with_room(out, at[shares]);
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (int share = 0; share < threads; ++share) {
     const auto s = static_cast<std::size_t>(share);
-    std::set_union(list.begin() + static_cast<std::ptrdiff_t>(cuts[s]),
-                   list.begin() + static_cast<std::ptrdiff_t>(cuts[s + 1]),
-                   add.begin() + static_cast<std::ptrdiff_t>(cuts[shares + 1 + s]),
-                   add.begin() + static_cast<std::ptrdiff_t>(cuts[shares + 2 + s]),
-                   out.begin() + static_cast<std::ptrdiff_t>(at[s]));
+    const IndexPair* b = add.data() + cuts[shares + 1 + s];
+    const IndexPair* const b_end = add.data() + cuts[shares + 2 + s];
+    IndexPair* o = out.data() + at[s];
+    for (std::size_t k = cuts[s]; k < cuts[s + 1]; ++k) {
+      const IndexPair p = list[k];
+      if (!kept(p)) continue;
+      while (b < b_end && *b < p) *o++ = *b++;
+      *o++ = p;
+    }
+    while (b < b_end) *o++ = *b++;
   }
 }
 
@@ -230,7 +238,13 @@ bool VerletListSearch::patch(const SearchInput& in) {
   if (!finite || patched_.size() > n / kMostPatched) return false;
   for (const Index f : patched_) reference_[f] = turn(in.position[f]);
   patcher_.find(reference_, radius_, patched_, margin_ + skin_, period_, patch_pairs_);
-  union_pairs(list_, patch_pairs_, n, scratch_pairs_, union_cuts_);
+  // Their old pairs go, their pairs at the new references come: a pair dropped is more than
+  // cut-off + skin apart at its references, so it does not touch now (the partner moved less than
+  // a quarter of the skin), and the list stays as short as a rebuilt one.
+  if (moved_flag_.size() != n) moved_flag_.assign(n, 0);
+  for (const Index f : patched_) moved_flag_[f] = 1;
+  splice_pairs(list_, patch_pairs_, moved_flag_, n, scratch_pairs_, union_cuts_);
+  for (const Index f : patched_) moved_flag_[f] = 0;
   list_.swap(scratch_pairs_);
   count_rows(list_, n, listed_per_particle_);
   moved_ = std::sqrt(rest2);

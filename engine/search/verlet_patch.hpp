@@ -7,9 +7,10 @@
 // |x_i - x_j| >= |ref_i - ref_j| - |x_i - ref_i| - |x_j - ref_j|. That holds for each pair's own
 // reference positions, so the list stays valid if a few particles take their current position as
 // their new reference, as long as every pair of one of them within that cut-off of the new
-// references is added (pairs listed before stay: a longer list changes no force). In a drum the
-// rebuilds are set by the fastest few particles (a flowing layer over a bed that turns with the
-// wall); patching those few costs a grid of the references and a merge, not the whole search.
+// references is added (and their old pairs beyond that cut-off at the new references dropped: such
+// a pair does not touch). In a drum the rebuilds are set by the fastest few particles (a flowing
+// layer over a bed that turns with the wall); patching those few costs a grid of the references and
+// a merge, not the whole search.
 #include <cstdint>
 #include <span>
 #include <vector>
