@@ -240,10 +240,10 @@ bool VerletListSearch::patch(const SearchInput& in) {
   patcher_.find(reference_, radius_, patched_, margin_ + skin_, period_, patch_pairs_);
   // Their old pairs go, their pairs at the new references come: a pair dropped is more than
   // cut-off + skin apart at its references, so it does not touch now (the partner moved less than
-  // a quarter of the skin), and the list stays as short as a rebuilt one.
+  // a quarter of the skin), and the list does not keep pairs that no longer need listing.
   if (moved_flag_.size() != n) moved_flag_.assign(n, 0);
   for (const Index f : patched_) moved_flag_[f] = 1;
-  splice_pairs(list_, patch_pairs_, moved_flag_, n, scratch_pairs_, union_cuts_);
+  splice_pairs(list_, patch_pairs_, moved_flag_, n, scratch_pairs_, splice_cuts_);
   for (const Index f : patched_) moved_flag_[f] = 0;
   list_.swap(scratch_pairs_);
   count_rows(list_, n, listed_per_particle_);

@@ -112,7 +112,7 @@ class VerletListSearch final : public ContactSearch {
   VerletPatch patcher_;
   std::vector<Index> patched_;                    ///< the particles of the last patch
   std::vector<std::vector<Index>> moved_shares_;  ///< the patch scan's per-thread finds
-  std::vector<std::size_t> union_cuts_;           ///< the merge's shares (splice_pairs)
+  std::vector<std::size_t> splice_cuts_;          ///< the merge's shares (splice_pairs)
   std::vector<std::uint8_t> moved_flag_;          ///< 1 for the particles of a patch, while it runs
   std::vector<IndexPair> patch_pairs_;            ///< their pairs within reach
   std::size_t listed_at_rebuild_ = 0;             ///< the list's size at the last rebuild
