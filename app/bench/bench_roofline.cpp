@@ -32,6 +32,11 @@ std::uint64_t verlet_rebuilds(const Simulation& sim) {
   return v != nullptr ? v->rebuilds() : 0;
 }
 
+std::uint64_t verlet_patches(const Simulation& sim) {
+  const auto* v = dynamic_cast<const VerletListSearch*>(&sim.search());
+  return v != nullptr ? v->patches() : 0;
+}
+
 Measured measure(const RollingState& rolling, const RooflineOptions& opt) {
   set_thread_count(opt.threads);
   SimulationState state = rolling.state;
@@ -52,6 +57,7 @@ RunCounts count_run(Simulation& sim, std::uint64_t steps, PhaseStats* phase) {
   RunCounts c;
   c.verlet = dynamic_cast<const VerletListSearch*>(&sim.search()) != nullptr;
   const std::uint64_t rebuilds0 = verlet_rebuilds(sim);
+  const std::uint64_t patches0 = verlet_patches(sim);
   PhaseMeter meter(sim);
   constexpr int kSamples = 5;
   for (int k = 0; k < kSamples; ++k) {
@@ -64,6 +70,7 @@ RunCounts count_run(Simulation& sim, std::uint64_t steps, PhaseStats* phase) {
   c.steps = p.steps;
   c.pairs_tested = p.search.pairs_tested;
   c.builds = c.verlet ? verlet_rebuilds(sim) - rebuilds0 : p.steps;
+  c.patches = verlet_patches(sim) - patches0;
   if (phase != nullptr) *phase = p;
   return c;
 }
@@ -189,12 +196,12 @@ void run_bench_roofline(const RooflineOptions& opt) {
              m.method, opt.threads, m.phase.steps, particle_steps / std::max(t.total(), 1e-12));
   fmt::print(
       "per step: {:.0f} listed pairs, {:.0f} touching, {:.0f} wall candidates, {:.0f} wall "
-      "contacts, {:.0f} live bridges; {} search builds, {} re-orderings\n",
+      "contacts, {:.0f} live bridges; {} search builds, {} list patches, {} re-orderings\n",
       static_cast<double>(m.counts.work.listed_pairs) / m.counts.steps,
       static_cast<double>(m.counts.work.touching_pairs) / m.counts.steps,
       static_cast<double>(m.counts.work.wall_candidates) / m.counts.steps,
       static_cast<double>(m.counts.work.wall_contacts) / m.counts.steps,
-      m.counts.cohesive_pairs_per_step, m.counts.builds, m.counts.work.reorders);
+      m.counts.cohesive_pairs_per_step, m.counts.builds, m.counts.patches, m.counts.work.reorders);
   print_rows(rows, particle_steps);
   const auto file = std::filesystem::path(opt.out) / ("roofline_" + rolling.scene.name + ".csv");
   write_csv(file, rolling.scene.name, m, rows, particle_steps, opt.threads);

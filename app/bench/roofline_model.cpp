@@ -122,6 +122,15 @@ Work binned_particle_cost() {
   return {6.0, 0.0, kVec + 4.0 + kIdx, 0.0};
 }
 
+// A Verlet list patch (verlet_list.cpp patch(), verlet_patch.cpp find()), per particle: the scan
+// (position turned into the list's frame 6, squared distance to its reference 8), the grid's
+// bounds (6 compares, not counted) and cell (3 subtractions, 3 divisions), the counting sort (the
+// cell read twice, index, reference and radius written). Its distance tests are the moved
+// particles' alone (a few in a thousand move), not counted.
+Work patched_particle_cost() {
+  return {14.0 + 3.0, 3.0, 2.0 * kVec + kVec + kVec + 2.0 * 4.0 + kVec + 8.0, kIdx + 32.0};
+}
+
 PhaseWork phase_work(const LawShape& s, const RunCounts& c) {
   const StepWork& w = c.work;
   const double steps = static_cast<double>(c.steps);
@@ -136,6 +145,12 @@ PhaseWork phase_work(const LawShape& s, const RunCounts& c) {
   const double tests = static_cast<double>(c.pairs_tested) - list_tests;
   p.search += tested_pair_cost() * (tests > 0.0 ? tests : 0.0);
   p.search += Work{0.0, 0.0, 2.0 * (kIdx + kVec), 0.0} * (builds * listed_per_step);
+  // A patch: its pass over every particle; the list spliced (each pair read and written) and its
+  // rows counted (read), and the contacts' history carried over as after a build.
+  const double patches = static_cast<double>(c.patches);
+  p.search += patched_particle_cost() * (patches * particles_per_step);
+  p.search +=
+      Work{0.0, 0.0, 3.0 * 2.0 * kIdx + 2.0 * (kIdx + kVec), 0.0} * (patches * listed_per_step);
   // Forces: every listed pair, the touching ones, the live cohesive links.
   p.forces += listed_pair_cost() * static_cast<double>(w.listed_pairs);
   p.forces += touching_pair_cost(s) * static_cast<double>(w.touching_pairs);

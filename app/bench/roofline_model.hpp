@@ -64,8 +64,9 @@ Work wall_candidate_cost();                        ///< the drum geometry of a w
 Work wall_contact_cost(const LawShape& s);         ///< the contact kernel on a wall contact
 Work integrated_particle_cost(const LawShape& s);  ///< both half kicks and the drift
 Work reordered_particle_cost(const LawShape& s);   ///< Morton key, sort share, permutation
-Work tested_pair_cost();      ///< a distance test in a search or a Verlet rebuild (candidates)
-Work binned_particle_cost();  ///< putting a particle into a search grid
+Work tested_pair_cost();       ///< a distance test in a search or a Verlet rebuild (candidates)
+Work binned_particle_cost();   ///< putting a particle into a search grid
+Work patched_particle_cost();  ///< a Verlet list patch's scan and grid, per particle
 
 /// Per phase of a run, the work done; the counts come from PhaseStats (and samples of the live
 /// bridges, which the engine does not sum per step).
@@ -80,6 +81,7 @@ struct RunCounts {
   std::uint64_t steps = 0;
   std::uint64_t pairs_tested = 0;  ///< search distance tests, summed (SearchCounters)
   std::uint64_t builds = 0;        ///< search structure builds (each step for a grid; rebuilds)
+  std::uint64_t patches = 0;       ///< Verlet list patches (the moved particles' pairs replaced)
   bool verlet = false;             ///< the method keeps a Verlet list
   double cohesive_pairs_per_step = 0.0;  ///< live bridges, sampled
 };

@@ -190,6 +190,29 @@ TEST(RooflineModel, CountsAreTheRunsAndTheModelPricesThem) {
                    bench::reordered_particle_cost(s).flops * static_cast<double>(n) * 4.0);
 }
 
+// A Verlet list patch is search work: its pass over every particle and its rewrite of the list,
+// priced once per patch, and nothing when no patch ran.
+TEST(RooflineModel, PricesTheVerletListPatches) {
+  bench::LawShape s;
+  s.particle_bytes = 200;
+  bench::RunCounts c;
+  c.verlet = true;
+  c.steps = 10;
+  c.work.particles = 10 * 1000;
+  c.work.listed_pairs = 10 * 5000;
+  c.pairs_tested = c.work.listed_pairs;  // the listed pairs' own tests only (force loop)
+  const bench::PhaseWork unpatched = bench::phase_work(s, c);
+  EXPECT_EQ(unpatched.search.flops, 0.0);
+  c.patches = 3;
+  const bench::PhaseWork patched = bench::phase_work(s, c);
+  const bench::Work scan = bench::patched_particle_cost() * (3.0 * 1000.0);
+  EXPECT_DOUBLE_EQ(patched.search.flops, scan.flops);
+  EXPECT_DOUBLE_EQ(patched.search.divsqrt, scan.divsqrt);
+  EXPECT_DOUBLE_EQ(patched.search.gather, scan.gather);
+  EXPECT_GT(patched.search.stream, scan.stream + 3.0 * 5000.0 * 24.0);  // the list and histories
+  EXPECT_DOUBLE_EQ(patched.forces.flops, unpatched.forces.flops);
+}
+
 TEST(MachineLimits, RoofsArePositiveAndL1IsFasterThanMemory) {
   const bench::MachineLimits m = bench::measure_machine_limits(true);
   EXPECT_GT(m.peak_gflops, 0.0);
