@@ -27,14 +27,8 @@ struct Measured {
   std::string method;
 };
 
-std::uint64_t verlet_rebuilds(const Simulation& sim) {
-  const auto* v = dynamic_cast<const VerletListSearch*>(&sim.search());
-  return v != nullptr ? v->rebuilds() : 0;
-}
-
-std::uint64_t verlet_patches(const Simulation& sim) {
-  const auto* v = dynamic_cast<const VerletListSearch*>(&sim.search());
-  return v != nullptr ? v->patches() : 0;
+const VerletListSearch* verlet_list(const Simulation& sim) {
+  return dynamic_cast<const VerletListSearch*>(&sim.search());
 }
 
 Measured measure(const RollingState& rolling, const RooflineOptions& opt) {
@@ -55,9 +49,11 @@ Measured measure(const RollingState& rolling, const RooflineOptions& opt) {
 
 RunCounts count_run(Simulation& sim, std::uint64_t steps, PhaseStats* phase) {
   RunCounts c;
-  c.verlet = dynamic_cast<const VerletListSearch*>(&sim.search()) != nullptr;
-  const std::uint64_t rebuilds0 = verlet_rebuilds(sim);
-  const std::uint64_t patches0 = verlet_patches(sim);
+  const auto rebuilds = [&] { return c.verlet ? verlet_list(sim)->rebuilds() : 0; };
+  const auto patches = [&] { return c.verlet ? verlet_list(sim)->patches() : 0; };
+  c.verlet = verlet_list(sim) != nullptr;
+  const std::uint64_t rebuilds0 = rebuilds();
+  const std::uint64_t patches0 = patches();
   PhaseMeter meter(sim);
   constexpr int kSamples = 5;
   for (int k = 0; k < kSamples; ++k) {
@@ -69,8 +65,8 @@ RunCounts count_run(Simulation& sim, std::uint64_t steps, PhaseStats* phase) {
   c.work = p.work;
   c.steps = p.steps;
   c.pairs_tested = p.search.pairs_tested;
-  c.builds = c.verlet ? verlet_rebuilds(sim) - rebuilds0 : p.steps;
-  c.patches = verlet_patches(sim) - patches0;
+  c.builds = c.verlet ? rebuilds() - rebuilds0 : p.steps;
+  c.patches = patches() - patches0;
   if (phase != nullptr) *phase = p;
   return c;
 }

@@ -123,12 +123,16 @@ Work binned_particle_cost() {
 }
 
 // A Verlet list patch (verlet_list.cpp patch(), verlet_patch.cpp find()), per particle: the scan
-// (position turned into the list's frame 6, squared distance to its reference 8), the grid's
-// bounds (6 compares, not counted) and cell (3 subtractions, 3 divisions), the counting sort (the
-// cell read twice, index, reference and radius written). Its distance tests are the moved
-// particles' alone (a few in a thousand move), not counted.
+// (position turned into the list's frame 6, squared distance to its reference 8; both read), the
+// grid's bounds (the reference read; compares, not counted), its cell (3 subtractions, 3
+// divisions; the reference read, the cell written), the counting sort (the cell read twice, the
+// reference and radius read, index and packed reference written at the cell's slot; the cell's
+// count read and written twice at scattered places). Its distance tests are the moved particles'
+// alone (a few in a hundred move), not counted.
 Work patched_particle_cost() {
-  return {14.0 + 3.0, 3.0, 2.0 * kVec + kVec + kVec + 2.0 * 4.0 + kVec + 8.0, kIdx + 32.0};
+  const double scan = 2.0 * kVec, bounds = kVec, cell = kVec + 4.0;
+  const double sort = 2.0 * 4.0 + kVec + 8.0 + kIdx + 32.0;
+  return {14.0 + 3.0, 3.0, scan + bounds + cell + sort, 2.0 * 4.0};
 }
 
 PhaseWork phase_work(const LawShape& s, const RunCounts& c) {
