@@ -49,9 +49,9 @@ Measured measure(const RollingState& rolling, const RooflineOptions& opt) {
 
 RunCounts count_run(Simulation& sim, std::uint64_t steps, PhaseStats* phase) {
   RunCounts c;
+  c.verlet = verlet_list(sim) != nullptr;
   const auto rebuilds = [&] { return c.verlet ? verlet_list(sim)->rebuilds() : 0; };
   const auto patches = [&] { return c.verlet ? verlet_list(sim)->patches() : 0; };
-  c.verlet = verlet_list(sim) != nullptr;
   const std::uint64_t rebuilds0 = rebuilds();
   const std::uint64_t patches0 = patches();
   PhaseMeter meter(sim);
