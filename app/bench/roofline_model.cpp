@@ -36,7 +36,8 @@ Work listed_pair_cost() {
   return {12.0, 0.0, kIdx + kVec, kVec + 8.0};
 }
 
-// PairBatch::add: separation 3, inverse mass and inertia sums 2, relative velocity 3 = 8.
+// PairBatch::gather (add, one lane at a time): separation 3, inverse mass and inertia sums 2,
+// relative velocity 3 = 8.
 // PairBatch::evaluate geometry: sum_r 1, |d|^2 5, delta 1, the unit normal d (1/|d|) 3,
 //   (r_i + r_j)(1/m_i + 1/m_j) 1, r_eff 3, m_eff 1, a_i a_j 4, stop_rate 1 = 20; sqrt(|d|^2),
 //   1/|d| and the one division that gives r_eff and m_eff = 3 divsqrt.

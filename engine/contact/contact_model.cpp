@@ -83,6 +83,7 @@ template <class Normal, bool Tangential, RollingKind Rolling, bool kMark, class 
   const std::size_t stride = contacts.state_size();
   double* const roll = kSpring ? contacts.state().data() + (stride - kRollingStateSize) : nullptr;
   const auto flush = [&] {
+    batch.gather(p, hist.data(), period);
     batch.evaluate<Normal, Tangential, Rolling>(law, dt, history_dt);
     if constexpr (kMark) {
       if (pull.state != nullptr) add_touching_pull(pull, batch);
@@ -103,7 +104,7 @@ template <class Normal, bool Tangential, RollingKind Rolling, bool kMark, class 
   split_entries<kMark>(
       p, col, contacts.entry_rows(), row[begin], row[end], period, touching, mark,
       [&](std::size_t i, std::size_t k) {
-        batch.add(p, i, col[k], separation(p, i, col[k], period), hist[k], k);
+        batch.add_index(i, col[k], k);
         if constexpr (kSpring) batch.set_rolling(roll + k * stride);
         if (batch.full()) flush();
       },

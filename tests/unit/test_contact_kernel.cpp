@@ -9,6 +9,7 @@
 #include "engine/contact/contact_kernel.hpp"
 #include "engine/contact/hertz_mindlin.hpp"
 #include "engine/contact/rolling_resistance.hpp"
+#include "engine/periodic.hpp"
 
 namespace drumlab {
 namespace {
@@ -109,6 +110,57 @@ TEST(ContactKernel, ResultDoesNotDependOnThePlaceInTheBatch) {
     EXPECT_EQ(one.torque_j.vec3(0), many.torque_j.vec3(k)) << k;
     EXPECT_EQ(one.xi.vec3(0), many.xi.vec3(k)) << k;
     EXPECT_GT(one.force.vec3(0).norm(), 0.0);
+  }
+}
+
+// gather() after add_index() (four lanes at a time where the build has AVX2) fills every lane as
+// add() does, bit for bit: batches of 1 to 64 lanes (not all multiples of four), without and with
+// a periodic z whose nearest image is shifted both ways.
+TEST(ContactKernel, GatherFillsTheLanesAsAddDoes) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double period = 0.05;
+  Particles p;
+  for (int k = 0; k < 40; ++k) {
+    p.add(Vec3(0.01 * u(rng), 0.01 * u(rng), period * u(rng)), 0.001 + 0.002 * u(rng),
+          1000.0 + 2000.0 * u(rng));
+    p.velocity.back() = Vec3(u(rng), -u(rng), u(rng));
+    p.omega.back() = Vec3(-u(rng), u(rng), u(rng)) * 30.0;
+  }
+  std::vector<Vec3> history(90);
+  for (Vec3& h : history) h = Vec3(u(rng), u(rng), -u(rng)) * 1e-5;
+  for (const double per : {0.0, period}) {
+    int shifted = 0;
+    for (const std::size_t count : {1u, 3u, 4u, 7u, 33u, 64u}) {
+      PairBatch eager;
+      PairBatch lazy;
+      for (std::size_t l = 0; l < count; ++l) {
+        const auto i = static_cast<std::size_t>(rng() % 40);
+        const auto j = static_cast<Index>((i + 1 + rng() % 39) % 40);
+        const std::size_t k = rng() % history.size();
+        const Vec3 d = nearest_image(p.position[i], p.position[j], per);
+        shifted += d.z() != p.position[i].z() - p.position[j].z();
+        eager.add(p, i, j, d, history[k], k);
+        lazy.add_index(i, j, k);
+      }
+      lazy.gather(p, history.data(), per);
+      ASSERT_EQ(lazy.count, count);
+      for (std::size_t l = 0; l < count; ++l) {
+        EXPECT_EQ(lazy.i[l], eager.i[l]);
+        EXPECT_EQ(lazy.j[l], eager.j[l]);
+        EXPECT_EQ(lazy.k[l], eager.k[l]);
+        EXPECT_EQ(lazy.d.vec3(l), eager.d.vec3(l)) << per << " " << l;
+        EXPECT_EQ(lazy.r_i[l], eager.r_i[l]);
+        EXPECT_EQ(lazy.r_j[l], eager.r_j[l]);
+        EXPECT_EQ(lazy.inv_mass_sum[l], eager.inv_mass_sum[l]);
+        EXPECT_EQ(lazy.inv_inertia_sum[l], eager.inv_inertia_sum[l]);
+        EXPECT_EQ(lazy.v.vec3(l), eager.v.vec3(l));
+        EXPECT_EQ(lazy.w_i.vec3(l), eager.w_i.vec3(l));
+        EXPECT_EQ(lazy.w_j.vec3(l), eager.w_j.vec3(l));
+        EXPECT_EQ(lazy.xi.vec3(l), eager.xi.vec3(l));
+      }
+    }
+    if (per > 0.0) EXPECT_GT(shifted, 10);  // the periodic case did shift images
   }
 }
 
