@@ -21,6 +21,7 @@
 #include "engine/contact/mesh_wall_history.hpp"
 #include "engine/contact/wall_candidates.hpp"
 #include "engine/drum.hpp"
+#include "engine/integration_lanes.hpp"
 #include "engine/io/restart_check.hpp"
 #include "engine/mesh/mesh_wall_set.hpp"
 #include "engine/periodic.hpp"
@@ -641,7 +642,18 @@ void Simulation::kick(double h, const Vec3& g) {
   const std::uint8_t* ghost = ghost_.empty() ? nullptr : ghost_.data();
 #pragma omp parallel
   deal_ranges(impl_->integration_blocks, n, kIntegrationBlock, [&](std::size_t b, std::size_t e) {
-    for (std::size_t i = b; i < e; ++i) {
+    std::size_t i = b;
+#if defined(__AVX2__) && defined(__FMA__)
+    if (ghost == nullptr) {  // four particles at a time (integration_lanes.hpp), the same bits
+      const __m256d hv = _mm256_set1_pd(h);
+      const Spread4 gv = repeat_vector(g.x(), g.y(), g.z());
+      for (; i + 4 <= e; i += 4) {
+        kick_velocity4(p.velocity[i].data(), p.force[i].data(), &p.inv_mass[i], hv, gv);
+        if (rotation) kick_spin4(p.omega[i].data(), p.torque[i].data(), &p.inv_inertia[i], hv);
+      }
+    }
+#endif
+    for (; i < e; ++i) {
       if (ghost != nullptr && ghost[i] != 0) continue;  // integrated by its owner
       p.velocity[i] += h * (p.inv_mass[i] * p.force[i] + g);
       if (rotation) p.omega[i] += (h * p.inv_inertia[i]) * p.torque[i];
@@ -662,7 +674,37 @@ double Simulation::kick_drift(double h, const Vec3& g) {
   const std::uint8_t* ghost = ghost_.empty() ? nullptr : ghost_.data();
 #pragma omp parallel reduction(max : v2max, xmax) reduction(| : non_finite)
   deal_ranges(impl_->integration_blocks, n, kIntegrationBlock, [&](std::size_t b, std::size_t e) {
-    for (std::size_t i = b; i < e; ++i) {
+    std::size_t i = b;
+#if defined(__AVX2__) && defined(__FMA__)
+    if (ghost == nullptr) {  // four particles at a time (integration_lanes.hpp), the same bits
+      const __m256d hv = _mm256_set1_pd(h);
+      const __m256d dt = _mm256_set1_pd(dt_);
+      const Spread4 gv = repeat_vector(g.x(), g.y(), g.z());
+      __m256d abs_max = _mm256_setzero_pd();
+      for (; i + 4 <= e; i += 4) {
+        kick_velocity4(p.velocity[i].data(), p.force[i].data(), &p.inv_mass[i], hv, gv);
+        if (rotation) kick_spin4(p.omega[i].data(), p.torque[i].data(), &p.inv_inertia[i], hv);
+        zero12(p.force[i].data());
+        zero12(p.torque[i].data());
+        if (periodic) {
+          drift4(p.position[i].data(), p.velocity[i].data(), dt, abs_max);
+          for (std::size_t q = i; q < i + 4; ++q) {
+            p.position[q].z() = impl_->drum.wrap_z(p.position[q].z());
+            xmax = std::max(xmax, p.position[q].cwiseAbs().maxCoeff());
+          }
+        } else {
+          abs_max = drift4(p.position[i].data(), p.velocity[i].data(), dt, abs_max);
+        }
+        for (std::size_t q = i; q < i + 4; ++q) {
+          const double v2 = p.velocity[q].squaredNorm();
+          non_finite |= !std::isfinite(v2);
+          v2max = std::max(v2max, v2);
+        }
+      }
+      xmax = std::max(xmax, max_lane(abs_max));
+    }
+#endif
+    for (; i < e; ++i) {
       if (ghost != nullptr && ghost[i] != 0) {  // integrated by its owner; its force is discarded
         p.force[i].setZero();
         p.torque[i].setZero();
