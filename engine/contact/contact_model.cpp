@@ -104,7 +104,15 @@ template <class Normal, bool Tangential, RollingKind Rolling, bool kMark, class 
   split_entries<kMark>(
       p, col, contacts.entry_rows(), row[begin], row[end], period, touching, mark,
       [&](std::size_t i, std::size_t k) {
-        batch.add_index(i, col[k], k);
+        // The partner's state that the split did not read, asked for now: gather() reads it
+        // when the batch is full, some 64 contacts later (a prefetch at the split, a few
+        // contacts before its use, did not pay: app/bench/README.md).
+        const Index j = col[k];
+        __builtin_prefetch(p.velocity.data() + j);
+        __builtin_prefetch(p.omega.data() + j);
+        __builtin_prefetch(p.inv_mass.data() + j);
+        __builtin_prefetch(p.inv_inertia.data() + j);
+        batch.add_index(i, j, k);
         if constexpr (kSpring) batch.set_rolling(roll + k * stride);
         if (batch.full()) flush();
       },
