@@ -154,15 +154,7 @@ struct PairBatch {
     k[l] = contact;
     i[l] = static_cast<Index>(pi);
     j[l] = pj;
-    d.set(l, dij);
-    r_i[l] = p.radius[pi];
-    r_j[l] = p.radius[pj];
-    inv_mass_sum[l] = p.inv_mass[pi] + p.inv_mass[pj];
-    inv_inertia_sum[l] = p.inv_inertia[pi] + p.inv_inertia[pj];
-    v.set(l, p.velocity[pi] - p.velocity[pj]);
-    w_i.set(l, p.omega[pi]);
-    w_j.set(l, p.omega[pj]);
-    xi.set(l, history);
+    fill_lane(l, p, pi, pj, dij, history);
   }
 
   /// Adds the overlapping pair (i, j) as contact k, by its indices alone: gather() reads its
@@ -231,17 +223,8 @@ struct PairBatch {
 #endif
     } else {
       for (std::size_t l = 0; l < count; ++l) {
-        const Index pi = i[l];
-        const Index pj = j[l];
-        d.set(l, nearest_image(p.position[pi], p.position[pj], period));
-        r_i[l] = p.radius[pi];
-        r_j[l] = p.radius[pj];
-        inv_mass_sum[l] = p.inv_mass[pi] + p.inv_mass[pj];
-        inv_inertia_sum[l] = p.inv_inertia[pi] + p.inv_inertia[pj];
-        v.set(l, p.velocity[pi] - p.velocity[pj]);
-        w_i.set(l, p.omega[pi]);
-        w_j.set(l, p.omega[pj]);
-        xi.set(l, history[k[l]]);
+        fill_lane(l, p, i[l], j[l], nearest_image(p.position[i[l]], p.position[j[l]], period),
+                  history[k[l]]);
       }
     }
   }
@@ -281,6 +264,20 @@ struct PairBatch {
   }
 
  private:
+  // Lane l's state from particles pi, pj at separation dij, history `history` (add, gather).
+  [[gnu::always_inline]] void fill_lane(std::size_t l, const Particles& p, std::size_t pi, Index pj,
+                                        const Vec3& dij, const Vec3& history) {
+    d.set(l, dij);
+    r_i[l] = p.radius[pi];
+    r_j[l] = p.radius[pj];
+    inv_mass_sum[l] = p.inv_mass[pi] + p.inv_mass[pj];
+    inv_inertia_sum[l] = p.inv_inertia[pi] + p.inv_inertia[pj];
+    v.set(l, p.velocity[pi] - p.velocity[pj]);
+    w_i.set(l, p.omega[pi]);
+    w_j.set(l, p.omega[pj]);
+    xi.set(l, history);
+  }
+
   friend std::size_t pad_lanes<PairBatch>(PairBatch&);
   void copy_lane(std::size_t from, std::size_t to) {
     d.set(to, d.get(from));

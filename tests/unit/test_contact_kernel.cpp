@@ -160,7 +160,9 @@ TEST(ContactKernel, GatherFillsTheLanesAsAddDoes) {
         EXPECT_EQ(lazy.xi.vec3(l), eager.xi.vec3(l));
       }
     }
-    if (per > 0.0) EXPECT_GT(shifted, 10);  // the periodic case did shift images
+    if (per > 0.0) {
+      EXPECT_GT(shifted, 10);  // the periodic case did shift images
+    }
   }
 }
 
