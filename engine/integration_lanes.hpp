@@ -17,9 +17,6 @@
 namespace drumlab {
 
 #if defined(__AVX2__) && defined(__FMA__)
-/// Whether this build has the four-particle updates below.
-inline constexpr bool kIntegrationLanes = true;
-
 /// A scalar per particle of four particles spread over their twelve components, or a constant
 /// 3-vector repeated four times: the three registers' values.
 struct Spread4 {
@@ -90,8 +87,6 @@ struct Spread4 {
   const __m128d m = _mm_max_pd(_mm256_castpd256_pd128(v), _mm256_extractf128_pd(v, 1));
   return _mm_cvtsd_f64(_mm_max_sd(m, _mm_unpackhi_pd(m, m)));
 }
-#else
-inline constexpr bool kIntegrationLanes = false;
 #endif
 
 }  // namespace drumlab
