@@ -172,61 +172,59 @@ struct PairBatch {
   /// AVX2 (lane_gather.hpp).
   void gather(const Particles& p, const Vec3* history, double period) {
     static_assert(sizeof(Vec3) == 3 * sizeof(double));
-    if constexpr (kLaneGather) {
 #if defined(__AVX2__)
-      const std::size_t n = (count + 3) / 4 * 4;
-      for (std::size_t l = count; l < n; ++l) {  // lanes pad_lanes overwrites: any valid index
-        k[l] = k[count - 1];
-        i[l] = i[count - 1];
-        j[l] = j[count - 1];
-      }
-      const auto* pos = reinterpret_cast<const double*>(p.position.data());
-      const auto* vel = reinterpret_cast<const double*>(p.velocity.data());
-      const auto* spin = reinterpret_cast<const double*>(p.omega.data());
-      const auto* hist = reinterpret_cast<const double*>(history);
-      // Three passes (the row particle's state, the partner's, the history), so that each
-      // keeps its four lanes' offsets in registers.
-      for (std::size_t l = 0; l < n; l += 4) {
-        const std::size_t a[4] = {i[l], i[l + 1], i[l + 2], i[l + 3]};
-        const std::size_t a3[4] = {3 * a[0], 3 * a[1], 3 * a[2], 3 * a[3]};
-        store_lanes3(load_lanes3(pos, a3), d.x + l, d.y + l, d.z + l);
-        store_lanes3(load_lanes3(vel, a3), v.x + l, v.y + l, v.z + l);
-        store_lanes3(load_lanes3(spin, a3), w_i.x + l, w_i.y + l, w_i.z + l);
-        _mm256_store_pd(r_i + l, load_lanes1(p.radius.data(), a));
-        _mm256_store_pd(inv_mass_sum + l, load_lanes1(p.inv_mass.data(), a));
-        _mm256_store_pd(inv_inertia_sum + l, load_lanes1(p.inv_inertia.data(), a));
-      }
-      for (std::size_t l = 0; l < n; l += 4) {
-        const std::size_t b[4] = {j[l], j[l + 1], j[l + 2], j[l + 3]};
-        const std::size_t b3[4] = {3 * b[0], 3 * b[1], 3 * b[2], 3 * b[3]};
-        const Lanes4x3 xj = load_lanes3(pos, b3);
-        Lanes4x3 dl{_mm256_sub_pd(_mm256_load_pd(d.x + l), xj.x),
-                    _mm256_sub_pd(_mm256_load_pd(d.y + l), xj.y),
-                    _mm256_sub_pd(_mm256_load_pd(d.z + l), xj.z)};
-        if (period > 0.0) dl.z = nearest_image_z4(dl.z, period);
-        store_lanes3(dl, d.x + l, d.y + l, d.z + l);
-        const Lanes4x3 vj = load_lanes3(vel, b3);
-        _mm256_store_pd(v.x + l, _mm256_sub_pd(_mm256_load_pd(v.x + l), vj.x));
-        _mm256_store_pd(v.y + l, _mm256_sub_pd(_mm256_load_pd(v.y + l), vj.y));
-        _mm256_store_pd(v.z + l, _mm256_sub_pd(_mm256_load_pd(v.z + l), vj.z));
-        store_lanes3(load_lanes3(spin, b3), w_j.x + l, w_j.y + l, w_j.z + l);
-        _mm256_store_pd(r_j + l, load_lanes1(p.radius.data(), b));
-        _mm256_store_pd(inv_mass_sum + l, _mm256_add_pd(_mm256_load_pd(inv_mass_sum + l),
-                                                        load_lanes1(p.inv_mass.data(), b)));
-        _mm256_store_pd(inv_inertia_sum + l, _mm256_add_pd(_mm256_load_pd(inv_inertia_sum + l),
-                                                           load_lanes1(p.inv_inertia.data(), b)));
-      }
-      for (std::size_t l = 0; l < n; l += 4) {
-        const std::size_t c3[4] = {3 * k[l], 3 * k[l + 1], 3 * k[l + 2], 3 * k[l + 3]};
-        store_lanes3(load_lanes3(hist, c3), xi.x + l, xi.y + l, xi.z + l);
-      }
-#endif
-    } else {
-      for (std::size_t l = 0; l < count; ++l) {
-        fill_lane(l, p, i[l], j[l], nearest_image(p.position[i[l]], p.position[j[l]], period),
-                  history[k[l]]);
-      }
+    const std::size_t n = (count + 3) / 4 * 4;
+    for (std::size_t l = count; l < n; ++l) {  // lanes pad_lanes overwrites: any valid index
+      k[l] = k[count - 1];
+      i[l] = i[count - 1];
+      j[l] = j[count - 1];
     }
+    const auto* pos = reinterpret_cast<const double*>(p.position.data());
+    const auto* vel = reinterpret_cast<const double*>(p.velocity.data());
+    const auto* spin = reinterpret_cast<const double*>(p.omega.data());
+    const auto* hist = reinterpret_cast<const double*>(history);
+    // Three passes (the row particle's state, the partner's, the history), so that each
+    // keeps its four lanes' offsets in registers.
+    for (std::size_t l = 0; l < n; l += 4) {
+      const std::size_t a[4] = {i[l], i[l + 1], i[l + 2], i[l + 3]};
+      const std::size_t a3[4] = {3 * a[0], 3 * a[1], 3 * a[2], 3 * a[3]};
+      store_lanes3(load_lanes3(pos, a3), d.x + l, d.y + l, d.z + l);
+      store_lanes3(load_lanes3(vel, a3), v.x + l, v.y + l, v.z + l);
+      store_lanes3(load_lanes3(spin, a3), w_i.x + l, w_i.y + l, w_i.z + l);
+      _mm256_store_pd(r_i + l, load_lanes1(p.radius.data(), a));
+      _mm256_store_pd(inv_mass_sum + l, load_lanes1(p.inv_mass.data(), a));
+      _mm256_store_pd(inv_inertia_sum + l, load_lanes1(p.inv_inertia.data(), a));
+    }
+    for (std::size_t l = 0; l < n; l += 4) {
+      const std::size_t b[4] = {j[l], j[l + 1], j[l + 2], j[l + 3]};
+      const std::size_t b3[4] = {3 * b[0], 3 * b[1], 3 * b[2], 3 * b[3]};
+      const Lanes4x3 xj = load_lanes3(pos, b3);
+      Lanes4x3 dl{_mm256_sub_pd(_mm256_load_pd(d.x + l), xj.x),
+                  _mm256_sub_pd(_mm256_load_pd(d.y + l), xj.y),
+                  _mm256_sub_pd(_mm256_load_pd(d.z + l), xj.z)};
+      if (period > 0.0) dl.z = nearest_image_z4(dl.z, period);
+      store_lanes3(dl, d.x + l, d.y + l, d.z + l);
+      const Lanes4x3 vj = load_lanes3(vel, b3);
+      _mm256_store_pd(v.x + l, _mm256_sub_pd(_mm256_load_pd(v.x + l), vj.x));
+      _mm256_store_pd(v.y + l, _mm256_sub_pd(_mm256_load_pd(v.y + l), vj.y));
+      _mm256_store_pd(v.z + l, _mm256_sub_pd(_mm256_load_pd(v.z + l), vj.z));
+      store_lanes3(load_lanes3(spin, b3), w_j.x + l, w_j.y + l, w_j.z + l);
+      _mm256_store_pd(r_j + l, load_lanes1(p.radius.data(), b));
+      _mm256_store_pd(inv_mass_sum + l, _mm256_add_pd(_mm256_load_pd(inv_mass_sum + l),
+                                                      load_lanes1(p.inv_mass.data(), b)));
+      _mm256_store_pd(inv_inertia_sum + l, _mm256_add_pd(_mm256_load_pd(inv_inertia_sum + l),
+                                                         load_lanes1(p.inv_inertia.data(), b)));
+    }
+    for (std::size_t l = 0; l < n; l += 4) {
+      const std::size_t c3[4] = {3 * k[l], 3 * k[l + 1], 3 * k[l + 2], 3 * k[l + 3]};
+      store_lanes3(load_lanes3(hist, c3), xi.x + l, xi.y + l, xi.z + l);
+    }
+#else
+    for (std::size_t l = 0; l < count; ++l) {
+      fill_lane(l, p, i[l], j[l], nearest_image(p.position[i[l]], p.position[j[l]], period),
+                history[k[l]]);
+    }
+#endif
   }
 
   /// Computes force, torques and the advanced history xi (and xi_r) of every lane.

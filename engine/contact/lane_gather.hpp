@@ -17,9 +17,6 @@
 namespace drumlab {
 
 #if defined(__AVX2__)
-/// Whether this build has the four-lane loads below.
-inline constexpr bool kLaneGather = true;
-
 /// The components of a[o[0]], ..., a[o[3]] (3-vectors of doubles, a[o] at a + o, o the element's
 /// offset in doubles) as x, y, z vectors, lane q from a[o[q]].
 struct Lanes4x3 {
@@ -72,8 +69,6 @@ struct Lanes4x3 {
   const __m256d shifted = _mm256_blendv_pd(dz, _mm256_add_pd(dz, p), below);
   return _mm256_blendv_pd(shifted, _mm256_sub_pd(dz, p), above);
 }
-#else
-inline constexpr bool kLaneGather = false;
 #endif
 
 }  // namespace drumlab
