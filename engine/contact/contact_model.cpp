@@ -28,6 +28,14 @@ namespace {
   return nearest_image(p.position[i], p.position[j], period);
 }
 
+// Asks for the cache lines of v's three components (two where it straddles a line's end).
+template <int kWrite = 0>
+[[gnu::always_inline]] inline void prefetch_vec3(const Vec3* v) {
+  const auto* c = reinterpret_cast<const char*>(v);
+  __builtin_prefetch(c, kWrite);
+  __builtin_prefetch(c + sizeof(Vec3) - 1, kWrite);
+}
+
 // Visits the entries k in [begin, end) (rows in order; entry k is row row_of[k]'s), by chunks:
 // apart(k0, bits) with bit q set for each entry k0 + q of the chunk that does not overlap, then
 // overlap(i, k) for those that do, by increasing k. Most entries of a Verlet list do not overlap,
@@ -50,6 +58,14 @@ template <bool kMark, class Overlap, class Apart>
   alignas(64) double sum_r[kChunk];
   for (std::size_t k0 = begin; k0 < end; k0 += kChunk) {
     const std::size_t n = std::min(end - k0, kChunk);
+    // The next chunk's partners asked for now, one chunk (some 10 rows) before the loop below
+    // reads them: where the particles do not fit in the caches (the Table 2 drum), these
+    // loads were the pair loop's largest stall (app/bench/README.md, "What paid").
+    const std::size_t next = std::min(end, k0 + 2 * kChunk);
+    for (std::size_t k = k0 + kChunk; k < next; ++k) {
+      prefetch_vec3(p.position.data() + col[k]);
+      __builtin_prefetch(p.radius.data() + col[k]);
+    }
     for (std::size_t q = 0; q < n; ++q) {
       const Index i = row_of[k0 + q];
       const Index j = col[k0 + q];
@@ -105,13 +121,15 @@ template <class Normal, bool Tangential, RollingKind Rolling, bool kMark, class 
       p, col, contacts.entry_rows(), row[begin], row[end], period, touching, mark,
       [&](std::size_t i, std::size_t k) {
         // The partner's state that the split did not read, asked for now: gather() reads it
-        // when the batch is full, some 64 contacts later (a prefetch at the split, a few
-        // contacts before its use, did not pay: app/bench/README.md).
+        // when the batch is full, up to 64 contacts later, and the sink then adds to its force
+        // and torque.
         const Index j = col[k];
-        __builtin_prefetch(p.velocity.data() + j);
-        __builtin_prefetch(p.omega.data() + j);
+        prefetch_vec3(p.velocity.data() + j);
+        prefetch_vec3(p.omega.data() + j);
         __builtin_prefetch(p.inv_mass.data() + j);
         __builtin_prefetch(p.inv_inertia.data() + j);
+        prefetch_vec3<1>(p.force.data() + j);
+        prefetch_vec3<1>(p.torque.data() + j);
         batch.add_index(i, j, k);
         if constexpr (kSpring) batch.set_rolling(roll + k * stride);
         if (batch.full()) flush();
