@@ -50,7 +50,7 @@ template <int kWrite = 0>
 template <bool kMark, class Overlap, class Apart>
 [[gnu::always_inline]] inline void split_entries(const Particles& p, std::span<const Index> col,
                                                  std::span<const Index> row_of, std::size_t begin,
-                                                 std::size_t end, double period,
+                                                 std::size_t end, double period, bool far,
                                                  std::size_t& touching, std::uint8_t* mark,
                                                  Overlap&& overlap, Apart&& apart) {
   constexpr std::size_t kChunk = 64;
@@ -58,13 +58,15 @@ template <bool kMark, class Overlap, class Apart>
   alignas(64) double sum_r[kChunk];
   for (std::size_t k0 = begin; k0 < end; k0 += kChunk) {
     const std::size_t n = std::min(end - k0, kChunk);
-    // The next chunk's partners asked for now, one chunk (some 10 rows) before the loop below
-    // reads them: where the particles do not fit in the caches (the Table 2 drum), these
+    // far: the next chunk's partners asked for now, one chunk (some 10 rows) before the loop
+    // below reads them: where the particles do not fit in the caches (the Table 2 drum), these
     // loads were the pair loop's largest stall (app/bench/README.md, "What paid").
-    const std::size_t next = std::min(end, k0 + 2 * kChunk);
-    for (std::size_t k = k0 + kChunk; k < next; ++k) {
-      prefetch_vec3(p.position.data() + col[k]);
-      __builtin_prefetch(p.radius.data() + col[k]);
+    if (far) {
+      const std::size_t next = std::min(end, k0 + 2 * kChunk);
+      for (std::size_t k = k0 + kChunk; k < next; ++k) {
+        prefetch_vec3(p.position.data() + col[k]);
+        __builtin_prefetch(p.radius.data() + col[k]);
+      }
     }
     for (std::size_t q = 0; q < n; ++q) {
       const Index i = row_of[k0 + q];
@@ -79,6 +81,13 @@ template <bool kMark, class Overlap, class Apart>
     for_each_bit(split.overlapping, [&](std::size_t q) { overlap(row_of[k0 + q], k0 + q); });
   }
 }
+
+// From this many particles on, the pair loop also prefetches the partners' positions a chunk
+// ahead, their force and torque, and the second line of a 3-vector that straddles two: their
+// arrays (144 bytes a particle) then outgrow the caches that the extra instructions cost in (the
+// demo drum, 18,825 particles: 0.93-0.98 on one AVX2 core; the deep drum, 75,300: 1.01-1.26
+// on two threads; the Table 2 drum: app/bench/README.md, "What paid").
+constexpr std::size_t kFarParticles = 32768;
 
 // Evaluates the overlapping entries of rows [begin, end) in batches; for each, by increasing k,
 // stores its advanced history and calls sink(batch, l) with its force and torques in lane l (with
@@ -116,20 +125,25 @@ template <class Normal, bool Tangential, RollingKind Rolling, bool kMark, class 
     }
     batch.count = 0;
   };
+  const bool far = p.size() >= kFarParticles;
   std::size_t touching = 0;
   split_entries<kMark>(
-      p, col, contacts.entry_rows(), row[begin], row[end], period, touching, mark,
+      p, col, contacts.entry_rows(), row[begin], row[end], period, far, touching, mark,
       [&](std::size_t i, std::size_t k) {
         // The partner's state that the split did not read, asked for now: gather() reads it
         // when the batch is full, up to 64 contacts later, and the sink then adds to its force
         // and torque.
         const Index j = col[k];
-        prefetch_vec3(p.velocity.data() + j);
-        prefetch_vec3(p.omega.data() + j);
+        __builtin_prefetch(p.velocity.data() + j);
+        __builtin_prefetch(p.omega.data() + j);
         __builtin_prefetch(p.inv_mass.data() + j);
         __builtin_prefetch(p.inv_inertia.data() + j);
-        prefetch_vec3<1>(p.force.data() + j);
-        prefetch_vec3<1>(p.torque.data() + j);
+        if (far) {
+          prefetch_vec3(p.velocity.data() + j);
+          prefetch_vec3(p.omega.data() + j);
+          prefetch_vec3<1>(p.force.data() + j);
+          prefetch_vec3<1>(p.torque.data() + j);
+        }
         batch.add_index(i, j, k);
         if constexpr (kSpring) batch.set_rolling(roll + k * stride);
         if (batch.full()) flush();
