@@ -134,16 +134,17 @@ template <class Normal, bool Tangential, RollingKind Rolling, bool kMark, class 
         // when the batch is full, up to 64 contacts later, and the sink then adds to its force
         // and torque.
         const Index j = col[k];
-        __builtin_prefetch(p.velocity.data() + j);
-        __builtin_prefetch(p.omega.data() + j);
-        __builtin_prefetch(p.inv_mass.data() + j);
-        __builtin_prefetch(p.inv_inertia.data() + j);
         if (far) {
           prefetch_vec3(p.velocity.data() + j);
           prefetch_vec3(p.omega.data() + j);
           prefetch_vec3<1>(p.force.data() + j);
           prefetch_vec3<1>(p.torque.data() + j);
+        } else {
+          __builtin_prefetch(p.velocity.data() + j);
+          __builtin_prefetch(p.omega.data() + j);
         }
+        __builtin_prefetch(p.inv_mass.data() + j);
+        __builtin_prefetch(p.inv_inertia.data() + j);
         batch.add_index(i, j, k);
         if constexpr (kSpring) batch.set_rolling(roll + k * stride);
         if (batch.full()) flush();
