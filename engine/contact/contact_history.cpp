@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <limits>
 #include <numeric>
 
 #include <fmt/format.h>
@@ -177,42 +178,110 @@ void ContactList::build_blocks(std::size_t block_rows) {
   }
 }
 
+namespace {
+
+/// Rows per share of the cross-block index's passes over the rows.
+constexpr std::size_t kRowsPerShare = 4096;
+
+/// The shares of n rows: one per kRowsPerShare rows, at least 1, at most the thread count.
+std::size_t row_shares(std::size_t n) {
+  return std::clamp<std::size_t>(n / kRowsPerShare, 1, static_cast<std::size_t>(max_threads()));
+}
+
+/// Sorts the cross-block contacts `listed` (increasing k) stably by receiver (their partner,
+/// col[k]) into cross_k, and lists the receivers (rows with such contacts, increasing) with the
+/// starts of their runs in cross_k. Count: the counting sort's slot type (c < its range).
+template <class Count>
+void sort_by_receiver(std::span<const std::size_t> listed, std::span<const Index> col,
+                      std::size_t n, std::vector<Count>& fill, std::vector<std::size_t>& cross_k,
+                      std::vector<Index>& receivers, std::vector<std::size_t>& start,
+                      std::vector<std::size_t>& share_count) {
+  constexpr std::size_t kContactsPerShare = 32768;  // below this, one thread
+  const std::size_t t_count = counting_sort_by_row(
+      listed.size(), n, kContactsPerShare, fill, [&](std::size_t q) { return col[listed[q]]; },
+      [&](std::size_t q, Count slot) { cross_k[slot] = listed[q]; });
+  // Row j ends at fill[j T + T - 1] and starts where row j - 1 ends; the receivers are the rows
+  // that are not empty, found per share of rows and placed after the shares before.
+  const auto end_of = [&](std::size_t j) -> std::size_t { return fill[j * t_count + t_count - 1]; };
+  const auto begin_of = [&](std::size_t j) -> std::size_t { return j == 0 ? 0 : end_of(j - 1); };
+  const std::size_t shares = row_shares(n);
+  share_count.assign(shares + 1, 0);
+  const auto share_total = static_cast<std::int64_t>(shares);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t s = 0; s < share_total; ++s) {
+    const auto t = static_cast<std::size_t>(s);
+    std::size_t found = 0;
+    for (std::size_t j = n * t / shares; j < n * (t + 1) / shares; ++j) {
+      found += end_of(j) > begin_of(j);
+    }
+    share_count[t + 1] = found;
+  }
+  std::partial_sum(share_count.begin(), share_count.end(), share_count.begin());
+  receivers.resize(share_count.back());
+  start.resize(share_count.back() + 1);
+  start[0] = 0;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t s = 0; s < share_total; ++s) {
+    const auto t = static_cast<std::size_t>(s);
+    std::size_t o = share_count[t];
+    for (std::size_t j = n * t / shares; j < n * (t + 1) / shares; ++j) {
+      const std::size_t e = end_of(j);
+      if (e == begin_of(j)) continue;
+      receivers[o] = static_cast<Index>(j);
+      start[++o] = e;
+    }
+  }
+}
+
+}  // namespace
+
 void ContactList::build_cross_block(std::size_t block_rows) {
   build_blocks(block_rows);
   const std::size_t n = rows();
   const std::size_t m = col_.size();
-  // Each contact's row, and how many contacts reach past their row's block.
+  // Each contact's row, and the contacts that reach past their row's block (the partner's
+  // block takes their partner share), counted per share of rows, then listed in increasing k.
   resize_with_room(entry_row_, m);
-  std::size_t cross = 0;
-#pragma omp parallel for schedule(static) reduction(+ : cross)
-  for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(n); ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    const std::size_t block_end = row_block_end_[i];
-    for (std::size_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {
-      entry_row_[k] = static_cast<Index>(i);
-      cross += col_[k] >= block_end;
+  const std::size_t shares = row_shares(n);
+  share_count_.assign(shares + 1, 0);
+  const auto share_total = static_cast<std::int64_t>(shares);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t s = 0; s < share_total; ++s) {
+    const auto t = static_cast<std::size_t>(s);
+    std::size_t cross = 0;
+    for (std::size_t i = n * t / shares; i < n * (t + 1) / shares; ++i) {
+      const std::size_t block_end = row_block_end_[i];
+      for (std::size_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {
+        entry_row_[k] = static_cast<Index>(i);
+        cross += col_[k] >= block_end;
+      }
+    }
+    share_count_[t + 1] = cross;
+  }
+  std::partial_sum(share_count_.begin(), share_count_.end(), share_count_.begin());
+  const std::size_t cross = share_count_.back();
+  resize_with_room(cross_listed_, cross);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t s = 0; s < share_total; ++s) {
+    const auto t = static_cast<std::size_t>(s);
+    std::size_t o = share_count_[t];
+    for (std::size_t i = n * t / shares; i < n * (t + 1) / shares; ++i) {
+      const std::size_t block_end = row_block_end_[i];
+      for (std::size_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {
+        if (col_[k] >= block_end) cross_listed_[o++] = k;
+      }
     }
   }
   // Those contacts by receiver (the partner), each receiver's in increasing k: a stable counting
-  // sort, the other contacts in a last row n that takes the places after them and is dropped.
-  const auto receiver_of = [&](std::size_t k) {
-    const std::size_t j = col_[k];
-    return j >= row_block_end_[entry_row_[k]] ? j : n;
-  };
-  constexpr std::size_t kContactsPerShare = 32768;  // below this, one thread
+  // sort of the listed ones only (slots of 4 B while they fit).
   resize_with_room(cross_k_, cross);
-  const std::size_t t_count = counting_sort_by_row(m, n + 1, kContactsPerShare, fill_, receiver_of,
-                                                   [&](std::size_t k, std::size_t slot) {
-                                                     if (slot < cross) cross_k_[slot] = k;
-                                                   });
-  // Row j ends at fill_[j T + T - 1]; the receivers are the rows that are not empty.
-  cross_receivers_.clear();
-  cross_start_.assign(1, 0);
-  for (std::size_t j = 0; j < n; ++j) {
-    const std::size_t row_end = fill_[j * t_count + t_count - 1];
-    if (row_end == cross_start_.back()) continue;
-    cross_receivers_.push_back(static_cast<Index>(j));
-    cross_start_.push_back(row_end);
+  const std::span<const std::size_t> listed(cross_listed_.data(), cross);
+  if (cross < std::numeric_limits<std::uint32_t>::max()) {
+    sort_by_receiver(listed, col_, n, cross_fill_, cross_k_, cross_receivers_, cross_start_,
+                     share_count_);
+  } else {
+    sort_by_receiver(listed, col_, n, fill_, cross_k_, cross_receivers_, cross_start_,
+                     share_count_);
   }
 }
 

@@ -112,7 +112,10 @@ class ContactList {
   std::vector<Index> cross_receivers_;
   std::vector<std::size_t> cross_start_;
   std::vector<std::size_t> cross_k_;
-  std::size_t cross_block_rows_ = 0;  ///< block size of the cross-block index; 0: out of date
+  std::vector<std::size_t> cross_listed_;  // scratch: the cross-block contacts, increasing k
+  std::vector<std::uint32_t> cross_fill_;  // scratch: their counting sort's slots
+  std::vector<std::size_t> share_count_;   // scratch: per share of rows, then offsets
+  std::size_t cross_block_rows_ = 0;       ///< block size of the cross-block index; 0: out of date
   std::vector<std::uint64_t> row_keys_;
   std::vector<std::size_t> block_start_;
   std::vector<std::size_t> row_block_end_;
