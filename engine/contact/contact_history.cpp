@@ -24,6 +24,7 @@ void ContactList::clear() {
   cross_start_.clear();
   cross_k_.clear();
   cross_block_rows_ = 0;
+  blocks_rows_ = 0;
 }
 
 void ContactList::set_state_size(std::size_t scalars) {
@@ -64,6 +65,7 @@ void ContactList::assign(std::span<const std::size_t> row_start, std::span<const
   history_.assign(history.begin(), history.end());
   state_.assign(state.begin(), state.end());
   cross_block_rows_ = 0;
+  blocks_rows_ = 0;
 }
 
 void ContactList::renumber(std::span<const Index> new_index) {
@@ -150,10 +152,15 @@ void ContactList::index_cross_block(std::size_t block_rows) {
 void ContactList::set_row_keys(std::span<const std::uint64_t> keys) {
   row_keys_.assign(keys.begin(), keys.end());
   cross_block_rows_ = 0;
+  blocks_rows_ = 0;
 }
 
 void ContactList::build_blocks(std::size_t block_rows) {
   const std::size_t n = rows();
+  // The blocks follow from the rows' count and keys alone: a list patched or rebuilt keeps them.
+  if (blocks_rows_ == block_rows && blocks_n_ == n) return;
+  blocks_rows_ = block_rows;
+  blocks_n_ = n;
   block_start_.assign(1, 0);
   if (row_keys_.size() == n && n > 0) {  // keyed rows: a block is a run of rows of one key block
     std::uint64_t current = row_keys_[0] / block_rows;

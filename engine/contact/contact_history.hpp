@@ -118,6 +118,8 @@ class ContactList {
   std::size_t cross_block_rows_ = 0;       ///< block size of the cross-block index; 0: out of date
   std::vector<std::uint64_t> row_keys_;
   std::vector<std::size_t> block_start_;
+  std::size_t blocks_rows_ = 0;  ///< block size of block_start_, row_block_end_; 0: out of date
+  std::size_t blocks_n_ = 0;     ///< the rows they were built for
   std::vector<std::size_t> row_block_end_;
   std::vector<IndexPair> renumbered_;  // scratch of renumber()
   std::vector<std::size_t> by_pair_;
