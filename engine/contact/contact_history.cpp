@@ -195,6 +195,17 @@ std::size_t row_shares(std::size_t n) {
   return std::clamp<std::size_t>(n / kRowsPerShare, 1, static_cast<std::size_t>(max_threads()));
 }
 
+/// body(t, begin, end) for each share t of n rows (rows [begin, end)), the shares on the team.
+template <class Body>
+void for_row_shares(std::size_t n, std::size_t shares, Body&& body) {
+  const auto share_total = static_cast<std::int64_t>(shares);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t s = 0; s < share_total; ++s) {
+    const auto t = static_cast<std::size_t>(s);
+    body(t, n * t / shares, n * (t + 1) / shares);
+  }
+}
+
 /// Sorts the cross-block contacts `listed` (increasing k) stably by receiver (their partner,
 /// col[k]) into cross_k, and lists the receivers (rows with such contacts, increasing) with the
 /// starts of their runs in cross_k. Count: the counting sort's slot type (c < its range).
@@ -213,31 +224,26 @@ void sort_by_receiver(std::span<const std::size_t> listed, std::span<const Index
   const auto begin_of = [&](std::size_t j) -> std::size_t { return j == 0 ? 0 : end_of(j - 1); };
   const std::size_t shares = row_shares(n);
   share_count.assign(shares + 1, 0);
-  const auto share_total = static_cast<std::int64_t>(shares);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t s = 0; s < share_total; ++s) {
-    const auto t = static_cast<std::size_t>(s);
+  for_row_shares(n, shares, [&](std::size_t t, std::size_t begin, std::size_t end) {
     std::size_t found = 0;
-    for (std::size_t j = n * t / shares; j < n * (t + 1) / shares; ++j) {
+    for (std::size_t j = begin; j < end; ++j) {
       found += end_of(j) > begin_of(j);
     }
     share_count[t + 1] = found;
-  }
+  });
   std::partial_sum(share_count.begin(), share_count.end(), share_count.begin());
   receivers.resize(share_count.back());
   start.resize(share_count.back() + 1);
   start[0] = 0;
-#pragma omp parallel for schedule(static)
-  for (std::int64_t s = 0; s < share_total; ++s) {
-    const auto t = static_cast<std::size_t>(s);
+  for_row_shares(n, shares, [&](std::size_t t, std::size_t begin, std::size_t end) {
     std::size_t o = share_count[t];
-    for (std::size_t j = n * t / shares; j < n * (t + 1) / shares; ++j) {
+    for (std::size_t j = begin; j < end; ++j) {
       const std::size_t e = end_of(j);
       if (e == begin_of(j)) continue;
       receivers[o] = static_cast<Index>(j);
       start[++o] = e;
     }
-  }
+  });
 }
 
 }  // namespace
@@ -251,12 +257,9 @@ void ContactList::build_cross_block(std::size_t block_rows) {
   resize_with_room(entry_row_, m);
   const std::size_t shares = row_shares(n);
   share_count_.assign(shares + 1, 0);
-  const auto share_total = static_cast<std::int64_t>(shares);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t s = 0; s < share_total; ++s) {
-    const auto t = static_cast<std::size_t>(s);
+  for_row_shares(n, shares, [&](std::size_t t, std::size_t begin, std::size_t end) {
     std::size_t cross = 0;
-    for (std::size_t i = n * t / shares; i < n * (t + 1) / shares; ++i) {
+    for (std::size_t i = begin; i < end; ++i) {
       const std::size_t block_end = row_block_end_[i];
       for (std::size_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {
         entry_row_[k] = static_cast<Index>(i);
@@ -264,21 +267,19 @@ void ContactList::build_cross_block(std::size_t block_rows) {
       }
     }
     share_count_[t + 1] = cross;
-  }
+  });
   std::partial_sum(share_count_.begin(), share_count_.end(), share_count_.begin());
   const std::size_t cross = share_count_.back();
   resize_with_room(cross_listed_, cross);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t s = 0; s < share_total; ++s) {
-    const auto t = static_cast<std::size_t>(s);
+  for_row_shares(n, shares, [&](std::size_t t, std::size_t begin, std::size_t end) {
     std::size_t o = share_count_[t];
-    for (std::size_t i = n * t / shares; i < n * (t + 1) / shares; ++i) {
+    for (std::size_t i = begin; i < end; ++i) {
       const std::size_t block_end = row_block_end_[i];
       for (std::size_t k = row_start_[i]; k < row_start_[i + 1]; ++k) {
         if (col_[k] >= block_end) cross_listed_[o++] = k;
       }
     }
-  }
+  });
   // Those contacts by receiver (the partner), each receiver's in increasing k: a stable counting
   // sort of the listed ones only (slots of 4 B while they fit).
   resize_with_room(cross_k_, cross);
