@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 
 #include "engine/parallel_copy.hpp"
 
@@ -16,29 +17,36 @@ constexpr double kMaxCellsPerAxis = 1099511627776.0;  // 2^40
 
 }  // namespace
 
+Box position_bounds(std::span<const Vec3> position) {
+  // The extremes of each coordinate, on every thread (a minimum does not depend on the order of
+  // the comparisons; the positions must be finite).
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  double lo[3] = {kInf, kInf, kInf};
+  double hi[3] = {-kInf, -kInf, -kInf};
+  const auto n = static_cast<std::int64_t>(position.size());
+  // clang-format off
+#pragma omp parallel for schedule(static) if (n >= kParallelMinElements) \
+    reduction(min : lo[:3]) reduction(max : hi[:3])
+  // clang-format on
+  for (std::int64_t i = 0; i < n; ++i) {
+    const Vec3& x = position[static_cast<std::size_t>(i)];
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], x[a]);
+      hi[a] = std::max(hi[a], x[a]);
+    }
+  }
+  Box box;
+  box.lo = Vec3(lo[0], lo[1], lo[2]);
+  box.hi = Vec3(hi[0], hi[1], hi[2]);
+  return box;
+}
+
 Box search_bounds(const SearchInput& in) {
   Box box;
   if (in.domain) {
     box = *in.domain;
   } else if (!in.position.empty()) {
-    // The extremes of each coordinate, on every thread (a minimum does not depend on the order
-    // of the comparisons; the positions were checked finite).
-    double lo[3] = {in.position[0].x(), in.position[0].y(), in.position[0].z()};
-    double hi[3] = {lo[0], lo[1], lo[2]};
-    const auto n = static_cast<std::int64_t>(in.position.size());
-    // clang-format off
-#pragma omp parallel for schedule(static) if (n >= kParallelMinElements) \
-    reduction(min : lo[:3]) reduction(max : hi[:3])
-    // clang-format on
-    for (std::int64_t i = 0; i < n; ++i) {
-      const Vec3& x = in.position[static_cast<std::size_t>(i)];
-      for (int a = 0; a < 3; ++a) {
-        lo[a] = std::min(lo[a], x[a]);
-        hi[a] = std::max(hi[a], x[a]);
-      }
-    }
-    box.lo = Vec3(lo[0], lo[1], lo[2]);
-    box.hi = Vec3(hi[0], hi[1], hi[2]);
+    box = position_bounds(in.position);
   }
   if (in.period_z) {
     box.lo.z() = 0.0;

@@ -6,11 +6,15 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <string_view>
 
 #include "engine/search/contact_search.hpp"
 
 namespace drumlab {
+
+/// The bounding box of `position` (finite), computed on the team; lo = +inf, hi = -inf if empty.
+Box position_bounds(std::span<const Vec3> position);
 
 /// The domain if given, else the particles' bounding box; z spans [0, period) when periodic.
 Box search_bounds(const SearchInput& in);

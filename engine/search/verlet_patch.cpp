@@ -7,6 +7,7 @@
 
 #include "engine/counting_sort.hpp"
 #include "engine/parallel_copy.hpp"
+#include "engine/search/grid_axes.hpp"
 #include "engine/search/search_input.hpp"
 #include "engine/threads.hpp"
 
@@ -25,25 +26,9 @@ struct PatchGrid {
   bool wrap_z = false;
 
   PatchGrid(std::span<const Vec3> ref, double h, double period) {
-    // The bounds in parallel (a minimum and a maximum are exact in any order).
-    constexpr double kInf = std::numeric_limits<double>::infinity();
-    double lx = kInf, ly = kInf, lz = kInf, hx = -kInf, hy = -kInf, hz = -kInf;
-    const auto count = static_cast<std::int64_t>(ref.size());
-#pragma omp parallel for schedule(static) if (count >= kParallelMinElements) \
-    reduction(min                                                            \
-              : lx, ly, lz) reduction(max                                    \
-                                      : hx, hy, hz)
-    for (std::int64_t i = 0; i < count; ++i) {
-      const Vec3& x = ref[static_cast<std::size_t>(i)];
-      lx = std::min(lx, x.x());
-      ly = std::min(ly, x.y());
-      lz = std::min(lz, x.z());
-      hx = std::max(hx, x.x());
-      hy = std::max(hy, x.y());
-      hz = std::max(hz, x.z());
-    }
-    const Vec3 lo(lx, ly, lz);
-    const Vec3 hi(hx, hy, hz);
+    const Box bounds = position_bounds(ref);
+    const Vec3& lo = bounds.lo;
+    const Vec3& hi = bounds.hi;
     for (int a = 0; a < 3; ++a) {
       double extent = hi[a] - lo[a];
       origin[a] = lo[a];
@@ -78,9 +63,7 @@ struct PatchGrid {
   std::uint32_t cell(std::int64_t cx, std::int64_t cy, std::int64_t cz) const {
     return static_cast<std::uint32_t>((cz * dims[1] + cy) * dims[0] + cx);
   }
-  std::size_t size() const {
-    return static_cast<std::size_t>(dims[0] * dims[1] * dims[2]);
-  }
+  std::size_t size() const { return static_cast<std::size_t>(dims[0] * dims[1] * dims[2]); }
 };
 
 }  // namespace
